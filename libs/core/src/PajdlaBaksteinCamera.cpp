@@ -1,0 +1,106 @@
+#include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/core/bits_math.h>
+#include <mrpt/core/exceptions.h>
+#include <mrpt_vslam/core/PajdlaBaksteinCamera.h>
+
+#include <cmath>
+
+namespace mrpt_vslam::core {
+
+double PajdlaBaksteinCamera::radius(double theta) const
+{
+    // Eq. 1, first line
+    return a * std::tan(theta / b) + c * std::sin(theta / d);
+}
+
+double PajdlaBaksteinCamera::radiusDerivative(double theta) const
+{
+    const double ct = std::cos(theta / b);
+    return a / (b * ct * ct) + (c / d) * std::cos(theta / d);
+}
+
+Eigen::Vector2d PajdlaBaksteinCamera::project(double phi, double theta) const
+{
+    const double r = radius(theta);
+    // Eq. 1, second and third lines
+    return {u0 + r * std::cos(phi), beta * (v0 + r * std::sin(phi))};
+}
+
+Eigen::Matrix2d PajdlaBaksteinCamera::projectJacobian(double phi, double theta) const
+{
+    const double r = radius(theta), dr = radiusDerivative(theta);
+    const double cp = std::cos(phi), sp = std::sin(phi);
+    Eigen::Matrix2d J;
+    J << -r * sp, dr * cp, beta * r * cp, beta * dr * sp;
+    return J;
+}
+
+bool PajdlaBaksteinCamera::isInsideImage(const Eigen::Vector2d& uv) const
+{
+    return uv.x() >= 0 && uv.y() >= 0 && uv.x() <= width - 1 && uv.y() <= height - 1;
+}
+
+bool PajdlaBaksteinCamera::isVisible(double phi, double theta) const
+{
+    return theta >= 0 && theta <= max_theta && isInsideImage(project(phi, theta));
+}
+
+Eigen::Vector2d PajdlaBaksteinCamera::anglesOfPoint(const mrpt::math::TPoint3D& p)
+{
+    return {std::atan2(p.y, p.x), std::atan2(std::hypot(p.x, p.y), p.z)};
+}
+
+void PajdlaBaksteinCamera::validate() const
+{
+    ASSERTMSG_(b > 0 && d > 0, "PajdlaBaksteinCamera: b and d must be > 0");
+    ASSERTMSG_(beta > 0, "PajdlaBaksteinCamera: beta must be > 0");
+    ASSERTMSG_(width > 0 && height > 0, "PajdlaBaksteinCamera: width and height must be > 0");
+    ASSERTMSG_(max_theta > 0 && max_theta < M_PI,
+               "PajdlaBaksteinCamera: max_theta_deg must be in (0, 180)");
+    // r(θ) must be strictly increasing on [0, max_theta] or the model is not invertible.
+    ASSERTMSG_(max_theta < b * M_PI / 2,
+               "PajdlaBaksteinCamera: max_theta_deg must be below b*90 deg (tan term diverges)");
+    constexpr int kSteps = 1000;
+    for (int i = 0; i <= kSteps; i++) {
+        ASSERTMSG_(radiusDerivative(max_theta * i / kSteps) > 0,
+                   "PajdlaBaksteinCamera: r(theta) is not increasing up to max_theta_deg");
+    }
+}
+
+void PajdlaBaksteinCamera::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
+                                              const std::string& section)
+{
+    MRPT_LOAD_CONFIG_VAR(a, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(b, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(c, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(d, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(u0, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(v0, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(beta, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(width, int, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(height, int, cfg, section);
+    max_theta = mrpt::DEG2RAD(cfg.read_double(section, "max_theta_deg", mrpt::RAD2DEG(max_theta)));
+    validate();
+}
+
+void PajdlaBaksteinCamera::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
+                                            const std::string& section) const
+{
+    // The member `c` (Eq. 1) clashes with MRPT_SAVE_CONFIG_VAR_COMMENT's implicit names.
+    const auto put = [&](const char* key, double value, const char* comment) {
+        cfg.write(section, key, value, mrpt::config::MRPT_SAVE_NAME_PADDING(),
+                  mrpt::config::MRPT_SAVE_VALUE_PADDING(), comment);
+    };
+    put("a", a, "[px] tan-term gain of Eq. 1");
+    put("b", b, "[-] tan-term angle divisor");
+    put("c", c, "[px] sin-term gain");
+    put("d", d, "[-] sin-term angle divisor");
+    put("u0", u0, "[px] image centre column");
+    put("v0", v0, "[px] image centre row (before beta)");
+    put("beta", beta, "[-] pixel aspect ratio");
+    put("width", width, "[px] image width");
+    put("height", height, "[px] image height");
+    put("max_theta_deg", mrpt::RAD2DEG(max_theta), "[deg] field-of-view half angle");
+}
+
+}  // namespace mrpt_vslam::core

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Shared set-up for run-demo.sh and run-tests.sh: installs the Debian packages the project needs
+# (only those missing), then configures and builds into build/. Idempotent.
+# Environment: BUILD_DIR (default build), BUILD_TYPE (RelWithDebInfo), SANITIZE (OFF|ON), JOBS.
+set -euo pipefail
+
+REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+BUILD_DIR="${BUILD_DIR:-$REPO_DIR/build}"
+BUILD_TYPE="${BUILD_TYPE:-RelWithDebInfo}"
+SANITIZE="${SANITIZE:-OFF}"
+JOBS="${JOBS:-$(nproc)}"
+
+DEBIAN_PACKAGES=(
+  build-essential cmake ccache git
+  libmrpt-dev mrpt-apps
+  libopencv-dev libeigen3-dev nlohmann-json3-dev
+  libgtest-dev libbenchmark-dev
+  libplplot-dev plplot-driver-cairo
+)
+
+install_missing_packages() {
+  local missing=()
+  for p in "${DEBIAN_PACKAGES[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+      missing+=("$p")
+    fi
+  done
+  if [ ${#missing[@]} -eq 0 ]; then
+    return 0
+  fi
+  echo "Installing missing Debian packages: ${missing[*]}"
+  local SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+configure_and_build() {
+  local generator=()
+  if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
+  if [ ! -f "$BUILD_DIR/CMakeCache.txt" ]; then
+    cmake -S "$REPO_DIR" -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE="$BUILD_TYPE" \
+      -DMRPT_VSLAM_SANITIZE="$SANITIZE"
+  else
+    cmake -S "$REPO_DIR" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE="$BUILD_TYPE" \
+      -DMRPT_VSLAM_SANITIZE="$SANITIZE" >/dev/null
+  fi
+  cmake --build "$BUILD_DIR" -j "$JOBS"
+}
+
+install_missing_packages
+configure_and_build
