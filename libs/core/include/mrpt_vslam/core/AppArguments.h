@@ -1,0 +1,53 @@
+#pragma once
+
+#include <mrpt_vslam/core/CheckedConfigFile.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace mrpt_vslam::core {
+
+/** The command line shared by the driver apps (BRIEF §4, doc/app-conventions.md):
+ *  `APP CONFIG.ini [RAWLOG] [--out DIR] [--seed N] [--set SECTION.KEY=VALUE]...
+ *   [--ground-truth NAME] [--quiet] [--gui] [--help] [--version]`.
+ *
+ *  Usage in main():
+ *  1. `auto args = AppArguments::parse(argc, argv, "omni-fastslam", "FastSLAM 2.0 with ...");`
+ *     inside `try { } catch (const UsageError& e) { print e.what(); return 2; }`;
+ *  2. if `args.request != Request::Run`, print `args.message` on stdout and return 0;
+ *  3. otherwise hand `args` to the app object.
+ *  Parsing never prints and never exits.
+ */
+class AppArguments {
+public:
+    enum class Request { Run, ShowHelp, ShowVersion };
+
+    Request request = Request::Run;
+    std::string message;  ///< help or version text when request != Run
+
+    std::string appName;
+    std::string configFile;                   ///< positional CONFIG (required)
+    std::string rawlogFile;                   ///< positional RAWLOG; empty: config's `rawlog_file`
+    std::string outDir;                       ///< `--out`, else defaultOutDir()
+    uint32_t seed = 0;                        ///< `--seed`; 0: not given (see resolveSeed())
+    std::vector<TConfigOverride> overrides;   ///< every `--set`, in order
+    std::string groundTruth;                  ///< `--ground-truth`; empty: look beside the rawlog
+    bool quiet = false;                       ///< `--quiet`: no progress line, no chatter
+    bool gui = false;                         ///< `--gui`: live 3D view
+    std::vector<std::string> commandLine;     ///< argv as given, for run.json
+
+    /** Parses argv. Throws UsageError with a one-line reason ending in "(see APP --help)" for
+     *  unknown options, a missing CONFIG, extra positionals, or a malformed `--seed`/`--set`. */
+    static AppArguments parse(int argc, const char* const* argv, const std::string& appName,
+                              const std::string& description);
+
+    /** `out/<appName>-<config file name without directory and extension>`. */
+    static std::string defaultOutDir(const std::string& appName, const std::string& configFile);
+
+    /** The seed to use: `--seed` if given (non-zero), else `config_seed` if non-zero, else 1.
+     *  \param config_seed the config's `random_seed` key (0 if absent). */
+    uint32_t resolveSeed(uint32_t config_seed) const;
+};
+
+}  // namespace mrpt_vslam::core

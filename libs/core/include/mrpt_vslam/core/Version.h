@@ -1,0 +1,13 @@
+#pragma once
+
+#include <string>
+
+namespace mrpt_vslam::core {
+
+/** Version of this project, "MAJOR.MINOR.PATCH" (CMake's PROJECT_VERSION). */
+std::string projectVersion();
+
+/** Version of the MRPT libraries the program runs with, e.g. "2.5.8". */
+std::string mrptVersion();
+
+}  // namespace mrpt_vslam::core

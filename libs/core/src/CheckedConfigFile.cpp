@@ -1,0 +1,178 @@
+#include <mrpt/system/string_utils.h>
+#include <mrpt_vslam/core/AtomicFile.h>
+#include <mrpt_vslam/core/CheckedConfigFile.h>
+#include <mrpt_vslam/core/UsageError.h>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <tuple>
+
+namespace mrpt_vslam::core {
+namespace {
+
+std::string toLower(std::string s)
+{
+    std::transform(s.begin(), s.end(), s.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
+bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+/** Line of the first appearance of each (lower-case section, key) in INI text, with the same
+ *  rules as MRPT's reader: `[section]` headers, `key = value` lines, and comment (`;`, `#`,
+ *  `//`) and preprocessor (`@define`) lines skipped. Keys before any header belong to "". */
+std::map<std::pair<std::string, std::string>, int> keyLines(const std::string& text)
+{
+    std::map<std::pair<std::string, std::string>, int> lines;
+    std::istringstream in(text);
+    std::string raw, section;
+    for (int line_no = 1; std::getline(in, raw); ++line_no) {
+        const std::string line = mrpt::system::trim(raw);
+        if (line.empty() || line[0] == ';' || line[0] == '#' || line[0] == '@' ||
+            startsWith(line, "//"))
+            continue;
+        if (line[0] == '[') {
+            const auto close = line.find(']');
+            if (close != std::string::npos)
+                section = toLower(mrpt::system::trim(line.substr(1, close - 1)));
+            continue;
+        }
+        const auto eq = line.find('=');
+        if (eq == std::string::npos) continue;
+        lines.emplace(std::make_pair(section, toLower(mrpt::system::trim(line.substr(0, eq)))),
+                      line_no);
+    }
+    return lines;
+}
+
+}  // namespace
+
+TConfigOverride TConfigOverride::parse(const std::string& text)
+{
+    const auto fail = [&](const std::string& why) {
+        throw UsageError("--set " + text + ": " + why + " (expected SECTION.KEY=VALUE)");
+    };
+    const auto eq = text.find('=');
+    if (eq == std::string::npos) fail("missing '='");
+    const std::string lhs = text.substr(0, eq);
+    const auto dot = lhs.rfind('.');
+    if (dot == std::string::npos) fail("missing '.' between section and key");
+    TConfigOverride o;
+    o.section = mrpt::system::trim(lhs.substr(0, dot));
+    o.key = mrpt::system::trim(lhs.substr(dot + 1));
+    o.value = mrpt::system::trim(text.substr(eq + 1));
+    if (o.section.empty()) fail("empty section");
+    if (o.key.empty()) fail("empty key");
+    if (o.section.find_first_of("[]") != std::string::npos) fail("brackets in the section name");
+    if (o.key.find_first_of(" \t") != std::string::npos) fail("blank in the key name");
+    return o;
+}
+
+std::string TConfigOverride::asString() const { return section + "." + key + "=" + value; }
+
+CheckedConfigFile::TKeyId CheckedConfigFile::keyId(const std::string& section,
+                                                    const std::string& key)
+{
+    return {toLower(section), toLower(key)};
+}
+
+void CheckedConfigFile::loadFile(const std::string& file,
+                                 const std::vector<TConfigOverride>& overrides)
+{
+    std::ifstream in(file);
+    if (!in) throw UsageError(file + ": cannot open configuration file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw UsageError(file + ": cannot read configuration file");
+    loadText(text.str(), file, overrides);
+}
+
+void CheckedConfigFile::loadText(const std::string& text, const std::string& name,
+                                 const std::vector<TConfigOverride>& overrides)
+{
+    clear();
+    CConfigFileMemory::setContent(text);
+    m_name = name;
+    m_overrides = overrides;
+    m_line_of_key = keyLines(text);
+    m_overridden.clear();
+    for (const auto& o : overrides) {
+        CConfigFileMemory::writeString(o.section, o.key, o.value);
+        m_overridden.insert(keyId(o.section, o.key));
+    }
+    std::lock_guard<std::mutex> lock(m_read_mutex);
+    m_read.clear();
+}
+
+std::string CheckedConfigFile::readString(const std::string& section, const std::string& name,
+                                          const std::string& defaultStr,
+                                          bool failIfNotFound) const
+{
+    {
+        std::lock_guard<std::mutex> lock(m_read_mutex);
+        m_read.insert(keyId(section, name));
+    }
+    return CConfigFileMemory::readString(section, name, defaultStr, failIfNotFound);
+}
+
+bool CheckedConfigFile::wasRead(const std::string& section, const std::string& key) const
+{
+    std::lock_guard<std::mutex> lock(m_read_mutex);
+    return m_read.count(keyId(section, key)) != 0;
+}
+
+std::vector<TUnreadKey> CheckedConfigFile::unreadKeys() const
+{
+    std::vector<TUnreadKey> unread;
+    std::vector<std::string> sections, keys;
+    getAllSections(sections);
+    for (const auto& section : sections) {
+        getAllKeys(section, keys);
+        for (const auto& key : keys) {
+            if (wasRead(section, key)) continue;
+            const auto id = keyId(section, key);
+            const auto line = m_line_of_key.find(id);
+            unread.push_back({section, key, line == m_line_of_key.end() ? 0 : line->second,
+                              m_overridden.count(id) != 0});
+        }
+    }
+    std::sort(unread.begin(), unread.end(), [](const TUnreadKey& a, const TUnreadKey& b) {
+        return std::make_tuple(a.line == 0, a.line, a.section, a.key) <
+               std::make_tuple(b.line == 0, b.line, b.section, b.key);
+    });
+    return unread;
+}
+
+void CheckedConfigFile::throwIfUnreadKeys() const
+{
+    const auto unread = unreadKeys();
+    if (unread.empty()) return;
+    std::string msg;
+    for (const auto& u : unread) {
+        if (!msg.empty()) msg += '\n';
+        msg += m_name + ": unknown key [" + u.section + "] " + u.key;
+        if (u.line > 0)
+            msg += " (line " + std::to_string(u.line) + (u.overridden ? ", set by --set)" : ")");
+        else
+            msg += " (set by --set)";
+    }
+    throw UsageError(msg);
+}
+
+std::string CheckedConfigFile::effectiveText() const
+{
+    std::string text = "# Effective configuration of " + m_name + "\n";
+    for (const auto& o : m_overrides) text += "# --set " + o.asString() + "\n";
+    return text + getContent();
+}
+
+void CheckedConfigFile::writeEffectiveConfig(const std::string& file) const
+{
+    AtomicFile out(file);
+    out.stream() << effectiveText();
+    out.commit();
+}
+
+}  // namespace mrpt_vslam::core

@@ -1,0 +1,178 @@
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt_vslam/core/CheckedConfigFile.h>
+#include <mrpt_vslam/core/UsageError.h>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+using mrpt_vslam::core::CheckedConfigFile;
+using mrpt_vslam::core::TConfigOverride;
+using mrpt_vslam::core::UsageError;
+
+namespace {
+
+const char* const kIni =
+    "# example\n"              // 1
+    "[Filter]\n"               // 2
+    "sampleSize = 100\n"       // 3
+    "sigma_xy = 0.05 // [m]\n" // 4
+    "\n"                       // 5
+    "[Camera]\n"               // 6
+    "fx = 400\n"               // 7
+    "fxx = 401\n";             // 8
+
+struct TFilterOptions : public mrpt::config::CLoadableOptions {
+    int sampleSize = 10;
+    double sigma_xy = 1.0;
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s) override
+    {
+        MRPT_LOAD_CONFIG_VAR(sampleSize, int, c, s);
+        MRPT_LOAD_CONFIG_VAR(sigma_xy, double, c, s);
+    }
+};
+
+std::string messageOf(const CheckedConfigFile& cfg)
+{
+    try {
+        cfg.throwIfUnreadKeys();
+    } catch (const UsageError& e) {
+        return e.what();
+    }
+    return {};
+}
+
+}  // namespace
+
+TEST(CheckedConfigFile, TypoIsReportedWithSectionAndLine)
+{
+    CheckedConfigFile cfg;
+    cfg.loadText(kIni, "demo.ini");
+    TFilterOptions opts;
+    opts.loadFromConfigFile(cfg, "Filter");
+    EXPECT_DOUBLE_EQ(cfg.read_double("Camera", "fx", 0), 400.0);
+
+    const auto unread = cfg.unreadKeys();
+    ASSERT_EQ(unread.size(), 1u);
+    EXPECT_EQ(unread[0].section, "Camera");
+    EXPECT_EQ(unread[0].key, "fxx");
+    EXPECT_EQ(unread[0].line, 8);
+    EXPECT_EQ(messageOf(cfg), "demo.ini: unknown key [Camera] fxx (line 8)");
+}
+
+TEST(CheckedConfigFile, LoadConfigVarMarksKeysAsRead)
+{
+    CheckedConfigFile cfg;
+    cfg.loadText(kIni, "demo.ini");
+    EXPECT_FALSE(cfg.wasRead("Filter", "sampleSize"));
+    TFilterOptions opts;
+    opts.loadFromConfigFile(cfg, "Filter");
+    EXPECT_EQ(opts.sampleSize, 100);
+    EXPECT_DOUBLE_EQ(opts.sigma_xy, 0.05);
+    EXPECT_TRUE(cfg.wasRead("Filter", "sampleSize"));
+    EXPECT_TRUE(cfg.wasRead("FILTER", "SIGMA_XY"));  // case-insensitive, as MRPT
+    EXPECT_FALSE(cfg.wasRead("Camera", "fx"));
+}
+
+TEST(CheckedConfigFile, EveryUnreadKeyIsListedInFileOrder)
+{
+    CheckedConfigFile cfg;
+    cfg.loadText(kIni, "demo.ini");
+    EXPECT_EQ(messageOf(cfg),
+              "demo.ini: unknown key [Filter] sampleSize (line 3)\n"
+              "demo.ini: unknown key [Filter] sigma_xy (line 4)\n"
+              "demo.ini: unknown key [Camera] fx (line 7)\n"
+              "demo.ini: unknown key [Camera] fxx (line 8)");
+}
+
+TEST(CheckedConfigFile, OverridesTakeEffectAndMayAddKeys)
+{
+    CheckedConfigFile cfg;
+    cfg.loadText(kIni, "demo.ini",
+                 {TConfigOverride::parse("Filter.sampleSize=250"),
+                  TConfigOverride::parse("New.Section.gain=2.5")});
+    TFilterOptions opts;
+    opts.loadFromConfigFile(cfg, "Filter");
+    EXPECT_EQ(opts.sampleSize, 250);
+    EXPECT_DOUBLE_EQ(cfg.read_double("New.Section", "gain", 0), 2.5);
+    cfg.read_int("Camera", "fx", 0);
+    cfg.read_int("Camera", "fxx", 0);
+    EXPECT_EQ(messageOf(cfg), "");
+}
+
+TEST(CheckedConfigFile, UnreadOverrideIsReportedAsSetOnCommandLine)
+{
+    CheckedConfigFile cfg;
+    cfg.loadText(kIni, "demo.ini", {TConfigOverride::parse("Filter.sampleSise=5")});
+    TFilterOptions opts;
+    opts.loadFromConfigFile(cfg, "Filter");
+    cfg.read_int("Camera", "fx", 0);
+    cfg.read_int("Camera", "fxx", 0);
+    EXPECT_EQ(opts.sampleSize, 100);
+    EXPECT_EQ(messageOf(cfg), "demo.ini: unknown key [Filter] sampleSise (set by --set)");
+}
+
+TEST(CheckedConfigFile, OverrideParsingSplitsAtLastDot)
+{
+    const auto o = TConfigOverride::parse("MappingApplication.maps.x_count = 2 ");
+    EXPECT_EQ(o.section, "MappingApplication.maps");
+    EXPECT_EQ(o.key, "x_count");
+    EXPECT_EQ(o.value, "2");
+    EXPECT_EQ(TConfigOverride::parse("A.b=").value, "");
+    EXPECT_EQ(TConfigOverride::parse("A.b=x=y").value, "x=y");
+    EXPECT_THROW(TConfigOverride::parse("Ab=1"), UsageError);
+    EXPECT_THROW(TConfigOverride::parse("A.b"), UsageError);
+    EXPECT_THROW(TConfigOverride::parse(".b=1"), UsageError);
+    EXPECT_THROW(TConfigOverride::parse("A.=1"), UsageError);
+    EXPECT_THROW(TConfigOverride::parse("A.b c=1"), UsageError);
+}
+
+TEST(CheckedConfigFile, MissingFileIsNamed)
+{
+    CheckedConfigFile cfg;
+    try {
+        cfg.loadFile("/nonexistent/dir/app.ini");
+        FAIL() << "no exception";
+    } catch (const UsageError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "/nonexistent/dir/app.ini: cannot open configuration file");
+    }
+}
+
+TEST(CheckedConfigFile, EffectiveConfigRoundTripsWithOverrides)
+{
+    const std::string file = ::testing::TempDir() + "CheckedConfigFile_effective_" +
+                             std::to_string(::getpid()) + ".ini";
+    std::remove(file.c_str());
+    CheckedConfigFile cfg;
+    cfg.loadText(kIni, "demo.ini", {TConfigOverride::parse("Camera.fx=512")});
+    cfg.writeEffectiveConfig(file);
+
+    std::ifstream in(file);
+    std::stringstream text;
+    text << in.rdbuf();
+    EXPECT_EQ(text.str(), cfg.effectiveText());
+    EXPECT_NE(text.str().find("# --set Camera.fx=512\n"), std::string::npos);
+
+    CheckedConfigFile again;
+    again.loadFile(file);
+    EXPECT_EQ(again.read_int("Camera", "fx", 0), 512);
+    EXPECT_EQ(again.read_int("Filter", "sampleSize", 0), 100);
+    EXPECT_EQ(again.read_int("Camera", "fxx", 0), 401);
+    std::remove(file.c_str());
+}
+
+TEST(CheckedConfigFile, ReloadingClearsReadMarks)
+{
+    CheckedConfigFile cfg;
+    cfg.loadText("[A]\nx = 1\n", "a.ini");
+    EXPECT_EQ(cfg.read_int("A", "x", 0), 1);
+    cfg.loadText("[B]\ny = 2\n", "b.ini");
+    EXPECT_FALSE(cfg.wasRead("A", "x"));
+    EXPECT_FALSE(cfg.sectionExists("A"));
+    EXPECT_EQ(messageOf(cfg), "b.ini: unknown key [B] y (line 2)");
+}
