@@ -1,0 +1,82 @@
+#pragma once
+
+#include <mrpt/math/TPose2D.h>
+#include <mrpt/poses/CPose3D.h>
+
+#include <Eigen/Core>
+
+namespace mrpt_vslam::omni_fastslam {
+
+/** Bearing-only measurement model of an upward fisheye camera looking at ceiling lights
+ *  (Gamallo, Mucientes & Regueiro, "A FastSLAM-based Algorithm for Omnidirectional Cameras",
+ *  paper 000, Sec. III-A; doc/omni-fastslam.md Eq. M1-M4).
+ *
+ *  Conventions:
+ *  - the robot pose is planar, x = (x, y, yaw), on the floor (z = 0);
+ *  - the camera sits at `sensor_in_robot` (default (0, 0, 1.8) m, axes aligned with the robot's);
+ *  - a measurement is z = (φ, θ): φ is the azimuth around the camera's z (optical) axis measured
+ *    from its x axis, θ the angle from the optical axis (the θ of Eq. 1);
+ *  - landmarks m are 3D points in the map frame.
+ *
+ *  Steps of h(m, x):
+ *  1. camera pose in the map: C = (x, y, 0, yaw, 0, 0) ⊕ sensor_in_robot           (Eq. M1)
+ *  2. landmark in the camera frame: d = R_C^T (m − t_C)                            (Eq. M2)
+ *  3. angles: φ = atan2(d_y, d_x), θ = atan2(√(d_x² + d_y²), d_z)                  (Eq. M3)
+ *  4. Jacobians by the chain rule: H = ∂(φ, θ)/∂d · ∂d/∂(x | m)                      (Eq. M4)
+ */
+class BearingMeasurementModel {
+public:
+    using Vector2 = Eigen::Vector2d;
+    using Vector3 = Eigen::Vector3d;
+    using Matrix23 = Eigen::Matrix<double, 2, 3>;
+
+    /// Prediction of one measurement and its Jacobians.
+    struct TPrediction {
+        Vector2 z = Vector2::Zero();       ///< predicted (φ, θ) [rad]
+        Matrix23 H_x = Matrix23::Zero();   ///< ∂h/∂(x, y, yaw) [rad/m, rad/m, rad/rad]
+        Matrix23 H_m = Matrix23::Zero();   ///< ∂h/∂(m_x, m_y, m_z) [rad/m]
+        Vector3 point_in_camera = Vector3::Zero();  ///< d of Eq. M2 [m]
+        /// false when the landmark is (numerically) on the optical axis or at the camera centre,
+        /// where φ and the Jacobians are undefined.
+        bool valid = false;
+    };
+
+    BearingMeasurementModel() = default;
+    /** \param sensor_in_robot camera pose on the robot (z up, optical axis = camera +z) */
+    explicit BearingMeasurementModel(const mrpt::poses::CPose3D& sensor_in_robot);
+
+    const mrpt::poses::CPose3D& sensorInRobot() const { return m_sensor_in_robot; }
+    void setSensorInRobot(const mrpt::poses::CPose3D& sensor_in_robot);
+
+    /// Camera pose in the map for a planar robot pose (Eq. M1).
+    mrpt::poses::CPose3D cameraInMap(const mrpt::math::TPose2D& robot_in_map) const;
+
+    /// h(m, x) only (Eq. M1-M3). Undefined φ (landmark on the optical axis) gives φ = 0.
+    Vector2 predict(const Vector3& landmark_in_map, const mrpt::math::TPose2D& robot_in_map) const;
+
+    /// h(m, x) with its analytic Jacobians H_x and H_m (Eq. M4).
+    TPrediction predictWithJacobians(const Vector3& landmark_in_map,
+                                     const mrpt::math::TPose2D& robot_in_map) const;
+
+    /// Camera centre in the map frame [m]: the origin of every measurement ray.
+    Vector3 rayOriginInMap(const mrpt::math::TPose2D& robot_in_map) const;
+    /// Unit direction, in the map frame, of the ray of measurement z taken from robot_in_map.
+    Vector3 rayDirectionInMap(const Vector2& z, const mrpt::math::TPose2D& robot_in_map) const;
+
+    /// Unit direction in the camera frame of the angles z = (φ, θ).
+    static Vector3 directionOfAngles(const Vector2& z);
+    /// Angles (φ, θ) of a direction (any length) in the camera frame (Eq. M3).
+    static Vector2 anglesOfDirection(const Vector3& direction_in_camera);
+
+    /// Innovation z − ẑ with the azimuth difference wrapped to (−π, π].
+    static Vector2 innovation(const Vector2& z, const Vector2& z_predicted);
+
+    /** (φ, θ) of an `OMNICAM_BEARINGS` `CObservationBearingRange` entry: φ = yaw,
+     *  θ = π/2 + pitch (pitch = −elevation). The Jacobian of this change is the identity. */
+    static Vector2 anglesOfYawPitch(double yaw, double pitch);
+
+private:
+    mrpt::poses::CPose3D m_sensor_in_robot{0, 0, 1.8, 0, 0, 0};
+};
+
+}  // namespace mrpt_vslam::omni_fastslam

@@ -1,0 +1,229 @@
+#pragma once
+
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/maps/CMetricMap.h>
+#include <mrpt/maps/TMetricMapTypesRegistry.h>
+#include <mrpt/math/TPose2D.h>
+#include <mrpt/obs/obs_frwds.h>
+#include <mrpt/poses/CPose3D.h>
+#include <mrpt_vslam/omni_fastslam/BearingMeasurementModel.h>
+#include <mrpt_vslam/omni_fastslam/LightMapElements.h>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace mrpt_vslam::omni_fastslam {
+
+/** One particle's map of ceiling lights for omnidirectional FastSLAM 2.0
+ *  (Gamallo, Mucientes & Regueiro, "A FastSLAM-based Algorithm for Omnidirectional Cameras",
+ *  paper 000; doc/omni-fastslam.md).
+ *
+ *  Holds the landmarks B_j (3D Gaussian, counter i_j, type I/II) and the candidate landmarks C_j
+ *  (their measurements with the robot poses, counter, cross-points). One insertion with a known
+ *  robot pose (insertMeasurements(), or insertObservation() of a `CObservationBearingRange`):
+ *  1. measurements (φ, θ) and their covariance Q from the observation;
+ *  2. level-1 association to landmarks: N_z × (N + N_z) cost matrix −log φ_{l,j}, extra columns
+ *     −log P_new, Hungarian method (or greedy ML)                         (Sec. III-C, Alg. 2)
+ *  3. EKF update of the associated landmarks, counters +1 seen / −1 unseen in perceptual range,
+ *     particle log-weight                                                   (Alg. 4 lines 1-27)
+ *  4. level-2 association of the rest to the candidates (same construction) (Sec. III-C)
+ *  5. updateCandidateLandmarks(): add measurements, new candidates, −I_not on misses, cross-points,
+ *     promotion to landmark                                           (Alg. 4 line 28, III-F(1))
+ *  6. updateLandmarksType(): type II → I, deletion of landmarks with i_j < 0 (line 29, III-F(2)).
+ *
+ *  Usage: create it from an `.ini` through `CMultiMetricMap` (`ceilingLightsMap_count = 1`, see
+ *  doc/omni-fastslam.md), or directly and set the options; insert observations with known poses;
+ *  read landmarks(); saveMetricMapRepresentationToFile() writes `<prefix>.txt` (map.txt format).
+ *  The FastSLAM 2.0 filter calls the steps (associate(), updateLandmarks(), updateCandidates(),
+ *  updateLandmarksType()) itself, with the pose it sampled and its own likelihood matrices.
+ */
+class CCeilingLightsMap : public mrpt::maps::CMetricMap {
+    DEFINE_SERIALIZABLE(CCeilingLightsMap, mrpt_vslam::omni_fastslam)
+
+public:
+    /** Camera description ("<prefix>_creationOpts" section). Shared by insertion and likelihood. */
+    struct TSensorOptions : public mrpt::config::CLoadableOptions {
+        /// Camera pose on the robot; ini: `sensor_in_robot = [x y z yaw pitch roll]` (m, deg).
+        mrpt::poses::CPose3D sensor_in_robot{0, 0, 1.8, 0, 0, 0};
+        /// Default σ of φ / θ [rad] (ini: `sigma_phi_deg`, `sigma_theta_deg`), used when the
+        /// observation has neither per-measurement covariances nor sensor_std_yaw/pitch > 0.
+        double sigma_phi = 1.0 * M_PI / 180;
+        double sigma_theta = 1.0 * M_PI / 180;
+        /// Perceptual range: maximum θ [rad] (ini: `max_theta_deg`).
+        double max_theta = 80.0 * M_PI / 180;
+        /// Perceptual range: maximum horizontal camera-landmark distance [m] (0 = unlimited).
+        double max_horizontal_distance = 0;
+
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
+                                const std::string& section) override;
+        void dumpToTextStream(std::ostream& out) const override;
+    } sensorOptions;
+
+    /** Association and initialization parameters ("<prefix>_insertOpts"); paper values. */
+    struct TInsertionOptions : public mrpt::config::CLoadableOptions {
+        /// `hungarian` (hierarchical, Sec. III-C) or `ml` (greedy maximum likelihood, Sec. IV-A).
+        TAssociationMethod association_method = TAssociationMethod::Hungarian;
+        unsigned int nz_min = 3;        ///< NZ_min: measurements for a candidate's promotion
+        unsigned int ncross_valid = 5;  ///< NCROSS_valid: valid cross-points for promotion
+        /// ANG_min [rad] (ini: `ang_min_deg`, paper "1.22 rad (7°)": we use 7°).
+        double ang_min = 7.0 * M_PI / 180;
+        double d_min = 8.0;  ///< D_min: XY distance for type I landmarks [m]
+        /// Σ0 diagonal [m²] (paper gives a 2×2 diag(0.0025, 0.0025) for a 3D landmark).
+        double sigma0_xx = 0.0025, sigma0_yy = 0.0025, sigma0_zz = 0.0025;
+        /// Squared Mahalanobis distance of P_new = (1/2π)|Q|^{-1/2} exp(−p_new_mahalanobis2/2).
+        double p_new_mahalanobis2 = 64;
+        /// Counter decrement of an unseen candidate: 0 = the paper's I_not (number of iterations
+        /// in a row without a measurement), > 0 = this fixed amount.
+        unsigned int candidate_miss_decrement = 0;
+        /// Measurements kept per candidate (oldest dropped); bounds the O(n²) cross-points.
+        unsigned int max_candidate_measurements = 20;
+
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
+                                const std::string& section) override;
+        void dumpToTextStream(std::ostream& out) const override;
+    } insertionOptions;
+
+    /** Particle weighting ("<prefix>_likelihoodOpts"). */
+    struct TLikelihoodOptions : public mrpt::config::CLoadableOptions {
+        /// p_in: detection probability of a landmark inside the perceptual range; an unseen one
+        /// contributes 1 − p_in (Alg. 4 line 21). In [0, 1).
+        double p_in = 0.5;
+        /// Whether type II landmarks weigh particles (the paper: no).
+        bool use_type_ii_landmarks = false;
+
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
+                                const std::string& section) override;
+        void dumpToTextStream(std::ostream& out) const override;
+    } likelihoodOptions;
+
+    /** 3D rendering ("<prefix>_renderOpts"). */
+    struct TRenderOptions : public mrpt::config::CLoadableOptions {
+        bool draw_candidates = true;       ///< candidates as faint points at their best cross-point
+        double ellipsoid_quantiles = 3.0;  ///< covariance ellipsoids at this many σ
+
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
+                                const std::string& section) override;
+        void dumpToTextStream(std::ostream& out) const override;
+    } renderOptions;
+
+    CCeilingLightsMap() = default;
+
+    /// @name Map contents
+    /// @{
+    const std::vector<TLightLandmark>& landmarks() const { return m_landmarks; }
+    const std::vector<TCandidateLight>& candidates() const { return m_candidates; }
+    /// Iterations closed so far (each updateCandidates() closes one).
+    uint64_t step() const { return m_step; }
+    /// Adds a landmark (e.g. a known map), returns its id. \param cov [m²]
+    int64_t addLandmark(const Eigen::Vector3d& mean, const Eigen::Matrix3d& cov,
+                        TLandmarkType type = TLandmarkType::TypeI, int counter = 1);
+    /// The measurement model with the current sensorOptions.sensor_in_robot.
+    BearingMeasurementModel measurementModel() const;
+    /// @}
+
+    /// @name Measurements
+    /// @{
+    /** (φ, θ) and Q of each entry of an `OMNICAM_BEARINGS` observation (φ = yaw, θ = π/2 +
+     *  pitch); Q from the per-measurement covariances, else sensor_std_yaw/pitch, else the
+     *  sensorOptions defaults. Entries with a non-finite yaw or pitch are skipped. */
+    std::vector<TBearingMeasurement> measurementsFromObservation(
+        const mrpt::obs::CObservationBearingRange& obs) const;
+    /// log P_new = −log 2π − ½ log|Q| − p_new_mahalanobis2 / 2 (Sec. IV).
+    double logPNew(const TBearingMeasurement& m) const;
+    /// log N(ν; 0, S) of a 2D innovation.
+    static double logGaussian(const Eigen::Vector2d& innovation, const Eigen::Matrix2d& S);
+    /// Whether a point is inside the perceptual range of the camera at robot_in_map.
+    bool isInPerceptualRange(const Eigen::Vector3d& point_in_map,
+                             const mrpt::math::TPose2D& robot_in_map) const;
+    /// @}
+
+    /// @name Data association (Sec. III-C)
+    /// @{
+    /** log φ_{l,j} (Alg. 2 line 11) of every measurement l and landmark j at a fixed pose:
+     *  N(z_l; h(μ_j, x), Q_l + H_m Σ_j H_m^T). −inf where the prediction is undefined. */
+    Eigen::MatrixXd landmarkLogLikelihoods(const std::vector<TBearingMeasurement>& z,
+                                           const mrpt::math::TPose2D& robot_in_map) const;
+    /** log p(z_l | x, C_j) of every measurement and candidate (doc/omni-fastslam.md "Candidate
+     *  likelihood"): from the candidate's best valid cross-point if it has one, else from the
+     *  point of its last measurement ray closest to the ray of z_l. */
+    Eigen::MatrixXd candidateLogLikelihoods(const std::vector<TBearingMeasurement>& z,
+                                            const mrpt::math::TPose2D& robot_in_map) const;
+    /** One level of the association: row l of log_lik holds the log-likelihoods of measurement
+     *  l, log_p_new(l) its log P_new. Hungarian: minimum-cost assignment of the N_z × (N + N_z)
+     *  matrix of −log values. ML: measurement by measurement, in order, the most likely column not
+     *  yet taken. Returns the column of each row, −1 for "new". */
+    static std::vector<int> solveAssociation(const Eigen::MatrixXd& log_lik,
+                                             const Eigen::VectorXd& log_p_new,
+                                             TAssociationMethod method);
+    /// Both levels at a known pose, with insertionOptions.association_method.
+    TLightAssociation associate(const std::vector<TBearingMeasurement>& z,
+                                const mrpt::math::TPose2D& robot_in_map) const;
+    /// @}
+
+    /// @name Map update (Alg. 4)
+    /// @{
+    /** EKF update of the landmarks associated to a measurement and their counters (Alg. 4
+     *  lines 1-27). Returns the particle log-weight Σ log ŵ: log N(ν; 0, H_x R H_x^T + Q̃) per
+     *  associated landmark, log(1 − p_in) per unseen landmark in range (type I only unless
+     *  use_type_ii_landmarks).
+     *  \param robot_pose_cov R_t, covariance of (x, y, yaw) [m², m·rad, rad²] (0 for known poses) */
+    double updateLandmarks(const std::vector<TBearingMeasurement>& z,
+                           const mrpt::math::TPose2D& robot_in_map,
+                           const std::vector<int>& landmark_of_measurement,
+                           const Eigen::Matrix3d& robot_pose_cov = Eigen::Matrix3d::Zero());
+    /** updateCandidateLandmarks() (Alg. 4 line 28): measurements with landmark −1 go to their
+     *  candidate (or start a new one), unseen candidates lose I_not and go at ≤ 0, candidates
+     *  meeting the initialization conditions become landmarks. Closes the iteration (step()+1). */
+    void updateCandidates(const std::vector<TBearingMeasurement>& z,
+                          const mrpt::math::TPose2D& robot_in_map, const TLightAssociation& assoc);
+    /// updateLandmarksType() (Alg. 4 line 29): type II → I, deletion of landmarks with i_j < 0.
+    void updateLandmarksType();
+    /// Steps 2-6 of the class description at a known pose. Returns updateLandmarks()'s log-weight.
+    double insertMeasurements(const std::vector<TBearingMeasurement>& z,
+                              const mrpt::math::TPose2D& robot_in_map);
+    /// @}
+
+    /// @name CMetricMap interface
+    /// @{
+    bool isEmpty() const override;
+    /// Writes `<prefix>.txt`: `# id x y z cxx cxy cxz cyy cyz czz`, one line per landmark.
+    void saveMetricMapRepresentationToFile(const std::string& filNamePrefix) const override;
+    void getVisualizationInto(mrpt::opengl::CSetOfObjects& o) const override;
+    std::string asString() const override;
+    float compute3DMatchingRatio(const mrpt::maps::CMetricMap* otherMap,
+                                 const mrpt::poses::CPose3D& otherMapPose,
+                                 const mrpt::maps::TMatchingRatioParams& params) const override;
+    /// @}
+
+    MAP_DEFINITION_START(CCeilingLightsMap)
+    mrpt_vslam::omni_fastslam::CCeilingLightsMap::TSensorOptions sensorOpts;
+    mrpt_vslam::omni_fastslam::CCeilingLightsMap::TInsertionOptions insertionOpts;
+    mrpt_vslam::omni_fastslam::CCeilingLightsMap::TLikelihoodOptions likelihoodOpts;
+    mrpt_vslam::omni_fastslam::CCeilingLightsMap::TRenderOptions renderOpts;
+    MAP_DEFINITION_END(CCeilingLightsMap)
+
+protected:
+    void internal_clear() override;
+    bool internal_insertObservation(
+        const mrpt::obs::CObservation& obs,
+        const std::optional<const mrpt::poses::CPose3D>& robotPose = std::nullopt) override;
+    double internal_computeObservationLikelihood(const mrpt::obs::CObservation& obs,
+                                                 const mrpt::poses::CPose3D& takenFrom) const override;
+    bool internal_canComputeObservationLikelihood(
+        const mrpt::obs::CObservation& obs) const override;
+
+private:
+    std::vector<TLightLandmark> m_landmarks;
+    std::vector<TCandidateLight> m_candidates;
+    uint64_t m_step = 0;
+    int64_t m_next_landmark_id = 0;
+    int64_t m_next_candidate_id = 0;
+
+    bool usesForWeight(const TLightLandmark& lm) const;
+    void addCandidateObservation(TCandidateLight& cand, const TCandidateObservation& obs) const;
+    void refreshCrossPointValidity(TCandidateLight& cand) const;
+    bool tryPromote(const TCandidateLight& cand);
+};
+
+}  // namespace mrpt_vslam::omni_fastslam

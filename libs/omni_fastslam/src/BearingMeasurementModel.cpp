@@ -1,0 +1,136 @@
+#include <mrpt_vslam/omni_fastslam/BearingMeasurementModel.h>
+
+#include <cmath>
+
+namespace mrpt_vslam::omni_fastslam {
+
+namespace {
+/// Squared distance to the optical axis below which φ is considered undefined [m²].
+constexpr double kMinAxisDistance2 = 1e-18;
+
+Eigen::Matrix3d rotationZ(double yaw)
+{
+    const double c = std::cos(yaw), s = std::sin(yaw);
+    Eigen::Matrix3d R;
+    R << c, -s, 0, s, c, 0, 0, 0, 1;
+    return R;
+}
+
+/// Angle wrapped to (−π, π].
+double wrapAngle(double a)
+{
+    a = std::remainder(a, 2 * M_PI);
+    return a <= -M_PI ? a + 2 * M_PI : a;
+}
+}  // namespace
+
+BearingMeasurementModel::BearingMeasurementModel(const mrpt::poses::CPose3D& sensor_in_robot)
+    : m_sensor_in_robot(sensor_in_robot)
+{
+}
+
+void BearingMeasurementModel::setSensorInRobot(const mrpt::poses::CPose3D& sensor_in_robot)
+{
+    m_sensor_in_robot = sensor_in_robot;
+}
+
+mrpt::poses::CPose3D BearingMeasurementModel::cameraInMap(
+    const mrpt::math::TPose2D& robot_in_map) const
+{
+    // Eq. M1: C = (x, y, 0, yaw, 0, 0) ⊕ sensor_in_robot
+    return mrpt::poses::CPose3D(robot_in_map.x, robot_in_map.y, 0, robot_in_map.phi, 0, 0) +
+           m_sensor_in_robot;
+}
+
+BearingMeasurementModel::Vector2 BearingMeasurementModel::predict(
+    const Vector3& landmark_in_map, const mrpt::math::TPose2D& robot_in_map) const
+{
+    const Eigen::Matrix3d Rz = rotationZ(robot_in_map.phi);
+    const Eigen::Matrix3d& Rs = m_sensor_in_robot.getRotationMatrix().asEigen();
+    const Vector3 t_s = m_sensor_in_robot.m_coords.asEigen();
+    const Vector3 landmark_in_robot =
+        Rz.transpose() * (landmark_in_map - Vector3(robot_in_map.x, robot_in_map.y, 0));
+    // Eq. M2: d = R_s^T (R_z^T (m − p) − t_s)
+    return anglesOfDirection(Rs.transpose() * (landmark_in_robot - t_s));
+}
+
+BearingMeasurementModel::TPrediction BearingMeasurementModel::predictWithJacobians(
+    const Vector3& landmark_in_map, const mrpt::math::TPose2D& robot_in_map) const
+{
+    TPrediction out;
+    const Eigen::Matrix3d Rz = rotationZ(robot_in_map.phi);
+    const Eigen::Matrix3d RsT = m_sensor_in_robot.getRotationMatrix().asEigen().transpose();
+    const Vector3 t_s = m_sensor_in_robot.m_coords.asEigen();
+    // q: landmark in the robot frame; d: landmark in the camera frame (Eq. M2)
+    const Vector3 q =
+        Rz.transpose() * (landmark_in_map - Vector3(robot_in_map.x, robot_in_map.y, 0));
+    const Vector3 d = RsT * (q - t_s);
+    out.point_in_camera = d;
+    out.z = anglesOfDirection(d);
+
+    const double rho2 = d.x() * d.x() + d.y() * d.y();
+    const double r2 = rho2 + d.z() * d.z();
+    if (rho2 < kMinAxisDistance2 || r2 <= 0) return out;
+    const double rho = std::sqrt(rho2);
+
+    // Eq. M4: ∂φ/∂d = (−d_y, d_x, 0)/ρ²;  ∂θ/∂d = (d_x d_z / ρ, d_y d_z / ρ, −ρ) / r²
+    Matrix23 dz_dd;
+    dz_dd << -d.y() / rho2, d.x() / rho2, 0,  //
+        d.x() * d.z() / (rho * r2), d.y() * d.z() / (rho * r2), -rho / r2;
+
+    // ∂d/∂m = R_s^T R_z^T
+    out.H_m = dz_dd * RsT * Rz.transpose();
+
+    // ∂q/∂(x, y, yaw) = [−R_z^T e_x, −R_z^T e_y, (q_y, −q_x, 0)]
+    Eigen::Matrix3d dq_dx;
+    dq_dx.col(0) = -Rz.transpose().col(0);
+    dq_dx.col(1) = -Rz.transpose().col(1);
+    dq_dx.col(2) = Vector3(q.y(), -q.x(), 0);
+    out.H_x = dz_dd * RsT * dq_dx;
+    out.valid = true;
+    return out;
+}
+
+BearingMeasurementModel::Vector3 BearingMeasurementModel::rayOriginInMap(
+    const mrpt::math::TPose2D& robot_in_map) const
+{
+    return cameraInMap(robot_in_map).m_coords.asEigen();
+}
+
+BearingMeasurementModel::Vector3 BearingMeasurementModel::rayDirectionInMap(
+    const Vector2& z, const mrpt::math::TPose2D& robot_in_map) const
+{
+    const Eigen::Matrix3d R_camera =
+        rotationZ(robot_in_map.phi) * m_sensor_in_robot.getRotationMatrix().asEigen();
+    return R_camera * directionOfAngles(z);
+}
+
+BearingMeasurementModel::Vector3 BearingMeasurementModel::directionOfAngles(const Vector2& z)
+{
+    const double st = std::sin(z[1]);
+    return {st * std::cos(z[0]), st * std::sin(z[0]), std::cos(z[1])};
+}
+
+BearingMeasurementModel::Vector2 BearingMeasurementModel::anglesOfDirection(
+    const Vector3& direction_in_camera)
+{
+    const Vector3& d = direction_in_camera;
+    const double rho = std::hypot(d.x(), d.y());
+    // Eq. M3
+    const double phi = rho * rho < kMinAxisDistance2 ? 0.0 : std::atan2(d.y(), d.x());
+    return {phi, std::atan2(rho, d.z())};
+}
+
+BearingMeasurementModel::Vector2 BearingMeasurementModel::innovation(const Vector2& z,
+                                                                     const Vector2& z_predicted)
+{
+    return {wrapAngle(z[0] - z_predicted[0]), z[1] - z_predicted[1]};
+}
+
+BearingMeasurementModel::Vector2 BearingMeasurementModel::anglesOfYawPitch(double yaw,
+                                                                           double pitch)
+{
+    return {wrapAngle(yaw), M_PI / 2 + pitch};
+}
+
+}  // namespace mrpt_vslam::omni_fastslam

@@ -1,0 +1,217 @@
+#include <mrpt/obs/CObservationBearingRange.h>
+#include <mrpt_vslam/core/HungarianAssignment.h>
+#include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
+#include <mrpt_vslam/omni_fastslam/RayCrossPoint.h>
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mrpt_vslam::omni_fastslam {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+bool isUsableCovariance(const Eigen::Matrix2d& Q)
+{
+    return Q.allFinite() && Q(0, 0) > 0 && Q(1, 1) > 0 && Q.determinant() > 0;
+}
+}  // namespace
+
+std::vector<TBearingMeasurement> CCeilingLightsMap::measurementsFromObservation(
+    const mrpt::obs::CObservationBearingRange& obs) const
+{
+    Eigen::Matrix2d Q_sensor = Eigen::Vector2d(sensorOptions.sigma_phi * sensorOptions.sigma_phi,
+                                               sensorOptions.sigma_theta * sensorOptions.sigma_theta)
+                                   .asDiagonal();
+    if (!obs.validCovariances && obs.sensor_std_yaw > 0 && obs.sensor_std_pitch > 0) {
+        const double sy = obs.sensor_std_yaw, sp = obs.sensor_std_pitch;
+        Q_sensor = Eigen::Vector2d(sy * sy, sp * sp).asDiagonal();
+    }
+    std::vector<TBearingMeasurement> out;
+    out.reserve(obs.sensedData.size());
+    for (const auto& s : obs.sensedData) {
+        if (!std::isfinite(s.yaw) || !std::isfinite(s.pitch)) continue;
+        TBearingMeasurement m;
+        // θ = π/2 + pitch has unit derivative, so the (yaw, pitch) block is Q of (φ, θ)
+        m.z = BearingMeasurementModel::anglesOfYawPitch(s.yaw, s.pitch);
+        m.Q = Q_sensor;
+        if (obs.validCovariances) {
+            const Eigen::Matrix2d Q_obs = s.covariance.asEigen().block<2, 2>(1, 1);
+            if (isUsableCovariance(Q_obs)) m.Q = Q_obs;
+        }
+        out.push_back(m);
+    }
+    return out;
+}
+
+double CCeilingLightsMap::logGaussian(const Eigen::Vector2d& innovation, const Eigen::Matrix2d& S)
+{
+    const double det = S.determinant();
+    if (!(det > 0)) return -kInf;
+    // log N(ν; 0, S) = −log 2π − ½ log|S| − ½ νᵀ S⁻¹ ν   (Alg. 2 line 11, Dim = 2)
+    return -std::log(2 * M_PI) - 0.5 * std::log(det) -
+           0.5 * innovation.dot(S.inverse() * innovation);
+}
+
+double CCeilingLightsMap::logPNew(const TBearingMeasurement& m) const
+{
+    // P_new = (1/2π) |Q|^{-1/2} exp(−p_new_mahalanobis2 / 2)   (Sec. IV)
+    return -std::log(2 * M_PI) - 0.5 * std::log(m.Q.determinant()) -
+           0.5 * insertionOptions.p_new_mahalanobis2;
+}
+
+bool CCeilingLightsMap::isInPerceptualRange(const Eigen::Vector3d& point_in_map,
+                                            const mrpt::math::TPose2D& robot_in_map) const
+{
+    const auto model = measurementModel();
+    const Eigen::Vector2d z = model.predict(point_in_map, robot_in_map);
+    if (z[1] > sensorOptions.max_theta) return false;
+    if (sensorOptions.max_horizontal_distance <= 0) return true;
+    const Eigen::Vector3d camera = model.rayOriginInMap(robot_in_map);
+    return (point_in_map - camera).head<2>().norm() <= sensorOptions.max_horizontal_distance;
+}
+
+Eigen::MatrixXd CCeilingLightsMap::landmarkLogLikelihoods(
+    const std::vector<TBearingMeasurement>& z, const mrpt::math::TPose2D& robot_in_map) const
+{
+    const auto model = measurementModel();
+    Eigen::MatrixXd out(z.size(), m_landmarks.size());
+    for (size_t j = 0; j < m_landmarks.size(); j++) {
+        const auto& lm = m_landmarks[j];
+        const auto pred = model.predictWithJacobians(lm.mean, robot_in_map);  // Alg. 2 lines 2-4
+        const Eigen::Matrix2d HSH = pred.H_m * lm.cov * pred.H_m.transpose();
+        for (size_t l = 0; l < z.size(); l++) {
+            if (!pred.valid) {
+                out(l, j) = -kInf;
+                continue;
+            }
+            // Alg. 2 line 6: Q_{j,l} = Q_l + H_m Σ_j H_mᵀ
+            const Eigen::Matrix2d S = z[l].Q + HSH;
+            out(l, j) = logGaussian(BearingMeasurementModel::innovation(z[l].z, pred.z), S);
+        }
+    }
+    return out;
+}
+
+Eigen::MatrixXd CCeilingLightsMap::candidateLogLikelihoods(
+    const std::vector<TBearingMeasurement>& z, const mrpt::math::TPose2D& robot_in_map) const
+{
+    const auto model = measurementModel();
+    const Eigen::Vector3d origin = model.rayOriginInMap(robot_in_map);
+    const Eigen::Matrix3d R_camera_T =
+        model.cameraInMap(robot_in_map).getRotationMatrix().asEigen().transpose();
+    const Eigen::Matrix3d sigma0 =
+        Eigen::Vector3d(insertionOptions.sigma0_xx, insertionOptions.sigma0_yy,
+                        insertionOptions.sigma0_zz)
+            .asDiagonal();
+
+    Eigen::MatrixXd out(z.size(), m_candidates.size());
+    for (size_t c = 0; c < m_candidates.size(); c++) {
+        const auto& cand = m_candidates[c];
+        const TCandidateCrossPoint* best = nullptr;
+        for (const auto& x : cand.cross_points)
+            if (x.valid && (!best || x.sum_log_prob > best->sum_log_prob)) best = &x;
+
+        if (best) {
+            // A candidate with a valid cross-point predicts like a landmark with covariance Σ0
+            const auto pred = model.predictWithJacobians(best->point, robot_in_map);
+            for (size_t l = 0; l < z.size(); l++)
+                out(l, c) = pred.valid ? logGaussian(
+                                             BearingMeasurementModel::innovation(z[l].z, pred.z),
+                                             z[l].Q + pred.H_m * sigma0 * pred.H_m.transpose())
+                                       : -kInf;
+            continue;
+        }
+        // Otherwise the light lies somewhere along the last measurement's ray: predict the point
+        // of that ray closest to the new ray (its direction at infinity if none in front).
+        const auto& last = cand.observations.back();
+        const Eigen::Vector3d last_origin = model.rayOriginInMap(last.robot_in_map);
+        const Eigen::Vector3d last_dir =
+            model.rayDirectionInMap(last.measurement.z, last.robot_in_map);
+        for (size_t l = 0; l < z.size(); l++) {
+            const Eigen::Vector3d dir = model.rayDirectionInMap(z[l].z, robot_in_map);
+            const auto x = computeRayCrossPoint(last_origin, last_dir, origin, dir);
+            const Eigen::Vector2d z_pred =
+                (!x.parallel && x.s1 > 0)
+                    ? model.predict(last_origin + x.s1 * last_dir, robot_in_map)
+                    : BearingMeasurementModel::anglesOfDirection(R_camera_T * last_dir);
+            out(l, c) = logGaussian(BearingMeasurementModel::innovation(z[l].z, z_pred),
+                                    z[l].Q + last.measurement.Q);
+        }
+    }
+    return out;
+}
+
+std::vector<int> CCeilingLightsMap::solveAssociation(const Eigen::MatrixXd& log_lik,
+                                                     const Eigen::VectorXd& log_p_new,
+                                                     TAssociationMethod method)
+{
+    const int n_z = static_cast<int>(log_lik.rows());
+    const int n = static_cast<int>(log_lik.cols());
+    ASSERT_EQUAL_(log_p_new.size(), n_z);
+    std::vector<int> out(n_z, -1);
+    if (n_z == 0) return out;
+
+    if (method == TAssociationMethod::ML) {
+        // Greedy ML: each measurement, in order, to its most likely landmark not yet taken
+        std::vector<bool> taken(n, false);
+        for (int l = 0; l < n_z; l++) {
+            double best = log_p_new(l);
+            for (int j = 0; j < n; j++)
+                if (!taken[j] && log_lik(l, j) > best) {
+                    best = log_lik(l, j);
+                    out[l] = j;
+                }
+            if (out[l] >= 0) taken[out[l]] = true;
+        }
+        return out;
+    }
+
+    // Sec. III-C: cost matrix Φ of size N_z × (N + N_z), −log φ_{l,j} then −log P_new
+    Eigen::MatrixXd cost(n_z, n + n_z);
+    for (int l = 0; l < n_z; l++) {
+        for (int j = 0; j < n; j++)
+            cost(l, j) = std::isfinite(log_lik(l, j)) ? -log_lik(l, j) : kInf;
+        cost.row(l).tail(n_z).setConstant(-log_p_new(l));
+    }
+    const auto assignment = core::solveHungarianAssignment(cost);
+    for (int l = 0; l < n_z; l++) {
+        const int col = assignment.row_to_col[l];
+        out[l] = (col >= 0 && col < n) ? col : -1;
+    }
+    return out;
+}
+
+TLightAssociation CCeilingLightsMap::associate(const std::vector<TBearingMeasurement>& z,
+                                               const mrpt::math::TPose2D& robot_in_map) const
+{
+    TLightAssociation out;
+    Eigen::VectorXd log_p_new(z.size());
+    for (size_t l = 0; l < z.size(); l++) log_p_new(l) = logPNew(z[l]);
+
+    // Level 1: landmarks
+    out.landmark_of_measurement = solveAssociation(landmarkLogLikelihoods(z, robot_in_map),
+                                                   log_p_new, insertionOptions.association_method);
+
+    // Level 2: candidates, for the measurements left over
+    out.candidate_of_measurement.assign(z.size(), -1);
+    std::vector<TBearingMeasurement> rest;
+    std::vector<size_t> rest_index;
+    for (size_t l = 0; l < z.size(); l++)
+        if (out.landmark_of_measurement[l] < 0) {
+            rest.push_back(z[l]);
+            rest_index.push_back(l);
+        }
+    if (rest.empty() || m_candidates.empty()) return out;
+    Eigen::VectorXd rest_p_new(rest.size());
+    for (size_t r = 0; r < rest.size(); r++) rest_p_new(r) = log_p_new(rest_index[r]);
+    const auto cand = solveAssociation(candidateLogLikelihoods(rest, robot_in_map), rest_p_new,
+                                       insertionOptions.association_method);
+    for (size_t r = 0; r < rest.size(); r++) out.candidate_of_measurement[rest_index[r]] = cand[r];
+    return out;
+}
+
+}  // namespace mrpt_vslam::omni_fastslam

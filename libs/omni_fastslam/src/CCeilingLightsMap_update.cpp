@@ -1,0 +1,253 @@
+#include <mrpt/core/exceptions.h>
+#include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
+#include <mrpt_vslam/omni_fastslam/RayCrossPoint.h>
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mrpt_vslam::omni_fastslam {
+
+namespace {
+/// XY distance between a robot pose and a point [m].
+double horizontalDistance(const mrpt::math::TPose2D& robot, const Eigen::Vector3d& p)
+{
+    return std::hypot(p.x() - robot.x, p.y() - robot.y);
+}
+}  // namespace
+
+double CCeilingLightsMap::updateLandmarks(const std::vector<TBearingMeasurement>& z,
+                                          const mrpt::math::TPose2D& robot_in_map,
+                                          const std::vector<int>& landmark_of_measurement,
+                                          const Eigen::Matrix3d& robot_pose_cov)
+{
+    ASSERT_EQUAL_(landmark_of_measurement.size(), z.size());
+    std::vector<int> measurement_of_landmark(m_landmarks.size(), -1);
+    for (size_t l = 0; l < z.size(); l++) {
+        const int j = landmark_of_measurement[l];
+        if (j < 0) continue;
+        ASSERTMSG_(j < static_cast<int>(m_landmarks.size()), "landmark index out of range");
+        ASSERTMSG_(measurement_of_landmark[j] < 0, "two measurements associated to one landmark");
+        measurement_of_landmark[j] = static_cast<int>(l);
+    }
+
+    const auto model = measurementModel();
+    const double log_miss = std::log(1 - likelihoodOptions.p_in);
+    double log_w = 0;  // Alg. 4 line 1: w = 1
+    for (size_t j = 0; j < m_landmarks.size(); j++) {
+        auto& lm = m_landmarks[j];
+        const int l = measurement_of_landmark[j];
+        if (l < 0) {
+            // Alg. 4 lines 19-24: unchanged Gaussian; counter −1 inside the perceptual range
+            if (isInPerceptualRange(lm.mean, robot_in_map)) {
+                lm.counter--;
+                if (usesForWeight(lm)) log_w += log_miss;
+            }
+            continue;
+        }
+        const auto pred = model.predictWithJacobians(lm.mean, robot_in_map);  // lines 4-5
+        if (!pred.valid) continue;
+        const auto& Q = z[l].Q;
+        // line 6: Q̃ = Q + H_m Σ H_mᵀ
+        const Eigen::Matrix2d S = Q + pred.H_m * lm.cov * pred.H_m.transpose();
+        // line 7: K = Σ H_mᵀ Q̃⁻¹
+        const Eigen::Matrix<double, 3, 2> K = lm.cov * pred.H_m.transpose() * S.inverse();
+        const Eigen::Vector2d nu = BearingMeasurementModel::innovation(z[l].z, pred.z);
+        // line 8: μ ← μ + K (z − z̃)
+        lm.mean += K * nu;
+        // line 9, Joseph form: Σ ← (I − K H) Σ (I − K H)ᵀ + K Q Kᵀ, then symmetrized
+        const Eigen::Matrix3d I_KH = Eigen::Matrix3d::Identity() - K * pred.H_m;
+        const Eigen::Matrix3d cov = I_KH * lm.cov * I_KH.transpose() + K * Q * K.transpose();
+        lm.cov = 0.5 * (cov + cov.transpose());
+        lm.counter++;
+        if (horizontalDistance(robot_in_map, lm.mean) < insertionOptions.d_min)
+            lm.consecutive_close++;
+        else
+            lm.consecutive_close = 0;
+        // lines 11-17: weight from type I landmarks only; L = H_x R H_xᵀ + Q̃
+        if (usesForWeight(lm))
+            log_w += logGaussian(nu, pred.H_x * robot_pose_cov * pred.H_x.transpose() + S);
+    }
+    return log_w;
+}
+
+void CCeilingLightsMap::addCandidateObservation(TCandidateLight& cand,
+                                                const TCandidateObservation& obs) const
+{
+    const auto model = measurementModel();
+    // log p(z_i | point, x_i) and the squared Mahalanobis distance of one measurement
+    auto term = [&model](const Eigen::Vector3d& point, const TCandidateObservation& o,
+                         double& mahalanobis2) {
+        const Eigen::Vector2d nu = BearingMeasurementModel::innovation(
+            o.measurement.z, model.predict(point, o.robot_in_map));
+        mahalanobis2 = nu.dot(o.measurement.Q.inverse() * nu);
+        return logGaussian(nu, o.measurement.Q);
+    };
+
+    if (cand.observations.size() >= insertionOptions.max_candidate_measurements) {
+        const auto& oldest = cand.observations.front();
+        auto& xs = cand.cross_points;
+        xs.erase(std::remove_if(xs.begin(), xs.end(),
+                                [&](const auto& x) { return x.step_first == oldest.step; }),
+                 xs.end());
+        for (auto& x : xs) {
+            double m2;
+            x.sum_log_prob -= term(x.point, oldest, m2);
+            x.sum_mahalanobis2 -= m2;
+        }
+        cand.observations.erase(cand.observations.begin());
+    }
+
+    for (auto& x : cand.cross_points) {
+        double m2;
+        x.sum_log_prob += term(x.point, obs, m2);
+        x.sum_mahalanobis2 += m2;
+    }
+
+    // Cross-points of the new measurement with each earlier one (Sec. III-F(1), Fig. 3)
+    const Eigen::Vector3d origin = model.rayOriginInMap(obs.robot_in_map);
+    const Eigen::Vector3d dir = model.rayDirectionInMap(obs.measurement.z, obs.robot_in_map);
+    cand.observations.push_back(obs);
+    for (size_t i = 0; i + 1 < cand.observations.size(); i++) {
+        const auto& earlier = cand.observations[i];
+        const Eigen::Vector3d o1 = model.rayOriginInMap(earlier.robot_in_map);
+        const auto rx = computeRayCrossPoint(
+            o1, model.rayDirectionInMap(earlier.measurement.z, earlier.robot_in_map), origin, dir);
+        if (rx.parallel) continue;
+        TCandidateCrossPoint x;
+        x.point = rx.point;
+        x.step_first = earlier.step;
+        x.step_second = obs.step;
+        x.angle = rx.angle;
+        x.gap = rx.gap;
+        // test (b): in front of both cameras and above them
+        x.in_front = rx.s1 > 0 && rx.s2 > 0 && rx.point.z() > std::max(o1.z(), origin.z());
+        for (const auto& o : cand.observations) {
+            double m2;
+            x.sum_log_prob += term(x.point, o, m2);
+            x.sum_mahalanobis2 += m2;
+        }
+        cand.cross_points.push_back(x);
+    }
+    refreshCrossPointValidity(cand);
+}
+
+void CCeilingLightsMap::refreshCrossPointValidity(TCandidateLight& cand) const
+{
+    // test (c): Π_i p(z_i | x) > Π_i P_new,i  ⇔  Σ_i d²_i < n · p_new_mahalanobis2
+    const double max_sum_m2 =
+        insertionOptions.p_new_mahalanobis2 * static_cast<double>(cand.observations.size());
+    for (auto& x : cand.cross_points)
+        x.valid = x.in_front && x.angle > insertionOptions.ang_min &&  // tests (a), (b)
+                  x.sum_mahalanobis2 < max_sum_m2;
+}
+
+bool CCeilingLightsMap::tryPromote(const TCandidateLight& cand)
+{
+    if (cand.nz < insertionOptions.nz_min) return false;
+    const uint64_t newest = cand.observations.back().step;
+    const TCandidateCrossPoint* best = nullptr;
+    unsigned int n_valid = 0;
+    bool from_current = false;
+    for (const auto& x : cand.cross_points) {
+        if (!x.valid) continue;
+        n_valid++;
+        from_current = from_current || x.step_second == newest;
+        if (!best || x.sum_log_prob > best->sum_log_prob) best = &x;
+    }
+    if (n_valid < insertionOptions.ncross_valid || !from_current) return false;
+
+    // Mean: the valid cross-point with the highest probability; covariance Σ0.
+    // Type I when every measurement was taken within D_min (XY) of it (Sec. III-F(2)).
+    bool all_close = true;
+    int trailing_close = 0;
+    for (const auto& o : cand.observations) {
+        const bool close = horizontalDistance(o.robot_in_map, best->point) < insertionOptions.d_min;
+        all_close = all_close && close;
+        trailing_close = close ? trailing_close + 1 : 0;
+    }
+    const Eigen::Matrix3d sigma0 =
+        Eigen::Vector3d(insertionOptions.sigma0_xx, insertionOptions.sigma0_yy,
+                        insertionOptions.sigma0_zz)
+            .asDiagonal();
+    addLandmark(best->point, sigma0, all_close ? TLandmarkType::TypeI : TLandmarkType::TypeII,
+                cand.counter);
+    m_landmarks.back().consecutive_close = trailing_close;
+    return true;
+}
+
+void CCeilingLightsMap::updateCandidates(const std::vector<TBearingMeasurement>& z,
+                                         const mrpt::math::TPose2D& robot_in_map,
+                                         const TLightAssociation& assoc)
+{
+    ASSERT_EQUAL_(assoc.landmark_of_measurement.size(), z.size());
+    ASSERT_EQUAL_(assoc.candidate_of_measurement.size(), z.size());
+    std::vector<bool> seen(m_candidates.size(), false);
+    std::vector<TCandidateLight> created;
+    for (size_t l = 0; l < z.size(); l++) {
+        if (assoc.landmark_of_measurement[l] >= 0) continue;
+        const TCandidateObservation obs{z[l], robot_in_map, m_step};
+        const int c = assoc.candidate_of_measurement[l];
+        if (c < 0) {
+            // a new candidate: its counter starts at 1
+            TCandidateLight cand;
+            cand.id = m_next_candidate_id++;
+            addCandidateObservation(cand, obs);
+            cand.counter = 1;
+            cand.nz = 1;
+            created.push_back(std::move(cand));
+            continue;
+        }
+        ASSERTMSG_(c < static_cast<int>(m_candidates.size()), "candidate index out of range");
+        ASSERTMSG_(!seen[c], "two measurements associated to one candidate");
+        seen[c] = true;
+        auto& cand = m_candidates[c];
+        addCandidateObservation(cand, obs);
+        cand.counter++;
+        cand.nz++;
+        cand.consecutive_misses = 0;
+    }
+
+    std::vector<TCandidateLight> kept;
+    kept.reserve(m_candidates.size() + created.size());
+    for (size_t c = 0; c < m_candidates.size(); c++) {
+        auto& cand = m_candidates[c];
+        if (seen[c]) {
+            if (tryPromote(cand)) continue;
+        } else {
+            // i_j ← i_j − I_not, I_not = iterations in a row without a measurement
+            cand.consecutive_misses++;
+            cand.counter -= insertionOptions.candidate_miss_decrement > 0
+                                ? static_cast<int>(insertionOptions.candidate_miss_decrement)
+                                : cand.consecutive_misses;
+        }
+        if (cand.counter > 0) kept.push_back(std::move(cand));
+    }
+    for (auto& cand : created) kept.push_back(std::move(cand));
+    m_candidates = std::move(kept);
+    m_step++;
+}
+
+void CCeilingLightsMap::updateLandmarksType()
+{
+    for (auto& lm : m_landmarks)
+        if (lm.type == TLandmarkType::TypeII &&
+            lm.consecutive_close >= static_cast<int>(insertionOptions.nz_min))
+            lm.type = TLandmarkType::TypeI;
+    m_landmarks.erase(std::remove_if(m_landmarks.begin(), m_landmarks.end(),
+                                     [](const auto& lm) { return lm.counter < 0; }),
+                      m_landmarks.end());
+}
+
+double CCeilingLightsMap::insertMeasurements(const std::vector<TBearingMeasurement>& z,
+                                             const mrpt::math::TPose2D& robot_in_map)
+{
+    const TLightAssociation assoc = associate(z, robot_in_map);
+    const double log_w = updateLandmarks(z, robot_in_map, assoc.landmark_of_measurement);
+    updateCandidates(z, robot_in_map, assoc);
+    updateLandmarksType();
+    return log_w;
+}
+
+}  // namespace mrpt_vslam::omni_fastslam
