@@ -1,0 +1,42 @@
+#pragma once
+
+#include <functional>
+
+#include <mrpt/obs/CObservationBearingRange.h>
+#include <mrpt/obs/CObservationImage.h>
+#include <mrpt/obs/CObservationRobotPose.h>
+#include <mrpt/poses/CPose3D.h>
+#include <mrpt/system/datetime.h>
+#include <mrpt_vslam/sim/DetectionSimulator.h>
+
+#include <string>
+
+namespace mrpt_vslam::sim {
+
+/// Sensor labels of the datasets (BRIEF §3).
+inline constexpr const char* kImageLabel = "OMNICAM";
+inline constexpr const char* kBearingsLabel = "OMNICAM_BEARINGS";
+inline constexpr const char* kGroundTruthLabel = "GROUND_TRUTH";
+
+/** `OMNICAM` image observation whose image is stored externally as `image_file` (relative to
+ *  the rawlog's `_Images` directory); cameraParams holds only the image size. */
+mrpt::obs::CObservationImage::Ptr makeImageObservation(const std::string& image_file, int width,
+                                                       int height,
+                                                       const mrpt::poses::CPose3D& camera_on_robot,
+                                                       mrpt::Clock::time_point stamp);
+
+/** `OMNICAM_BEARINGS` bearing-only observation: range NaN, yaw = φ, pitch = −(π/2 − θ),
+ *  landmarkID −1; per-measurement covariances diag(0, σ_φ(θ)², σ_θ(θ)²) from `std_at_theta`
+ *  (validCovariances = true) and `angular_std` = (σ_yaw, σ_pitch) [rad] at a reference θ in
+ *  sensor_std_yaw/pitch for tools that ignore them; fieldOfView_yaw = 2π,
+ *  fieldOfView_pitch = 2·max_theta (the full cone of detection). */
+mrpt::obs::CObservationBearingRange::Ptr makeBearingObservation(
+    const TFrameDetections& frame, const mrpt::poses::CPose3D& camera_on_robot,
+    const std::function<Eigen::Vector2d(double theta)>& std_at_theta,
+    const Eigen::Vector2d& angular_std, double max_theta, mrpt::Clock::time_point stamp);
+
+/** `GROUND_TRUTH` robot pose observation (exact pose, zero covariance). */
+mrpt::obs::CObservationRobotPose::Ptr makeGroundTruthObservation(
+    const mrpt::poses::CPose3D& robot_in_world, mrpt::Clock::time_point stamp);
+
+}  // namespace mrpt_vslam::sim

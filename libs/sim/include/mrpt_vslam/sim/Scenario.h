@@ -1,0 +1,45 @@
+#pragma once
+
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+namespace mrpt_vslam::sim {
+
+/** What one run of a scenario is asked to produce. */
+struct TSimulationOptions {
+    std::string out_prefix;    ///< DIR/NAME: files are NAME.rawlog, NAME_Images/, NAME.*.tum ...
+    uint64_t seed = 1;         ///< master seed of every random stream
+    int frames = -1;           ///< frames to simulate; −1 = the scenario's full run
+    bool write_images = true;  ///< false: no images (bearings, odometry and ground truth only)
+    /// Called after each frame with (frames done, frames total); may be empty.
+    std::function<void(int, int)> on_progress;
+};
+
+/** What a run produced, for the progress line and the tests. */
+struct TSimulationSummary {
+    int frames = 0;                ///< sensory frames written
+    size_t light_bearings = 0;     ///< bearings that come from lights
+    size_t spurious_bearings = 0;  ///< bearings that come from spurious reflections
+    double path_length = 0;        ///< [m] ground-truth distance travelled
+};
+
+/** A simulated environment plus robot run that writes a dataset (BRIEF §3 layout).
+ *
+ *  1. Create it through createScenario(name).
+ *  2. loadConfig() with the scenario's .ini (share/mrpt-vslam/config/vslam-sim/<name>.ini).
+ *  3. run() writes the files; the same options and seed give byte-identical files. */
+class Scenario {
+  public:
+    virtual ~Scenario() = default;
+    /// Name used on the command line, e.g. "sports-hall".
+    virtual std::string name() const = 0;
+    /// Reads and validates every parameter; throws core::UsageError naming the bad key.
+    virtual void loadConfig(const mrpt::config::CConfigFileBase& cfg) = 0;
+    /// Simulates and writes the dataset; throws on any I/O error.
+    virtual TSimulationSummary run(const TSimulationOptions& options) = 0;
+};
+
+}  // namespace mrpt_vslam::sim

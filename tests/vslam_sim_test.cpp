@@ -1,0 +1,180 @@
+// Runs the built vslam-sim binary like a user would and checks its files and its errors.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kWorkDir = fs::temp_directory_path() / "mrpt_vslam_vslam_sim_test";
+
+struct TRun {
+    int exit_code = -1;
+    std::string out;  ///< stdout and stderr
+};
+
+/// Runs a shell command, capturing stdout + stderr.
+TRun runCommand(const std::string& command)
+{
+    fs::create_directories(kWorkDir);
+    const fs::path log = kWorkDir / "command.log";
+    const int status = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
+    std::ifstream in(log);
+    std::stringstream text;
+    text << in.rdbuf();
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+TRun runSim(const std::string& args)
+{
+    return runCommand(std::string(MRPT_VSLAM_BIN_DIR "/vslam-sim ") + args);
+}
+
+/// Lines that are not `#` comments.
+int dataLines(const fs::path& file)
+{
+    std::ifstream in(file);
+    int n = 0;
+    for (std::string line; std::getline(in, line);)
+        if (!line.empty() && line[0] != '#') n++;
+    return n;
+}
+
+int lineCount(const std::string& text)
+{
+    int n = 0;
+    for (char c : text) n += c == '\n';
+    return n;
+}
+
+std::string trim(const std::string& s)
+{
+    const size_t a = s.find_first_not_of(' '), b = s.find_last_not_of(' ');
+    return a == std::string::npos ? "" : s.substr(a, b - a + 1);
+}
+
+/// `rawlog-edit --info` report: "Field name : value" lines, and the per-sensor occurrence counts
+/// of the "Sensor (Label/Occurs/Rate/Durat.) : LABEL / N / ..." lines.
+struct TRawlogInfo {
+    std::map<std::string, std::string> fields;
+    std::map<std::string, int> sensor_counts;
+};
+
+TRawlogInfo parseRawlogInfo(const std::string& text)
+{
+    TRawlogInfo info;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+        const size_t colon = line.find(" : ");
+        if (colon == std::string::npos) continue;
+        const std::string name = trim(line.substr(0, colon)), value = trim(line.substr(colon + 3));
+        if (name.rfind("Sensor (Label", 0) == 0) {
+            const size_t slash = value.find('/');
+            info.sensor_counts[trim(value.substr(0, slash))] = std::stoi(value.substr(slash + 1));
+        } else {
+            info.fields[name] = value;
+        }
+    }
+    return info;
+}
+
+/// Simulates 12 frames of the hall into a fresh directory once; returns the prefix.
+std::string shortHall()
+{
+    static const std::string prefix = [] {
+        const fs::path dir = kWorkDir / "short";
+        fs::remove_all(dir);
+        const TRun r =
+            runSim("sports-hall --seed 4 --frames 12 --quiet --out " + (dir / "hall").string());
+        EXPECT_EQ(r.exit_code, 0) << r.out;
+        EXPECT_EQ(r.out, "");
+        return (dir / "hall").string();
+    }();
+    return prefix;
+}
+
+}  // namespace
+
+TEST(VslamSim, WritesTheDatasetFiles)
+{
+    const std::string prefix = shortHall();
+    EXPECT_EQ(dataLines(prefix + ".groundtruth.tum"), 12);
+    EXPECT_EQ(dataLines(prefix + ".odometry.tum"), 12);
+    EXPECT_EQ(dataLines(prefix + ".landmarks.txt"), 14);
+    EXPECT_GT(fs::file_size(prefix + ".rawlog"), 1000u);
+    EXPECT_FALSE(fs::exists(prefix + ".rawlog.tmp"));
+    int images = 0;
+    for (const auto& e : fs::directory_iterator(prefix + "_Images"))
+        images += e.path().extension() == ".png";
+    EXPECT_EQ(images, 12);
+}
+
+TEST(VslamSim, StockRawlogEditReadsEveryFrame)
+{
+    if (!fs::exists("/usr/bin/rawlog-edit")) GTEST_SKIP() << "/usr/bin/rawlog-edit not installed";
+    const std::string prefix = shortHall();
+    const TRun r = runCommand("/usr/bin/rawlog-edit --info -i '" + prefix + ".rawlog'");
+    EXPECT_EQ(r.exit_code, 0) << r.out;
+    const TRawlogInfo info = parseRawlogInfo(r.out);
+    EXPECT_EQ(info.fields.count("Overall number of objects")
+                  ? info.fields.at("Overall number of objects")
+                  : "",
+              "24")
+        << r.out;
+    EXPECT_EQ(info.fields.count("Actions/SensoryFrame format")
+                  ? info.fields.at("Actions/SensoryFrame format")
+                  : "",
+              "Yes")
+        << r.out;
+    const std::map<std::string, int> expected{
+        {"GROUND_TRUTH", 12}, {"OMNICAM", 12}, {"OMNICAM_BEARINGS", 12}};
+    EXPECT_EQ(info.sensor_counts, expected) << r.out;
+    EXPECT_EQ(r.out.find("rror"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("xception"), std::string::npos) << r.out;
+}
+
+TEST(VslamSim, ProgressGoesToStderrUnlessQuiet)
+{
+    const TRun r = runSim("sports-hall --frames 3 --no-images --out " +
+                          (kWorkDir / "progress" / "hall").string());
+    EXPECT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_NE(r.out.find("frame 3/3"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("3 frames"), std::string::npos) << r.out;
+}
+
+TEST(VslamSim, BadArgumentsFailWithOneLineErrorAndCode2)
+{
+    const std::string out = " --out " + (kWorkDir / "bad" / "x").string();
+    for (const std::string& args :
+         {std::string("gym") + out, std::string("sports-hall"), "sports-hall --frames 0" + out,
+          "sports-hall --seed abc" + out, "sports-hall --set Lights.radiuss=0.3" + out,
+          "sports-hall --set Lights.radius=-1" + out, "sports-hall --config /nonexistent.ini" + out,
+          "sports-hall --bogus" + out, "sports-hall --set Lights=3" + out}) {
+        const TRun r = runSim(args);
+        EXPECT_EQ(r.exit_code, 2) << args;  // usage error (doc/app-conventions.md)
+        EXPECT_EQ(lineCount(r.out), 1) << args << "\n" << r.out;
+        EXPECT_EQ(r.out.rfind("vslam-sim: error: ", 0), 0u) << args << "\n" << r.out;
+    }
+    EXPECT_FALSE(fs::exists(kWorkDir / "bad" / "x.rawlog"));
+}
+
+TEST(VslamSim, UnknownScenarioListsTheKnownOnes)
+{
+    const TRun r = runSim("gym --out " + (kWorkDir / "bad" / "y").string());
+    EXPECT_NE(r.out.find("unknown scenario 'gym' (known: sports-hall)"), std::string::npos)
+        << r.out;
+}
+
+TEST(VslamSim, HelpExitsWithZero)
+{
+    const TRun r = runSim("--help");
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_NE(r.out.find("--no-images"), std::string::npos) << r.out;
+}
