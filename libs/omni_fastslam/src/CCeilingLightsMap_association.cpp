@@ -185,32 +185,39 @@ std::vector<int> CCeilingLightsMap::solveAssociation(const Eigen::MatrixXd& log_
     return out;
 }
 
+std::vector<int> CCeilingLightsMap::associateCandidates(
+    const std::vector<TBearingMeasurement>& z, const mrpt::math::TPose2D& robot_in_map,
+    const std::vector<int>& landmark_of_measurement) const
+{
+    ASSERT_EQUAL_(landmark_of_measurement.size(), z.size());
+    std::vector<int> out(z.size(), -1);
+    std::vector<TBearingMeasurement> rest;
+    std::vector<size_t> rest_index;
+    for (size_t l = 0; l < z.size(); l++)
+        if (landmark_of_measurement[l] < 0) {
+            rest.push_back(z[l]);
+            rest_index.push_back(l);
+        }
+    if (rest.empty() || m_candidates.empty()) return out;
+    Eigen::VectorXd rest_p_new(rest.size());
+    for (size_t r = 0; r < rest.size(); r++) rest_p_new(r) = logPNew(rest[r]);
+    const auto cand = solveAssociation(candidateLogLikelihoods(rest, robot_in_map), rest_p_new,
+                                       insertionOptions.association_method);
+    for (size_t r = 0; r < rest.size(); r++) out[rest_index[r]] = cand[r];
+    return out;
+}
+
 TLightAssociation CCeilingLightsMap::associate(const std::vector<TBearingMeasurement>& z,
                                                const mrpt::math::TPose2D& robot_in_map) const
 {
     TLightAssociation out;
     Eigen::VectorXd log_p_new(z.size());
     for (size_t l = 0; l < z.size(); l++) log_p_new(l) = logPNew(z[l]);
-
-    // Level 1: landmarks
+    // Level 1: landmarks; level 2: candidates, for the measurements left over
     out.landmark_of_measurement = solveAssociation(landmarkLogLikelihoods(z, robot_in_map),
                                                    log_p_new, insertionOptions.association_method);
-
-    // Level 2: candidates, for the measurements left over
-    out.candidate_of_measurement.assign(z.size(), -1);
-    std::vector<TBearingMeasurement> rest;
-    std::vector<size_t> rest_index;
-    for (size_t l = 0; l < z.size(); l++)
-        if (out.landmark_of_measurement[l] < 0) {
-            rest.push_back(z[l]);
-            rest_index.push_back(l);
-        }
-    if (rest.empty() || m_candidates.empty()) return out;
-    Eigen::VectorXd rest_p_new(rest.size());
-    for (size_t r = 0; r < rest.size(); r++) rest_p_new(r) = log_p_new(rest_index[r]);
-    const auto cand = solveAssociation(candidateLogLikelihoods(rest, robot_in_map), rest_p_new,
-                                       insertionOptions.association_method);
-    for (size_t r = 0; r < rest.size(); r++) out.candidate_of_measurement[rest_index[r]] = cand[r];
+    out.candidate_of_measurement =
+        associateCandidates(z, robot_in_map, out.landmark_of_measurement);
     return out;
 }
 

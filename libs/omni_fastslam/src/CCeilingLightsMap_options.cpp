@@ -58,6 +58,7 @@ void CCeilingLightsMap::TInsertionOptions::loadFromConfigFile(
     MRPT_LOAD_CONFIG_VAR(p_new_mahalanobis2, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(candidate_miss_decrement, uint64_t, cfg, section);
     MRPT_LOAD_CONFIG_VAR(max_candidate_measurements, uint64_t, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(refine_initialization, bool, cfg, section);
 
     requireKey(nz_min >= 2, section, "nz_min", "must be >= 2 (two rays make a cross-point)");
     requireKey(ncross_valid >= 1, section, "ncross_valid", "must be >= 1");
@@ -85,6 +86,7 @@ void CCeilingLightsMap::TInsertionOptions::dumpToTextStream(std::ostream& out) c
     LOADABLEOPTS_DUMP_VAR(p_new_mahalanobis2, double);
     LOADABLEOPTS_DUMP_VAR(candidate_miss_decrement, int);
     LOADABLEOPTS_DUMP_VAR(max_candidate_measurements, int);
+    LOADABLEOPTS_DUMP_VAR(refine_initialization, bool);
 }
 
 void CCeilingLightsMap::TLikelihoodOptions::loadFromConfigFile(

@@ -115,7 +115,7 @@ void CCeilingLightsMap::serializeTo(mrpt::serialization::CArchive& out) const
         << static_cast<uint32_t>(io.ncross_valid) << io.ang_min << io.d_min << io.sigma0_xx
         << io.sigma0_yy << io.sigma0_zz << io.p_new_mahalanobis2
         << static_cast<uint32_t>(io.candidate_miss_decrement)
-        << static_cast<uint32_t>(io.max_candidate_measurements);
+        << static_cast<uint32_t>(io.max_candidate_measurements) << io.refine_initialization;
     out << likelihoodOptions.p_in << likelihoodOptions.use_type_ii_landmarks;
     out << renderOptions.draw_candidates << renderOptions.ellipsoid_quantiles;
 
@@ -138,7 +138,8 @@ void CCeilingLightsMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t
             uint8_t method;
             uint32_t nz_min, ncross, miss_dec, max_meas;
             in >> method >> nz_min >> ncross >> io.ang_min >> io.d_min >> io.sigma0_xx >>
-                io.sigma0_yy >> io.sigma0_zz >> io.p_new_mahalanobis2 >> miss_dec >> max_meas;
+                io.sigma0_yy >> io.sigma0_zz >> io.p_new_mahalanobis2 >> miss_dec >> max_meas >>
+                io.refine_initialization;
             if (method > static_cast<uint8_t>(TAssociationMethod::ML))
                 THROW_EXCEPTION_FMT("CCeilingLightsMap: invalid association method %u", method);
             io.association_method = static_cast<TAssociationMethod>(method);

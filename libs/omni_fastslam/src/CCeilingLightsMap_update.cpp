@@ -32,7 +32,6 @@ double CCeilingLightsMap::updateLandmarks(const std::vector<TBearingMeasurement>
         measurement_of_landmark[j] = static_cast<int>(l);
     }
 
-    const auto model = measurementModel();
     const double log_miss = std::log(1 - likelihoodOptions.p_in);
     double log_w = 0;  // Alg. 4 line 1: w = 1
     for (size_t j = 0; j < m_landmarks.size(); j++) {
@@ -46,20 +45,10 @@ double CCeilingLightsMap::updateLandmarks(const std::vector<TBearingMeasurement>
             }
             continue;
         }
-        const auto pred = model.predictWithJacobians(lm.mean, robot_in_map);  // lines 4-5
-        if (!pred.valid) continue;
-        const auto& Q = z[l].Q;
-        // line 6: Q̃ = Q + H_m Σ H_mᵀ
-        const Eigen::Matrix2d S = Q + pred.H_m * lm.cov * pred.H_m.transpose();
-        // line 7: K = Σ H_mᵀ Q̃⁻¹
-        const Eigen::Matrix<double, 3, 2> K = lm.cov * pred.H_m.transpose() * S.inverse();
-        const Eigen::Vector2d nu = BearingMeasurementModel::innovation(z[l].z, pred.z);
-        // line 8: μ ← μ + K (z − z̃)
-        lm.mean += K * nu;
-        // line 9, Joseph form: Σ ← (I − K H) Σ (I − K H)ᵀ + K Q Kᵀ, then symmetrized
-        const Eigen::Matrix3d I_KH = Eigen::Matrix3d::Identity() - K * pred.H_m;
-        const Eigen::Matrix3d cov = I_KH * lm.cov * I_KH.transpose() + K * Q * K.transpose();
-        lm.cov = 0.5 * (cov + cov.transpose());
+        Eigen::Vector2d nu;
+        Eigen::Matrix2d S;
+        BearingMeasurementModel::Matrix23 H_x;
+        if (!ekfUpdate(lm, z[l], robot_in_map, nu, S, H_x)) continue;
         lm.counter++;
         if (horizontalDistance(robot_in_map, lm.mean) < insertionOptions.d_min)
             lm.consecutive_close++;
@@ -67,9 +56,31 @@ double CCeilingLightsMap::updateLandmarks(const std::vector<TBearingMeasurement>
             lm.consecutive_close = 0;
         // lines 11-17: weight from type I landmarks only; L = H_x R H_xᵀ + Q̃
         if (usesForWeight(lm))
-            log_w += logGaussian(nu, pred.H_x * robot_pose_cov * pred.H_x.transpose() + S);
+            log_w += logGaussian(nu, H_x * robot_pose_cov * H_x.transpose() + S);
     }
     return log_w;
+}
+
+bool CCeilingLightsMap::ekfUpdate(TLightLandmark& lm, const TBearingMeasurement& m,
+                                  const mrpt::math::TPose2D& robot_in_map,
+                                  Eigen::Vector2d& innovation, Eigen::Matrix2d& S,
+                                  BearingMeasurementModel::Matrix23& H_x) const
+{
+    const auto pred = measurementModel().predictWithJacobians(lm.mean, robot_in_map);  // 4-5
+    if (!pred.valid) return false;
+    // line 6: Q̃ = Q + H_m Σ H_mᵀ
+    S = m.Q + pred.H_m * lm.cov * pred.H_m.transpose();
+    // line 7: K = Σ H_mᵀ Q̃⁻¹
+    const Eigen::Matrix<double, 3, 2> K = lm.cov * pred.H_m.transpose() * S.inverse();
+    innovation = BearingMeasurementModel::innovation(m.z, pred.z);
+    // line 8: μ ← μ + K (z − z̃)
+    lm.mean += K * innovation;
+    // line 9, Joseph form: Σ ← (I − K H) Σ (I − K H)ᵀ + K Q Kᵀ, then symmetrized
+    const Eigen::Matrix3d I_KH = Eigen::Matrix3d::Identity() - K * pred.H_m;
+    const Eigen::Matrix3d cov = I_KH * lm.cov * I_KH.transpose() + K * m.Q * K.transpose();
+    lm.cov = 0.5 * (cov + cov.transpose());
+    H_x = pred.H_x;
+    return true;
 }
 
 void CCeilingLightsMap::addCandidateObservation(TCandidateLight& cand,
@@ -173,7 +184,14 @@ bool CCeilingLightsMap::tryPromote(const TCandidateLight& cand)
             .asDiagonal();
     addLandmark(best->point, sigma0, all_close ? TLandmarkType::TypeI : TLandmarkType::TypeII,
                 cand.counter);
-    m_landmarks.back().consecutive_close = trailing_close;
+    auto& lm = m_landmarks.back();
+    lm.consecutive_close = trailing_close;
+    if (insertionOptions.refine_initialization) {
+        Eigen::Vector2d nu;
+        Eigen::Matrix2d S;
+        BearingMeasurementModel::Matrix23 H_x;
+        for (const auto& o : cand.observations) ekfUpdate(lm, o.measurement, o.robot_in_map, nu, S, H_x);
+    }
     return true;
 }
 

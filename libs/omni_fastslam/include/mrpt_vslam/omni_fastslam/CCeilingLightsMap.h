@@ -78,6 +78,10 @@ public:
         unsigned int candidate_miss_decrement = 0;
         /// Measurements kept per candidate (oldest dropped); bounds the O(n²) cross-points.
         unsigned int max_candidate_measurements = 20;
+        /// Our addition (doc/omni-fastslam.md): after a promotion, fuse the candidate's
+        /// measurements into the new landmark by EKF updates from the poses they were taken
+        /// from. false = the paper (mean = best cross-point, covariance Σ0).
+        bool refine_initialization = false;
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                 const std::string& section) override;
@@ -156,6 +160,12 @@ public:
     static std::vector<int> solveAssociation(const Eigen::MatrixXd& log_lik,
                                              const Eigen::VectorXd& log_p_new,
                                              TAssociationMethod method);
+    /** Level 2 only: the candidate of each measurement that level 1 left without a landmark
+     *  (landmark_of_measurement[l] < 0), −1 for "new candidate" and for measurements with a
+     *  landmark. */
+    std::vector<int> associateCandidates(const std::vector<TBearingMeasurement>& z,
+                                         const mrpt::math::TPose2D& robot_in_map,
+                                         const std::vector<int>& landmark_of_measurement) const;
     /// Both levels at a known pose, with insertionOptions.association_method.
     TLightAssociation associate(const std::vector<TBearingMeasurement>& z,
                                 const mrpt::math::TPose2D& robot_in_map) const;
@@ -224,6 +234,12 @@ private:
     void addCandidateObservation(TCandidateLight& cand, const TCandidateObservation& obs) const;
     void refreshCrossPointValidity(TCandidateLight& cand) const;
     bool tryPromote(const TCandidateLight& cand);
+    /** Alg. 4 lines 4-9 for one landmark and measurement at a pose. Returns false (and changes
+     *  nothing) where the prediction is undefined; else the innovation, its covariance Q̃ and
+     *  H_x at the prior mean. */
+    bool ekfUpdate(TLightLandmark& lm, const TBearingMeasurement& m,
+                   const mrpt::math::TPose2D& robot_in_map, Eigen::Vector2d& innovation,
+                   Eigen::Matrix2d& S, BearingMeasurementModel::Matrix23& H_x) const;
 };
 
 }  // namespace mrpt_vslam::omni_fastslam

@@ -1,0 +1,34 @@
+// omni-fastslam: FastSLAM 2.0 with an upward fisheye camera and ceiling lights (paper 000).
+#include <mrpt/core/exceptions.h>
+#include <mrpt_vslam/core/AppArguments.h>
+#include <mrpt_vslam/core/UsageError.h>
+#include <mrpt_vslam/omni_fastslam/OmniFastSLAMApp.h>
+
+#include <iostream>
+
+int main(int argc, char** argv)
+{
+    using namespace mrpt_vslam;
+    try {
+        auto args = core::AppArguments::parse(
+            argc, argv, "omni-fastslam",
+            "FastSLAM 2.0 for an upward fisheye camera looking at ceiling lights, with "
+            "hierarchical Hungarian data association and delayed landmark initialization "
+            "(Gamallo, Mucientes, Regueiro). Reads a rawlog of odometry actions with OMNICAM "
+            "images or OMNICAM_BEARINGS; writes the run folder described in doc/omni-fastslam.md.");
+        if (args.request != core::AppArguments::Request::Run) {
+            std::cout << args.message;
+            return 0;
+        }
+        omni_fastslam::OmniFastSLAMApp app(std::move(args));
+        app.initialize();
+        app.run();
+        return 0;
+    } catch (const core::UsageError& e) {
+        std::cerr << "omni-fastslam: error: " << e.what() << "\n";
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "omni-fastslam: error: " << mrpt::exception_to_str(e) << "\n";
+        return 1;
+    }
+}

@@ -1,0 +1,74 @@
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/opengl/CText.h>
+#include <mrpt/serialization/CArchive.h>
+#include <mrpt_vslam/core/AtomicFile.h>
+#include <mrpt_vslam/core/RunOutputs.h>
+
+#include <stdexcept>
+
+namespace mrpt_vslam::core {
+
+namespace {
+template <class T>
+void saveGz(const T& obj, const std::string& file)
+{
+    const std::string tmp = file + ".tmp";
+    {
+        mrpt::io::CFileGZOutputStream out;
+        if (!out.open(tmp)) throw std::runtime_error(file + ": cannot create file for writing");
+        mrpt::serialization::archiveFrom(out) << obj;
+    }
+    AtomicFile::commitRename(tmp, file);
+}
+}  // namespace
+
+void saveObjectGz(const mrpt::serialization::CSerializable& obj, const std::string& file)
+{
+    saveGz(obj, file);
+}
+
+void saveScene(const mrpt::opengl::COpenGLScene& scene, const std::string& file)
+{
+    saveGz(scene, file);
+}
+
+mrpt::opengl::CSetOfObjects::Ptr trajectoryAsLines(const TumTrajectory& path,
+                                                   const mrpt::img::TColorf& color,
+                                                   const std::string& label, float width)
+{
+    auto group = mrpt::opengl::CSetOfObjects::Create();
+    group->setName(label);
+    if (path.size() < 2) return group;
+    auto lines = mrpt::opengl::CSetOfLines::Create();
+    lines->setColor(color);
+    lines->setLineWidth(width);
+    for (size_t i = 1; i < path.size(); i++) {
+        const auto& a = path.poses[i - 1];
+        const auto& b = path.poses[i];
+        lines->appendLine(a.x, a.y, a.z + 0.01, b.x, b.y, b.z + 0.01);
+    }
+    group->insert(lines);
+    auto text = mrpt::opengl::CText::Create(label);
+    text->setColor(color);
+    const auto& last = path.poses.back();
+    text->setLocation(last.x, last.y, last.z + 0.2);
+    group->insert(text);
+    return group;
+}
+
+mrpt::opengl::CSetOfLines::Ptr pointsAsCrosses(const std::vector<mrpt::math::TPoint3D>& points,
+                                               const mrpt::img::TColorf& color, double size)
+{
+    auto lines = mrpt::opengl::CSetOfLines::Create();
+    lines->setColor(color);
+    lines->setLineWidth(2);
+    const double h = size / 2;
+    for (const auto& p : points) {
+        lines->appendLine(p.x - h, p.y, p.z, p.x + h, p.y, p.z);
+        lines->appendLine(p.x, p.y - h, p.z, p.x, p.y + h, p.z);
+        lines->appendLine(p.x, p.y, p.z - h, p.x, p.y, p.z + h);
+    }
+    return lines;
+}
+
+}  // namespace mrpt_vslam::core

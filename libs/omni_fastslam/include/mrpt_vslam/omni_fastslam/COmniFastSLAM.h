@@ -1,0 +1,129 @@
+#pragma once
+
+#include <mrpt/bayes/CParticleFilter.h>
+#include <mrpt/bayes/CParticleFilterCapable.h>
+#include <mrpt/bayes/CParticleFilterData.h>
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/math/TPose2D.h>
+#include <mrpt/random/RandomGenerators.h>
+#include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mrpt_vslam::omni_fastslam {
+
+/** One pose of a particle's path; nodes are shared between the copies resampling makes. */
+struct TPathNode {
+    double timestamp = 0;  ///< [s]
+    mrpt::math::TPose2D robot_in_map;
+    std::shared_ptr<const TPathNode> previous;
+};
+
+/** One FastSLAM particle: the robot pose, its path and its own map of ceiling lights. */
+struct TOmniFastSLAMParticle {
+    mrpt::math::TPose2D robot_in_map;
+    std::shared_ptr<const TPathNode> path;  ///< newest first
+    CCeilingLightsMap map;
+    /// Σ of the log-weight increments since the start, kept through resampling: the best
+    /// particle is the one with the largest value.
+    double accumulated_log_w = 0;
+};
+
+/** FastSLAM 2.0 for an omnidirectional camera and ceiling lights (Gamallo, Mucientes &
+ *  Regueiro, paper 000; doc/omni-fastslam.md), on MRPT's particle-filter framework: drive it
+ *  with `mrpt::bayes::CParticleFilter::executeOn()`; `pfOptimalProposal` runs the FastSLAM 2.0
+ *  proposal below, `pfStandardProposal` samples the motion model only (FastSLAM 1.0).
+ *
+ *  One step, for every particle k (pfOptimalProposal):
+ *   1. predicted pose x̂_t = x_{t-1} ⊕ Δ and its covariance R_t from the odometry action;
+ *   2. Alg. 2: per landmark j and measurement l, the proposal Σ_{x,j,l}, μ_{x,j,l} and the
+ *      association likelihood φ_{l,j} = N(z_l; h(μ_j, μ_{x,j,l}), Q_{j,l});
+ *   3. Sec. III-C level 1: Hungarian assignment of measurements to landmarks (or ML);
+ *   4. Alg. 3: fuse the associated type-I landmarks in order of increasing covariance (ties:
+ *      lower φ) into N(μ_xt, Σ_xt) and sample x_t from it; sample the motion model when none;
+ *   5. Alg. 4: EKF updates of the landmarks and the weight; Sec. III-C level 2 and
+ *      updateCandidateLandmarks(); updateLandmarksType().
+ *  Resampling (low variance = `prSystematic`) is done by CParticleFilter when ESS < BETA.
+ */
+class COmniFastSLAM
+    : public mrpt::bayes::CParticleFilterData<TOmniFastSLAMParticle,
+                                              mrpt::bayes::particle_storage_mode::POINTER>,
+      public mrpt::bayes::CParticleFilterDataImpl<
+          COmniFastSLAM,
+          mrpt::bayes::CParticleFilterData<
+              TOmniFastSLAMParticle, mrpt::bayes::particle_storage_mode::POINTER>::CParticleList> {
+public:
+    struct TOptions : public mrpt::config::CLoadableOptions {
+        /// Label of the bearings observation in each sensory frame.
+        std::string bearings_label = "OMNICAM_BEARINGS";
+        /// Added to the odometry covariance (std) so the proposal never degenerates.
+        double min_motion_std_xy = 0.005;                 ///< [m]
+        double min_motion_std_phi = 0.25 * M_PI / 180;    ///< [rad] (ini: min_motion_std_phi_deg)
+        /// Landmarks whose predicted θ exceeds the perceptual range by more than this are
+        /// skipped in Alg. 2 (they cannot have produced a measurement).
+        double prediction_margin = 5.0 * M_PI / 180;     ///< [rad] (ini: prediction_margin_deg)
+
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
+                                const std::string& section) override;
+        void saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
+                              const std::string& section) const override;
+    } options;
+
+    /// Per-step counters of the last executed step (all particles).
+    struct TStepStats {
+        size_t measurements = 0;
+        size_t associated_to_landmarks = 0;  ///< summed over particles
+        size_t motion_only_samples = 0;      ///< particles that sampled the motion model
+    } lastStepStats;
+
+    /** \param map_template options (and possibly a prior map) every particle starts with
+     *  \param particle_count M \param seed of the filter's own random generator */
+    COmniFastSLAM(const CCeilingLightsMap& map_template, size_t particle_count, uint32_t seed);
+
+    /// All particles at `robot_in_map`, equal weights, maps = the template.
+    void reset(const mrpt::math::TPose2D& robot_in_map, double timestamp);
+
+    /// The particle with the largest accumulated log-weight.
+    const TOmniFastSLAMParticle& bestParticle() const;
+    /// A particle's path, oldest first: (timestamp, pose).
+    static std::vector<std::pair<double, mrpt::math::TPose2D>> pathOf(
+        const TOmniFastSLAMParticle& p);
+
+protected:
+    void prediction_and_update_pfStandardProposal(
+        const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
+        const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options) override;
+    void prediction_and_update_pfOptimalProposal(
+        const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
+        const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options) override;
+
+private:
+    /// Odometry increment Δ and its covariance (robot frame of the previous pose).
+    struct TMotion {
+        mrpt::math::TPose2D delta;
+        Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    };
+    TMotion motionFromAction(const mrpt::obs::CActionCollection* action) const;
+    std::vector<TBearingMeasurement> measurementsFromFrame(const mrpt::obs::CSensoryFrame* sf,
+                                                           const CCeilingLightsMap& map,
+                                                           double& timestamp) const;
+    mrpt::math::TPose2D sampleMotion(const mrpt::math::TPose2D& from, const TMotion& motion);
+    /// Steps 2-4 for one particle: returns the sampled pose and level-1 association.
+    mrpt::math::TPose2D sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
+                                                const std::vector<TBearingMeasurement>& z,
+                                                const TMotion& motion,
+                                                std::vector<int>& landmark_of_measurement);
+    /// Step 5 and the path bookkeeping, shared by both proposals.
+    void updateParticle(TOmniFastSLAMParticle& p, double& log_w, const mrpt::math::TPose2D& x_t,
+                        double timestamp, const std::vector<TBearingMeasurement>& z,
+                        const std::vector<int>& landmark_of_measurement,
+                        const Eigen::Matrix3d& R_t);
+    void runStep(const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* sf,
+                 bool fastslam2);
+
+    mrpt::random::CRandomGenerator m_rng;
+};
+
+}  // namespace mrpt_vslam::omni_fastslam

@@ -1,0 +1,297 @@
+#include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/core/bits_math.h>
+#include <mrpt/math/wrap2pi.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationBearingRange.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose2D.h>
+#include <mrpt_vslam/omni_fastslam/COmniFastSLAM.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+namespace mrpt_vslam::omni_fastslam {
+
+using mrpt::math::TPose2D;
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+TPose2D compose(const TPose2D& a, const TPose2D& b)
+{
+    const double c = std::cos(a.phi), s = std::sin(a.phi);
+    return {a.x + c * b.x - s * b.y, a.y + s * b.x + c * b.y, mrpt::math::wrapToPi(a.phi + b.phi)};
+}
+
+TPose2D plus(const TPose2D& x, const Eigen::Vector3d& dx)
+{
+    return {x.x + dx[0], x.y + dx[1], mrpt::math::wrapToPi(x.phi + dx[2])};
+}
+
+/// ∂(a ⊕ b)/∂b: the rotation of the increment into the map frame.
+Eigen::Matrix3d composeJacobianWrtIncrement(double yaw)
+{
+    const double c = std::cos(yaw), s = std::sin(yaw);
+    Eigen::Matrix3d J;
+    J << c, -s, 0, s, c, 0, 0, 0, 1;
+    return J;
+}
+}  // namespace
+
+void COmniFastSLAM::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
+                                                 const std::string& section)
+{
+    MRPT_LOAD_CONFIG_VAR(bearings_label, string, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(min_motion_std_xy, double, cfg, section);
+    min_motion_std_phi = mrpt::DEG2RAD(
+        cfg.read_double(section, "min_motion_std_phi_deg", mrpt::RAD2DEG(min_motion_std_phi)));
+    prediction_margin = mrpt::DEG2RAD(
+        cfg.read_double(section, "prediction_margin_deg", mrpt::RAD2DEG(prediction_margin)));
+    if (!(min_motion_std_xy > 0) || !(min_motion_std_phi > 0))
+        throw std::invalid_argument("[" + section +
+                                    "] min_motion_std_xy and min_motion_std_phi_deg must be > 0");
+    if (!(prediction_margin >= 0))
+        throw std::invalid_argument("[" + section + "] prediction_margin_deg must be >= 0");
+}
+
+void COmniFastSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
+                                               const std::string& section) const
+{
+    cfg.write(section, "bearings_label", bearings_label);
+    cfg.write(section, "min_motion_std_xy", min_motion_std_xy);
+    cfg.write(section, "min_motion_std_phi_deg", mrpt::RAD2DEG(min_motion_std_phi));
+    cfg.write(section, "prediction_margin_deg", mrpt::RAD2DEG(prediction_margin));
+}
+
+COmniFastSLAM::COmniFastSLAM(const CCeilingLightsMap& map_template, size_t particle_count,
+                             uint32_t seed)
+{
+    if (particle_count == 0) throw std::invalid_argument("particle count must be > 0");
+    m_rng.randomize(seed);
+    m_particles.resize(particle_count);
+    for (auto& p : m_particles) {
+        p.d.reset(new TOmniFastSLAMParticle);
+        p.d->map = map_template;
+    }
+}
+
+void COmniFastSLAM::reset(const TPose2D& robot_in_map, double timestamp)
+{
+    const auto start = std::make_shared<const TPathNode>(TPathNode{timestamp, robot_in_map, {}});
+    for (auto& p : m_particles) {
+        p.log_w = 0;
+        p.d->robot_in_map = robot_in_map;
+        p.d->path = start;
+        p.d->accumulated_log_w = 0;
+    }
+}
+
+const TOmniFastSLAMParticle& COmniFastSLAM::bestParticle() const
+{
+    const auto best = std::max_element(m_particles.begin(), m_particles.end(),
+                                       [](const auto& a, const auto& b) {
+                                           return a.d->accumulated_log_w < b.d->accumulated_log_w;
+                                       });
+    return *best->d;
+}
+
+std::vector<std::pair<double, TPose2D>> COmniFastSLAM::pathOf(const TOmniFastSLAMParticle& p)
+{
+    std::vector<std::pair<double, TPose2D>> path;
+    for (const TPathNode* n = p.path.get(); n; n = n->previous.get())
+        path.emplace_back(n->timestamp, n->robot_in_map);
+    std::reverse(path.begin(), path.end());
+    return path;
+}
+
+COmniFastSLAM::TMotion COmniFastSLAM::motionFromAction(
+    const mrpt::obs::CActionCollection* action) const
+{
+    TMotion m;
+    const auto odo = action ? action->getBestMovementEstimation() : nullptr;
+    if (odo) {
+        mrpt::math::CMatrixDouble33 cov;
+        mrpt::poses::CPose2D mean;
+        odo->poseChange->getCovarianceAndMean(cov, mean);
+        m.delta = mean.asTPose();
+        m.cov = cov.asEigen();
+    }
+    m.cov.diagonal() += Eigen::Vector3d(options.min_motion_std_xy * options.min_motion_std_xy,
+                                        options.min_motion_std_xy * options.min_motion_std_xy,
+                                        options.min_motion_std_phi * options.min_motion_std_phi);
+    if (!m.cov.allFinite() || !std::isfinite(m.delta.x) || !std::isfinite(m.delta.y) ||
+        !std::isfinite(m.delta.phi))
+        throw std::runtime_error("odometry action with a non-finite increment or covariance");
+    return m;
+}
+
+std::vector<TBearingMeasurement> COmniFastSLAM::measurementsFromFrame(
+    const mrpt::obs::CSensoryFrame* sf, const CCeilingLightsMap& map, double& timestamp) const
+{
+    if (!sf) return {};
+    for (const auto& obs : *sf) {
+        const auto* b = dynamic_cast<const mrpt::obs::CObservationBearingRange*>(obs.get());
+        if (!b || (!options.bearings_label.empty() && b->sensorLabel != options.bearings_label))
+            continue;
+        timestamp = mrpt::Clock::toDouble(b->timestamp);
+        return map.measurementsFromObservation(*b);
+    }
+    return {};
+}
+
+TPose2D COmniFastSLAM::sampleMotion(const TPose2D& from, const TMotion& motion)
+{
+    const Eigen::Matrix3d L = motion.cov.llt().matrixL();
+    Eigen::Vector3d n;
+    for (int i = 0; i < 3; i++) n[i] = m_rng.drawGaussian1D_normalized();
+    return compose(from, plus(motion.delta, L * n));
+}
+
+TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
+                                               const std::vector<TBearingMeasurement>& z,
+                                               const TMotion& motion,
+                                               std::vector<int>& landmark_of_measurement)
+{
+    const auto& map = p.map;
+    const auto& lms = map.landmarks();
+    const auto model = map.measurementModel();
+
+    // x̂_t and R_t
+    const TPose2D x_hat = compose(p.robot_in_map, motion.delta);
+    const Eigen::Matrix3d Jd = composeJacobianWrtIncrement(p.robot_in_map.phi);
+    const Eigen::Matrix3d R = Jd * motion.cov * Jd.transpose();
+    const Eigen::Matrix3d R_inv = R.inverse();
+
+    // Alg. 2: φ_{l,j} for every measurement and landmark
+    Eigen::MatrixXd log_phi = Eigen::MatrixXd::Constant(z.size(), lms.size(), -kInf);
+    const double max_theta = map.sensorOptions.max_theta + options.prediction_margin;
+    for (size_t j = 0; j < lms.size(); j++) {
+        const auto pred = model.predictWithJacobians(lms[j].mean, x_hat);  // lines 2-4
+        if (!pred.valid || pred.z[1] > max_theta) continue;
+        const Eigen::Matrix2d HmSHm = pred.H_m * lms[j].cov * pred.H_m.transpose();
+        for (size_t l = 0; l < z.size(); l++) {
+            const Eigen::Matrix2d Q_jl = z[l].Q + HmSHm;  // line 6
+            const Eigen::Matrix2d Q_inv = Q_jl.inverse();
+            const Eigen::Matrix3d Sigma_x =
+                (pred.H_x.transpose() * Q_inv * pred.H_x + R_inv).inverse();  // line 7
+            const Eigen::Vector3d dx = Sigma_x * pred.H_x.transpose() * Q_inv *
+                                       BearingMeasurementModel::innovation(z[l].z, pred.z);
+            const Eigen::Vector2d z_hat = model.predict(lms[j].mean, plus(x_hat, dx));  // 9-10
+            log_phi(l, j) = CCeilingLightsMap::logGaussian(
+                BearingMeasurementModel::innovation(z[l].z, z_hat), Q_jl);  // line 11
+        }
+    }
+
+    // Sec. III-C, level 1
+    Eigen::VectorXd log_p_new(z.size());
+    for (size_t l = 0; l < z.size(); l++) log_p_new(l) = map.logPNew(z[l]);
+    landmark_of_measurement = CCeilingLightsMap::solveAssociation(
+        log_phi, log_p_new, map.insertionOptions.association_method);
+
+    // Alg. 3: fuse associated type-I landmarks, lowest covariance first (ties: lower φ)
+    std::vector<size_t> order;
+    for (size_t l = 0; l < z.size(); l++) {
+        const int j = landmark_of_measurement[l];
+        if (j >= 0 && lms[j].type == TLandmarkType::TypeI) order.push_back(l);
+    }
+    if (order.empty()) return sampleMotion(p.robot_in_map, motion);  // line 2
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        const double ta = lms[landmark_of_measurement[a]].cov.trace();
+        const double tb = lms[landmark_of_measurement[b]].cov.trace();
+        return ta != tb ? ta < tb : z[a].z[0] < z[b].z[0];
+    });
+    TPose2D mu = x_hat;        // line 5
+    Eigen::Matrix3d Sigma = R;  // line 4
+    for (const size_t l : order) {
+        const auto& lm = lms[landmark_of_measurement[l]];
+        // relinearised at the current mean: the sequential form of lines 8-9
+        const auto pred = model.predictWithJacobians(lm.mean, mu);
+        if (!pred.valid) continue;
+        const Eigen::Matrix2d Q = z[l].Q + pred.H_m * lm.cov * pred.H_m.transpose();
+        const Eigen::Matrix2d Q_inv = Q.inverse();
+        Sigma = (pred.H_x.transpose() * Q_inv * pred.H_x + Sigma.inverse()).inverse();  // line 8
+        Sigma = 0.5 * (Sigma + Sigma.transpose());
+        mu = plus(mu, Sigma * pred.H_x.transpose() * Q_inv *
+                          BearingMeasurementModel::innovation(z[l].z, pred.z));  // line 9
+    }
+    // line 14: x_t ~ N(μ_xt, Σ_xt)
+    const Eigen::Matrix3d L = Sigma.llt().matrixL();
+    Eigen::Vector3d n;
+    for (int i = 0; i < 3; i++) n[i] = m_rng.drawGaussian1D_normalized();
+    return plus(mu, L * n);
+}
+
+void COmniFastSLAM::updateParticle(TOmniFastSLAMParticle& p, double& log_w, const TPose2D& x_t,
+                                   double timestamp, const std::vector<TBearingMeasurement>& z,
+                                   const std::vector<int>& landmark_of_measurement,
+                                   const Eigen::Matrix3d& R_t)
+{
+    // Alg. 4 lines 1-27
+    const double log_w_inc = p.map.updateLandmarks(z, x_t, landmark_of_measurement, R_t);
+    // Sec. III-C level 2, Alg. 4 lines 28-29
+    TLightAssociation assoc;
+    assoc.landmark_of_measurement = landmark_of_measurement;
+    assoc.candidate_of_measurement = p.map.associateCandidates(z, x_t, landmark_of_measurement);
+    p.map.updateCandidates(z, x_t, assoc);
+    p.map.updateLandmarksType();
+
+    log_w += log_w_inc;
+    p.accumulated_log_w += log_w_inc;
+    p.robot_in_map = x_t;
+    p.path = std::make_shared<const TPathNode>(TPathNode{timestamp, x_t, p.path});
+}
+
+void COmniFastSLAM::runStep(const mrpt::obs::CActionCollection* action,
+                            const mrpt::obs::CSensoryFrame* sf, bool fastslam2)
+{
+    const TMotion motion = motionFromAction(action);
+    lastStepStats = {};
+    for (auto& part : m_particles) {
+        auto& p = *part.d;
+        double timestamp = p.path ? p.path->timestamp : 0;
+        const auto z = measurementsFromFrame(sf, p.map, timestamp);
+        lastStepStats.measurements = z.size();
+
+        std::vector<int> assoc;
+        TPose2D x_t;
+        Eigen::Matrix3d R_t = Eigen::Matrix3d::Zero();
+        if (fastslam2) {
+            x_t = sampleFastSLAM2Proposal(p, z, motion, assoc);
+            const Eigen::Matrix3d Jd = composeJacobianWrtIncrement(p.robot_in_map.phi);
+            R_t = Jd * motion.cov * Jd.transpose();
+        } else {
+            x_t = sampleMotion(p.robot_in_map, motion);
+            Eigen::VectorXd log_p_new(z.size());
+            for (size_t l = 0; l < z.size(); l++) log_p_new(l) = p.map.logPNew(z[l]);
+            assoc = CCeilingLightsMap::solveAssociation(
+                p.map.landmarkLogLikelihoods(z, x_t), log_p_new,
+                p.map.insertionOptions.association_method);
+        }
+        const auto n_assoc =
+            static_cast<size_t>(std::count_if(assoc.begin(), assoc.end(), [](int j) { return j >= 0; }));
+        lastStepStats.associated_to_landmarks += n_assoc;
+        if (n_assoc == 0) lastStepStats.motion_only_samples++;
+        updateParticle(p, part.log_w, x_t, timestamp, z, assoc, R_t);
+    }
+}
+
+void COmniFastSLAM::prediction_and_update_pfStandardProposal(
+    const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
+    const mrpt::bayes::CParticleFilter::TParticleFilterOptions&)
+{
+    runStep(action, observation, false);
+}
+
+void COmniFastSLAM::prediction_and_update_pfOptimalProposal(
+    const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
+    const mrpt::bayes::CParticleFilter::TParticleFilterOptions&)
+{
+    runStep(action, observation, true);
+}
+
+}  // namespace mrpt_vslam::omni_fastslam

@@ -1,0 +1,277 @@
+#include <mrpt/bayes/CParticleFilter.h>
+#include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/core/bits_math.h>
+#include <mrpt/maps/CMultiMetricMap.h>
+#include <mrpt/maps/TMetricMapInitializer.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationBearingRange.h>
+#include <mrpt/obs/CObservationImage.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/opengl/CGridPlaneXY.h>
+#include <mrpt/poses/CPose2D.h>
+#include <mrpt/random/RandomGenerators.h>
+#include <mrpt/system/filesystem.h>
+#include <mrpt/system/string_utils.h>
+#include <mrpt_vslam/core/AtomicFile.h>
+#include <mrpt_vslam/core/CheckedConfigFile.h>
+#include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/core/OutputDirectory.h>
+#include <mrpt_vslam/core/PajdlaBaksteinCamera.h>
+#include <mrpt_vslam/core/ProgressReporter.h>
+#include <mrpt_vslam/core/RawlogReader.h>
+#include <mrpt_vslam/core/RunOutputs.h>
+#include <mrpt_vslam/core/RunReport.h>
+#include <mrpt_vslam/core/RunTimer.h>
+#include <mrpt_vslam/core/UsageError.h>
+#include <mrpt_vslam/omni_fastslam/COmniFastSLAM.h>
+#include <mrpt_vslam/omni_fastslam/CeilingLightDetector.h>
+#include <mrpt_vslam/omni_fastslam/OmniFastSLAMApp.h>
+#include <opencv2/core/version.hpp>
+
+#include <optional>
+#include <stdexcept>
+
+namespace mrpt_vslam::omni_fastslam {
+
+namespace {
+constexpr const char* kAppSection = "OmniFastSLAM";
+constexpr const char* kMapSection = "MappingApplication";
+
+/// Where the light measurements come from (ini key `input`).
+enum class TInput { Auto, Bearings, Images };
+
+mrpt::math::TPose3D to3D(const mrpt::math::TPose2D& p) { return {p.x, p.y, 0, p.phi, 0, 0}; }
+}  // namespace
+
+struct OmniFastSLAMApp::Impl {
+    core::AppArguments args;
+    core::CheckedConfigFile cfg;
+    std::string rawlog, groundTruthPrefix;
+    uint32_t seed = 1;
+    TInput input = TInput::Auto;
+    std::string imageLabel = "OMNICAM";
+    bool initialPoseFromGroundTruth = true;
+    mrpt::math::TPose2D initialPose;
+
+    mrpt::bayes::CParticleFilter pf;
+    CCeilingLightsMap mapTemplate;
+    COmniFastSLAM::TOptions filterOptions;
+    core::PajdlaBaksteinCamera camera;
+    CeilingLightDetector::TOptions detectorOptions;
+    std::unique_ptr<CeilingLightDetector> detector;
+    std::unique_ptr<COmniFastSLAM> filter;
+    std::optional<core::TumTrajectory> groundTruth;
+
+    size_t frames = 0, framesWithImages = 0, measurements = 0;
+
+    void loadConfig();
+    void findGroundTruth();
+    /// Measurements from the frame's image when images are the input (Sec. III-A).
+    void prepareFrame(mrpt::obs::CSensoryFrame& sf);
+    void writeOutputs(OmniFastSLAMApp& app, const core::RunTimer& timer);
+};
+
+OmniFastSLAMApp::OmniFastSLAMApp(core::AppArguments args) : m_impl(std::make_unique<Impl>())
+{
+    m_impl->args = std::move(args);
+}
+
+OmniFastSLAMApp::~OmniFastSLAMApp() = default;
+
+void OmniFastSLAMApp::Impl::loadConfig()
+{
+    cfg.loadFile(args.configFile, args.overrides);
+    const std::string& name = cfg.name();
+    const auto usage = [&](const std::string& what) { return core::UsageError(name + ": " + what); };
+
+    const std::string cfgRawlog = cfg.read_string(kAppSection, "rawlog_file", "");
+    rawlog = args.rawlogFile.empty() ? cfgRawlog : args.rawlogFile;
+    if (rawlog.empty())
+        throw usage(std::string("no rawlog given (argument RAWLOG or [") + kAppSection +
+                    "] rawlog_file)");
+    seed = args.resolveSeed(static_cast<uint32_t>(cfg.read_int(kAppSection, "random_seed", 0)));
+    const std::string in = cfg.read_string(kAppSection, "input", "auto");
+    if (in == "auto") input = TInput::Auto;
+    else if (in == "bearings") input = TInput::Bearings;
+    else if (in == "images") input = TInput::Images;
+    else throw usage("[OmniFastSLAM] input must be auto, bearings or images, not '" + in + "'");
+    imageLabel = cfg.read_string(kAppSection, "image_label", imageLabel);
+    initialPoseFromGroundTruth =
+        cfg.read_bool(kAppSection, "initial_pose_from_ground_truth", initialPoseFromGroundTruth);
+    initialPose.x = cfg.read_double(kAppSection, "initial_x", 0);
+    initialPose.y = cfg.read_double(kAppSection, "initial_y", 0);
+    initialPose.phi = mrpt::DEG2RAD(cfg.read_double(kAppSection, "initial_yaw_deg", 0));
+
+    try {
+        filterOptions.loadFromConfigFile(cfg, kAppSection);
+        pf.m_options.loadFromConfigFile(cfg, "ParticleFilter");
+        camera.loadFromConfigFile(cfg, "Camera");
+        detectorOptions.loadFromConfigFile(cfg, "LightDetector");
+    } catch (const core::UsageError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw usage(mrpt::exception_to_str(e));
+    }
+    if (pf.m_options.sampleSize < 1) throw usage("[ParticleFilter] sampleSize must be >= 1");
+    if (pf.m_options.adaptiveSampleSize)
+        throw usage("[ParticleFilter] adaptiveSampleSize is not supported (use 0)");
+    using PF = mrpt::bayes::CParticleFilter;
+    if (pf.m_options.PF_algorithm != PF::pfOptimalProposal &&
+        pf.m_options.PF_algorithm != PF::pfStandardProposal)
+        throw usage(
+            "[ParticleFilter] PF_algorithm must be pfOptimalProposal (FastSLAM 2.0) or "
+            "pfStandardProposal (FastSLAM 1.0)");
+
+    // Every particle's map comes from the .ini through MRPT's map registry.
+    mrpt::maps::TSetOfMetricMapInitializers inits;
+    inits.loadFromConfigFile(cfg, kMapSection);
+    mrpt::maps::CMultiMetricMap maps(inits);
+    const auto lights = maps.mapByClass<CCeilingLightsMap>();
+    if (!lights || maps.maps.size() != 1)
+        throw usage(std::string("[") + kMapSection +
+                    "] must define exactly one map: ceilingLightsMap_count = 1");
+    mapTemplate = *lights;
+    cfg.throwIfUnreadKeys();
+}
+
+void OmniFastSLAMApp::Impl::findGroundTruth()
+{
+    groundTruthPrefix = args.groundTruth;
+    if (groundTruthPrefix.empty()) {
+        const std::string ext = ".rawlog";
+        groundTruthPrefix = rawlog;
+        if (mrpt::system::strCmpI(mrpt::system::extractFileExtension(rawlog, true), "rawlog"))
+            groundTruthPrefix.resize(rawlog.size() - ext.size());
+    }
+    const std::string tum = groundTruthPrefix + ".groundtruth.tum";
+    if (mrpt::system::fileExists(tum)) groundTruth = core::TumTrajectory::load(tum);
+    else if (!args.groundTruth.empty())
+        throw std::runtime_error(tum + ": ground truth file not found (--ground-truth)");
+    if (initialPoseFromGroundTruth && groundTruth && !groundTruth->empty()) {
+        const auto& p = groundTruth->poses.front();
+        initialPose = {p.x, p.y, p.yaw};
+    }
+}
+
+void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
+{
+    const auto image = sf.getObservationBySensorLabelAs<mrpt::obs::CObservationImage::Ptr>(imageLabel);
+    const bool hasBearings = static_cast<bool>(
+        sf.getObservationBySensorLabel(filterOptions.bearings_label));
+    if (image) framesWithImages++;
+    if (input == TInput::Bearings || (input == TInput::Auto && hasBearings)) return;
+    if (!image) return;
+    if (!detector) detector = std::make_unique<CeilingLightDetector>(camera, detectorOptions);
+    sf.eraseByLabel(filterOptions.bearings_label);
+    sf.insert(detector->detect(*image, filterOptions.bearings_label));
+    image->unload();
+}
+
+void OmniFastSLAMApp::initialize()
+{
+    auto& d = *m_impl;
+    d.loadConfig();
+    if (!mrpt::system::fileExists(d.rawlog))
+        throw std::runtime_error(d.rawlog + ": cannot open rawlog");
+    d.findGroundTruth();
+    outDir = d.args.outDir;
+    d.filter = std::make_unique<COmniFastSLAM>(d.mapTemplate, d.pf.m_options.sampleSize, d.seed);
+    // CParticleFilter's resampling draws from MRPT's global generator.
+    mrpt::random::getRandomGenerator().randomize(d.seed);
+    d.filter->options = d.filterOptions;
+    d.pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
+}
+
+void OmniFastSLAMApp::run()
+{
+    auto& d = *m_impl;
+    core::OutputDirectory out(outDir);
+    core::RunTimer timer;
+    core::RawlogReader reader(d.rawlog);
+    core::ProgressReporter progress("omni-fastslam", 0, d.args.quiet);
+
+    mrpt::poses::CPose2D odometry(d.initialPose);
+    bool started = false;
+    for (core::TRawlogEntry e; reader.next(e);) {
+        if (!e.actions || !e.observations) continue;
+        if (!e.actions->getBestMovementEstimation())
+            throw std::runtime_error(d.rawlog + ": entry " + std::to_string(e.index) +
+                                     " has an action collection without odometry");
+        d.prepareFrame(*e.observations);
+        const double t = mrpt::Clock::toDouble(e.observations->size()
+                                                   ? (*e.observations->begin())->timestamp
+                                                   : e.timestamp);
+        if (!started) {
+            d.filter->reset(d.initialPose, t);
+            started = true;
+        }
+        timer.startStep();
+        d.pf.executeOn(*d.filter, e.actions.get(), e.observations.get());
+        timer.endStep();
+
+        odometry = odometry + e.actions->getBestMovementEstimation()->poseChange->getMeanVal();
+        odometryPath.push_back(t, to3D(odometry.asTPose()));
+        d.measurements += d.filter->lastStepStats.measurements;
+        progress.update(++d.frames);
+    }
+    progress.finish(d.frames);
+    if (d.frames == 0)
+        throw std::runtime_error(d.rawlog +
+                                 ": no odometry action / sensory frame pairs (format #1); the "
+                                 "rawlog has: " + reader.summary().describe());
+    if (d.measurements == 0)
+        throw std::runtime_error(d.rawlog + ": no ceiling-light measurements (" +
+                                 d.filterOptions.bearings_label + " or " + d.imageLabel +
+                                 "); the rawlog has: " + reader.summary().describe());
+    for (const auto& [t, p] : COmniFastSLAM::pathOf(d.filter->bestParticle()))
+        if (estimatedPath.empty() || t > estimatedPath.timestamps.back())
+            estimatedPath.push_back(t, to3D(p));
+    d.writeOutputs(*this, timer);
+}
+
+void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTimer& timer)
+{
+    core::OutputDirectory out(app.outDir);
+    const auto& best = filter->bestParticle();
+    app.estimatedPath.save(out.file("estimated_path.tum"), "omni-fastslam: best particle's path");
+    app.odometryPath.save(out.file("odometry_path.tum"), "omni-fastslam: dead reckoning");
+    best.map.saveMetricMapRepresentationToFile(out.file("map.tmp"));
+    core::AtomicFile::commitRename(out.file("map.tmp.txt"), out.file("map.txt"));
+    core::saveObjectGz(best.map, out.file("final_map.gz"));
+
+    mrpt::opengl::COpenGLScene scene;
+    scene.insert(mrpt::opengl::CGridPlaneXY::Create(-10, 40, -15, 15, 0, 1));
+    scene.insert(best.map.getVisualization());
+    scene.insert(core::trajectoryAsLines(app.estimatedPath, {0, 0.8f, 0}, "estimate"));
+    scene.insert(core::trajectoryAsLines(app.odometryPath, {0.9f, 0.1f, 0.1f}, "odometry"));
+    if (groundTruth) scene.insert(core::trajectoryAsLines(*groundTruth, {0, 0, 0}, "ground truth"));
+    const std::string landmarksFile = groundTruthPrefix + ".landmarks.txt";
+    if (mrpt::system::fileExists(landmarksFile)) {
+        std::vector<mrpt::math::TPoint3D> pts;
+        for (const auto& lm : core::LandmarkFile::load(landmarksFile).landmarks)
+            pts.push_back(lm.position);
+        scene.insert(core::pointsAsCrosses(pts, {0, 0, 0}));
+    }
+    core::saveScene(scene, out.file("final.3Dscene"));
+
+    cfg.writeEffectiveConfig(out.file("config.ini"));
+    core::RunReport report("omni-fastslam");
+    report.setCommandLine(args.commandLine);
+    report.setConfig(args.configFile, cfg.effectiveText());
+    report.setRawlog(rawlog);
+    report.setSeed(seed);
+    report.setOpenCvVersion(CV_VERSION);
+    report.setCount("frames", frames);
+    report.setCount("frames_with_images", framesWithImages);
+    report.setCount("measurements", measurements);
+    report.setCount("particles", filter->particlesCount());
+    report.setCount("landmarks", best.map.landmarks().size());
+    report.setCount("candidates", best.map.candidates().size());
+    report.setTiming(timer);
+    if (groundTruth) report.setResultText("ground_truth", groundTruthPrefix);
+    report.write(out.file("run.json"));
+
+}
+
+}  // namespace mrpt_vslam::omni_fastslam

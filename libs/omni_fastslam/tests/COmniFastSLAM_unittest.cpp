@@ -1,0 +1,102 @@
+// End-to-end accuracy of the FastSLAM 2.0 filter on the first frames of the shipped sports-hall
+// dataset (bearings input), against its ground truth.
+#include <gtest/gtest.h>
+#include <mrpt/bayes/CParticleFilter.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/random/RandomGenerators.h>
+#include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/core/LandmarkMetrics.h>
+#include <mrpt_vslam/core/RawlogReader.h>
+#include <mrpt_vslam/core/TumTrajectory.h>
+#include <mrpt_vslam/omni_fastslam/COmniFastSLAM.h>
+
+#include <cmath>
+
+using namespace mrpt_vslam;
+using omni_fastslam::COmniFastSLAM;
+
+namespace {
+const std::string kPrefix = std::string(MRPT_VSLAM_SOURCE_DIR) + "/datasets/sports-hall/hall";
+
+struct TRunResult {
+    double final_position_error = 0, odometry_position_error = 0;
+    std::vector<mrpt::math::TPoint3D> landmarks;
+};
+
+TRunResult runFrames(size_t frames, mrpt::bayes::CParticleFilter::TParticleFilterAlgorithm alg,
+                     uint32_t seed)
+{
+    const auto gt = core::TumTrajectory::load(kPrefix + ".groundtruth.tum");
+    omni_fastslam::CCeilingLightsMap map;
+    map.sensorOptions.max_theta = 70 * M_PI / 180;
+    map.insertionOptions.sigma0_xx = map.insertionOptions.sigma0_yy =
+        map.insertionOptions.sigma0_zz = 0.1;
+    map.insertionOptions.refine_initialization = true;
+    COmniFastSLAM filter(map, 10, seed);
+    mrpt::random::getRandomGenerator().randomize(seed);
+    mrpt::bayes::CParticleFilter pf;
+    pf.m_options.PF_algorithm = alg;
+    pf.m_options.resamplingMethod = mrpt::bayes::CParticleFilter::prSystematic;
+    pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
+
+    const auto& p0 = gt.poses.front();
+    filter.reset({p0.x, p0.y, p0.yaw}, gt.timestamps.front());
+    mrpt::poses::CPose2D odometry(p0.x, p0.y, p0.yaw);
+    core::RawlogReader reader(kPrefix + ".rawlog");
+    size_t n = 0;
+    for (core::TRawlogEntry e; n < frames && reader.next(e);) {
+        if (!e.actions || !e.observations) continue;
+        pf.executeOn(filter, e.actions.get(), e.observations.get());
+        odometry = odometry + e.actions->getBestMovementEstimation()->poseChange->getMeanVal();
+        n++;
+    }
+    EXPECT_EQ(n, frames);
+    const auto& best = filter.bestParticle();
+    const auto& truth = gt.poses[frames - 1];
+    TRunResult r;
+    r.final_position_error = std::hypot(best.robot_in_map.x - truth.x, best.robot_in_map.y - truth.y);
+    r.odometry_position_error = std::hypot(odometry.x() - truth.x, odometry.y() - truth.y);
+    for (const auto& lm : best.map.landmarks())
+        r.landmarks.emplace_back(lm.mean.x(), lm.mean.y(), lm.mean.z());
+    return r;
+}
+
+std::vector<mrpt::math::TPoint3D> trueLights()
+{
+    std::vector<mrpt::math::TPoint3D> pts;
+    for (const auto& lm : core::LandmarkFile::load(kPrefix + ".landmarks.txt").landmarks)
+        pts.push_back(lm.position);
+    return pts;
+}
+}  // namespace
+
+TEST(COmniFastSLAM, MapsTheFirstLoopOfTheSportsHall)
+{
+    // Frames 0-205: the robot closes its first loop at frame ~205.
+    const auto r = runFrames(205, mrpt::bayes::CParticleFilter::pfOptimalProposal, 1);
+    EXPECT_LT(r.final_position_error, 0.5);
+    size_t close = 0;
+    for (const auto& t : trueLights()) {
+        double best = 1e9;
+        for (const auto& e : r.landmarks) best = std::min(best, (t - e).norm());
+        if (best < 1.0) close++;
+    }
+    EXPECT_GE(close, 12u) << "lights mapped within 1 m of a true light";
+    EXPECT_LE(r.landmarks.size(), 14u) << "no duplicated lights";
+}
+
+TEST(COmniFastSLAM, IsReproducibleForASeed)
+{
+    const auto a = runFrames(40, mrpt::bayes::CParticleFilter::pfOptimalProposal, 7);
+    const auto b = runFrames(40, mrpt::bayes::CParticleFilter::pfOptimalProposal, 7);
+    EXPECT_EQ(a.final_position_error, b.final_position_error);
+    EXPECT_EQ(a.landmarks.size(), b.landmarks.size());
+}
+
+TEST(COmniFastSLAM, StandardProposalRuns)
+{
+    const auto r = runFrames(40, mrpt::bayes::CParticleFilter::pfStandardProposal, 1);
+    EXPECT_TRUE(std::isfinite(r.final_position_error));
+    EXPECT_GT(r.landmarks.size(), 0u);
+}

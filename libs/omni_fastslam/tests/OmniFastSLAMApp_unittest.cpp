@@ -1,0 +1,81 @@
+// The omni-fastslam driver on the shipped dataset: outputs of BRIEF §4 and failures on bad input.
+#include <gtest/gtest.h>
+#include <mrpt/system/filesystem.h>
+#include <mrpt_vslam/core/AppArguments.h>
+#include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/core/UsageError.h>
+#include <mrpt_vslam/omni_fastslam/OmniFastSLAMApp.h>
+
+#include <fstream>
+#include <unistd.h>
+
+using namespace mrpt_vslam;
+
+namespace {
+const std::string kSource = MRPT_VSLAM_SOURCE_DIR;
+const std::string kConfig = kSource + "/share/mrpt-vslam/config/omni-fastslam/sports-hall.ini";
+const std::string kRawlog = kSource + "/datasets/sports-hall/hall.rawlog";
+
+std::string tempDir(const std::string& name)
+{
+    const auto dir = mrpt::system::getTempFileName() + "_" + name + std::to_string(getpid());
+    mrpt::system::deleteFilesInDirectory(dir, true);
+    return dir;
+}
+
+core::AppArguments args(const std::vector<std::string>& extra)
+{
+    std::vector<const char*> argv{"omni-fastslam"};
+    for (const auto& a : extra) argv.push_back(a.c_str());
+    return core::AppArguments::parse(static_cast<int>(argv.size()), argv.data(), "omni-fastslam", "");
+}
+}  // namespace
+
+TEST(OmniFastSLAMApp, WritesTheRunFolder)
+{
+    const auto out = tempDir("omni_run");
+    omni_fastslam::OmniFastSLAMApp app(args({kConfig, kRawlog, "--out", out, "--quiet"}));
+    app.initialize();
+    app.run();
+    EXPECT_EQ(app.estimatedPath.size(), 320u);
+    EXPECT_EQ(app.odometryPath.size(), 320u);
+    for (const char* f : {"estimated_path.tum", "odometry_path.tum", "map.txt", "final_map.gz",
+                          "final.3Dscene", "run.json", "config.ini"})
+        EXPECT_TRUE(mrpt::system::fileExists(out + "/" + f)) << f;
+    const auto map = core::LandmarkFile::load(out + "/map.txt");
+    EXPECT_GE(map.size(), 10u);
+    EXPECT_LE(map.size(), 16u);
+    for (const auto& lm : map.landmarks) EXPECT_TRUE(lm.has_cov);
+    mrpt::system::deleteFilesInDirectory(out, true);
+}
+
+TEST(OmniFastSLAMApp, RejectsAnUnknownKey)
+{
+    omni_fastslam::OmniFastSLAMApp app(
+        args({kConfig, kRawlog, "--set", "OmniFastSLAM.particle_cuont=3", "--quiet"}));
+    EXPECT_THROW(app.initialize(), core::UsageError);
+}
+
+TEST(OmniFastSLAMApp, FailsOnAMissingRawlog)
+{
+    omni_fastslam::OmniFastSLAMApp app(args({kConfig, "/nonexistent/x.rawlog", "--quiet"}));
+    try {
+        app.initialize();
+        FAIL() << "no exception";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("/nonexistent/x.rawlog"), std::string::npos);
+    }
+}
+
+TEST(OmniFastSLAMApp, FailsOnARawlogWithoutLightMeasurements)
+{
+    // A rawlog whose frames hold neither bearings nor images of the configured labels.
+    const auto out = tempDir("omni_nolights");
+    omni_fastslam::OmniFastSLAMApp app(args({kConfig, kRawlog, "--out", out, "--quiet", "--set",
+                                             "OmniFastSLAM.bearings_label=NONE", "--set",
+                                             "OmniFastSLAM.image_label=NONE"}));
+    app.initialize();
+    EXPECT_THROW(app.run(), std::runtime_error);
+    EXPECT_FALSE(mrpt::system::fileExists(out + "/run.json"));
+    mrpt::system::deleteFilesInDirectory(out, true);
+}
