@@ -1,5 +1,8 @@
 // The omni-fastslam driver on the shipped dataset: outputs of BRIEF §4 and failures on bad input.
 #include <gtest/gtest.h>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/serialization/CArchive.h>
 #include <mrpt/system/filesystem.h>
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
@@ -46,6 +49,12 @@ TEST(OmniFastSLAMApp, WritesTheRunFolder)
     EXPECT_GE(map.size(), 10u);
     EXPECT_LE(map.size(), 16u);
     for (const auto& lm : map.landmarks) EXPECT_TRUE(lm.has_cov);
+
+    // The scene opens without the plugin: only stock opengl classes.
+    mrpt::opengl::COpenGLScene scene;
+    mrpt::io::CFileGZInputStream f(out + "/final.3Dscene");
+    mrpt::serialization::archiveFrom(f) >> scene;
+    EXPECT_GE(scene.getViewport()->size(), 4u);
     mrpt::system::deleteFilesInDirectory(out, true);
 }
 

@@ -1,0 +1,50 @@
+// MRPT reuse: stock rbpf-slam, with this library preloaded, builds a map of ceiling lights with
+// CCeilingLightsMap on the sports-hall bearings (its frame starts at the origin).
+#include <gtest/gtest.h>
+#include <mrpt/system/filesystem.h>
+#include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/core/TumTrajectory.h>
+
+#include <cstdlib>
+#include <unistd.h>
+
+using namespace mrpt_vslam;
+
+TEST(StockRbpfSlam, BuildsACeilingLightsMapWithThePluginPreloaded)
+{
+    if (!mrpt::system::fileExists("/usr/bin/rbpf-slam")) GTEST_SKIP() << "rbpf-slam not installed";
+    const std::string src = MRPT_VSLAM_SOURCE_DIR;
+    const std::string out = mrpt::system::getTempFileName() + "_rbpf" + std::to_string(getpid());
+    // rbpf-slam has no --set: a copy of the config names the output folder
+    const std::string ini = out + ".ini";
+    ASSERT_EQ(std::system(("sed 's#^logOutput_dir = .*#logOutput_dir = " + out + "#' " + src +
+                           "/share/mrpt-vslam/config/omni-fastslam/rbpf-slam-sports-hall.ini > " +
+                           ini).c_str()),
+              0);
+    const std::string run = "cd " + src + "/datasets/sports-hall && LD_PRELOAD=" +
+                            OMNI_FASTSLAM_PLUGIN + " rbpf-slam " + ini + " hall.rawlog > " + out +
+                            ".log 2>&1";
+    ASSERT_EQ(std::system(run.c_str()), 0) << "see " << out << ".log";
+
+    const auto map = core::LandmarkFile::load(
+        out + "/finalMap_mrpt_vslam__omni_fastslam__CCeilingLightsMap_00.txt");
+    // True lights in rbpf-slam's frame: the robot starts at the first ground-truth pose
+    // (9, -3.25, 0) and rbpf-slam puts it at the origin.
+    const auto gt = core::TumTrajectory::load(src + "/datasets/sports-hall/hall.groundtruth.tum");
+    const auto& p0 = gt.poses.front();
+    size_t near = 0;
+    for (const auto& t : core::LandmarkFile::load(src + "/datasets/sports-hall/hall.landmarks.txt")
+                             .landmarks) {
+        const mrpt::math::TPoint3D in_start{t.position.x - p0.x, t.position.y - p0.y,
+                                            t.position.z};
+        for (const auto& e : map.landmarks)
+            if ((e.position - in_start).norm() < 1.0) {
+                near++;
+                break;
+            }
+    }
+    EXPECT_GE(map.size(), 10u);
+    EXPECT_LE(map.size(), 18u);
+    EXPECT_GE(near, 10u) << "lights within 1 m of a true light";
+    mrpt::system::deleteFilesInDirectory(out, true);
+}
