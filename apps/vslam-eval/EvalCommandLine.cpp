@@ -1,0 +1,91 @@
+#include "EvalCommandLine.h"
+
+#include <mrpt/3rdparty/tclap/CmdLine.h>
+#include <mrpt_vslam/core/Version.h>
+
+#include <stdexcept>
+
+namespace mrpt_vslam::eval {
+namespace {
+
+/// Keeps TCLAP's --help text; records a parse error instead of printing a usage block.
+class ErrorCapturingOutput : public TCLAP::StdOutput {
+  public:
+    void failure(TCLAP::CmdLineInterface&, TCLAP::ArgException& e) override {
+        error = e.argId().empty() ? e.error() : e.argId() + ": " + e.error();
+    }
+    std::string error;
+};
+
+/// A CmdLine writing to `output`. (TCLAP's setOutput() alone would leak the default output.)
+class EvalCmdLine : public TCLAP::CmdLine {
+  public:
+    EvalCmdLine(const std::string& message, TCLAP::CmdLineOutput* output)
+        : TCLAP::CmdLine(message, ' ', mrpt_vslam::core::projectVersion()) {
+        delete _output;
+        setOutput(output);
+    }
+};
+
+}  // namespace
+
+std::optional<TEvalParams> parseEvalCommandLine(int argc, char** argv) {
+    ErrorCapturingOutput output;
+    EvalCmdLine cmd(
+        "vslam-eval: trajectory and map metrics of a SLAM run against ground truth, with PNG "
+        "plots.\n"
+        "  vslam-eval RUN_DIR [--ground-truth NAME|NAME.rawlog|GT.tum] [--out DIR]\n"
+        "  vslam-eval --estimate EST.tum --ground-truth GT.tum [--landmarks-gt L.txt] "
+        "[--map map.txt] --out DIR",
+        &output);
+    TCLAP::UnlabeledValueArg<std::string> runDir(
+        "RUN_DIR", "Run folder with estimated_path*.tum [odometry_path*.tum, map.txt, run.json]",
+        false, "", "RUN_DIR", cmd);
+    TCLAP::ValueArg<std::string> estimate("", "estimate",
+                                          "Estimated trajectory (TUM), instead of RUN_DIR", false,
+                                          "", "FILE.tum", cmd);
+    TCLAP::ValueArg<std::string> odometry(
+        "", "odometry", "Odometry trajectory (TUM) with --estimate", false, "", "FILE.tum", cmd);
+    TCLAP::ValueArg<std::string> groundTruth(
+        "", "ground-truth",
+        "Ground truth: rawlog NAME.rawlog or prefix NAME (uses NAME.groundtruth[_<ROBOT>].tum and "
+        "NAME.landmarks.txt), or a TUM file. Default: \"ground_truth\" of RUN_DIR/run.json",
+        false, "", "NAME|FILE", cmd);
+    TCLAP::ValueArg<std::string> landmarksGt(
+        "", "landmarks-gt", "True landmarks (x y z or id x y z)", false, "", "FILE", cmd);
+    TCLAP::ValueArg<std::string> map("", "map", "Estimated map (default RUN_DIR/map.txt)", false,
+                                     "", "FILE", cmd);
+    TCLAP::ValueArg<std::string> out("", "out", "Output folder (default RUN_DIR)", false, "", "DIR",
+                                     cmd);
+    TCLAP::ValueArg<double> cutoff("", "landmark-cutoff", "Max distance of a landmark match [m]",
+                                   false, 1.5, "M", cmd);
+    TCLAP::ValueArg<double> tolerance("", "time-tolerance",
+                                      "Max time difference of an estimate/ground-truth pair [s]",
+                                      false, 0.05, "S", cmd);
+    TCLAP::ValueArg<double> heading("", "heading-threshold-deg",
+                                    "Threshold of the share of frames with a small heading error",
+                                    false, 5.0, "DEG", cmd);
+    TCLAP::SwitchArg align("", "align",
+                           "Plot the SE(2)-aligned estimate (metrics.json always has both)", cmd);
+    if (!cmd.parse(argc, argv)) {
+        if (!output.error.empty()) throw std::runtime_error(output.error);
+        return std::nullopt;
+    }
+    if (runDir.getValue().rfind('-', 0) == 0)
+        throw std::runtime_error(runDir.getValue() + ": unknown option (see --help)");
+    TEvalParams p;
+    p.run_dir = runDir.getValue();
+    p.estimate_file = estimate.getValue();
+    p.odometry_file = odometry.getValue();
+    p.ground_truth = groundTruth.getValue();
+    p.landmarks_gt = landmarksGt.getValue();
+    p.map_file = map.getValue();
+    p.out_dir = out.getValue();
+    p.landmark_cutoff = cutoff.getValue();
+    p.time_tolerance = tolerance.getValue();
+    p.heading_threshold_deg = heading.getValue();
+    p.align = align.getValue();
+    return p;
+}
+
+}  // namespace mrpt_vslam::eval

@@ -1,0 +1,13 @@
+#pragma once
+
+#include <optional>
+
+#include "EvalInputs.h"
+
+namespace mrpt_vslam::eval {
+
+/** Parses the command line of vslam-eval. Returns nullopt after printing --help or --version;
+ *  throws std::runtime_error "ARG: problem" on a bad command line. */
+std::optional<TEvalParams> parseEvalCommandLine(int argc, char** argv);
+
+}  // namespace mrpt_vslam::eval

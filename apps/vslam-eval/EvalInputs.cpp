@@ -1,0 +1,117 @@
+#include "EvalInputs.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+namespace mrpt_vslam::eval {
+namespace fs = std::filesystem;
+namespace {
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+    return s.size() >= suffix.size() &&
+           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+/// `--ground-truth` from the parameters, else from RUN_DIR/run.json; "" when neither has it.
+std::string groundTruthArgument(const TEvalParams& p) {
+    if (!p.ground_truth.empty() || p.run_dir.empty()) return p.ground_truth;
+    const auto runJson = (fs::path(p.run_dir) / "run.json").string();
+    if (!fs::exists(runJson)) return {};
+    std::ifstream in(runJson);
+    nlohmann::json j;
+    try {
+        in >> j;
+    } catch (const nlohmann::json::exception& e) {
+        throw std::runtime_error(runJson + ": invalid JSON: " + e.what());
+    }
+    if (!j.contains("ground_truth") || j["ground_truth"].is_null()) return {};
+    if (!j["ground_truth"].is_string())
+        throw std::runtime_error(runJson + ": key \"ground_truth\" must be a string");
+    std::string gt = j["ground_truth"].get<std::string>();
+    // A relative path is taken from the current folder, else from the run folder.
+    const auto inRun = fs::path(p.run_dir) / gt;
+    if (fs::path(gt).is_relative() && !fs::exists(gt) && !fs::exists(gt + ".groundtruth.tum") &&
+        (fs::exists(inRun) || fs::exists(inRun.string() + ".groundtruth.tum")))
+        gt = inRun.string();
+    return gt;
+}
+
+/// Prefix NAME of a ground-truth argument `NAME.rawlog[.gz]` or `NAME`.
+std::string groundTruthPrefix(const std::string& arg) {
+    for (const char* ext : {".rawlog.gz", ".rawlog"})
+        if (endsWith(arg, ext)) return arg.substr(0, arg.size() - std::string(ext).size());
+    return arg;
+}
+
+/// Robots of a run folder: "" for estimated_path.tum, R for estimated_path_R.tum (sorted).
+std::vector<TRobotFiles> robotsInRunDir(const std::string& run_dir) {
+    if (!fs::is_directory(run_dir)) throw std::runtime_error(run_dir + ": not a folder");
+    const std::string stem = "estimated_path", ext = ".tum";
+    std::vector<TRobotFiles> robots;
+    for (const auto& entry : fs::directory_iterator(run_dir)) {
+        const auto name = entry.path().filename().string();
+        if (name.rfind(stem, 0) != 0 || !endsWith(name, ext)) continue;
+        // What lies between the stem and the extension: "" or "_<ROBOT>".
+        const auto middle = name.substr(stem.size(), name.size() - stem.size() - ext.size());
+        if (!middle.empty() && (middle.size() < 2 || middle[0] != '_')) continue;
+        TRobotFiles r;
+        r.robot = middle.empty() ? std::string() : middle.substr(1);
+        r.estimate = entry.path().string();
+        const auto odo =
+            fs::path(run_dir) /
+            (r.robot.empty() ? "odometry_path.tum" : "odometry_path_" + r.robot + ".tum");
+        if (fs::exists(odo)) r.odometry = odo.string();
+        robots.push_back(r);
+    }
+    if (robots.empty())
+        throw std::runtime_error(run_dir + ": no estimated_path.tum or estimated_path_<ROBOT>.tum");
+    std::sort(robots.begin(), robots.end(),
+              [](const auto& a, const auto& b) { return a.robot < b.robot; });
+    return robots;
+}
+
+}  // namespace
+
+TEvalInputs resolveInputs(const TEvalParams& p) {
+    TEvalInputs in;
+    if (!p.estimate_file.empty()) {
+        in.robots.push_back({"", p.estimate_file, p.odometry_file, ""});
+    } else {
+        if (p.run_dir.empty())
+            throw std::runtime_error("give RUN_DIR or --estimate FILE (see --help)");
+        in.robots = robotsInRunDir(p.run_dir);
+    }
+    const auto gtArg = groundTruthArgument(p);
+    if (gtArg.empty())
+        throw std::runtime_error((p.run_dir.empty() ? p.estimate_file : p.run_dir) +
+                                 ": no ground truth: pass --ground-truth or set \"ground_truth\" "
+                                 "in run.json");
+    if (endsWith(gtArg, ".tum")) {
+        if (in.robots.size() != 1)
+            throw std::runtime_error(gtArg + ": one ground-truth file for " +
+                                     std::to_string(in.robots.size()) +
+                                     " robots; pass the prefix NAME instead");
+        in.robots[0].ground_truth = gtArg;
+    } else {
+        const auto prefix = groundTruthPrefix(gtArg);
+        for (auto& r : in.robots)
+            r.ground_truth = prefix + (r.robot.empty() ? ".groundtruth.tum"
+                                                       : ".groundtruth_" + r.robot + ".tum");
+        if (p.landmarks_gt.empty() && fs::exists(prefix + ".landmarks.txt"))
+            in.landmarks_gt = prefix + ".landmarks.txt";
+    }
+    if (!p.landmarks_gt.empty()) in.landmarks_gt = p.landmarks_gt;
+    in.map_file = p.map_file;
+    if (in.map_file.empty() && !p.run_dir.empty() && p.estimate_file.empty() &&
+        fs::exists(fs::path(p.run_dir) / "map.txt"))
+        in.map_file = (fs::path(p.run_dir) / "map.txt").string();
+    in.out_dir = !p.out_dir.empty() ? p.out_dir : p.run_dir;
+    if (in.out_dir.empty())
+        throw std::runtime_error(p.estimate_file + ": --out DIR is required with --estimate");
+    return in;
+}
+
+}  // namespace mrpt_vslam::eval

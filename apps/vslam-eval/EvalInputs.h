@@ -1,0 +1,41 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace mrpt_vslam::eval {
+
+/** Command-line parameters of vslam-eval (see README.md). */
+struct TEvalParams {
+    std::string run_dir;           ///< run folder (BRIEF §4), or empty with `estimate_file`
+    std::string estimate_file;     ///< loose estimate TUM file
+    std::string odometry_file;     ///< loose odometry TUM file (optional)
+    std::string ground_truth;      ///< `NAME.rawlog`, prefix `NAME`, or a TUM file
+    std::string landmarks_gt;      ///< true landmarks file (optional; overrides NAME.landmarks.txt)
+    std::string map_file;          ///< estimated map (optional; default RUN_DIR/map.txt)
+    std::string out_dir;           ///< where metrics.json and the plots go (default RUN_DIR)
+    double landmark_cutoff = 1.5;  ///< [m]
+    double time_tolerance = 0.05;  ///< [s]
+    double heading_threshold_deg = 5;  ///< [deg]
+    bool align = false;  ///< plots show the SE(2)-aligned estimate (the JSON always has both)
+};
+
+/** The files of one robot. `robot` is empty for single-robot runs. */
+struct TRobotFiles {
+    std::string robot;
+    std::string estimate, odometry, ground_truth;  ///< odometry may be empty
+};
+
+/** Every file an evaluation reads and the folder it writes to. */
+struct TEvalInputs {
+    std::vector<TRobotFiles> robots;
+    std::string map_file;      ///< empty when there is no map
+    std::string landmarks_gt;  ///< empty when there are no true landmarks
+    std::string out_dir;
+};
+
+/** Finds the files to evaluate from the parameters: estimates in the run folder, ground truth
+ *  from `--ground-truth` or run.json. Throws std::runtime_error "FILE: problem". */
+TEvalInputs resolveInputs(const TEvalParams& params);
+
+}  // namespace mrpt_vslam::eval

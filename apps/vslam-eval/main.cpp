@@ -1,0 +1,18 @@
+#include <iostream>
+
+#include "EvalApp.h"
+#include "EvalCommandLine.h"
+
+int main(int argc, char** argv) {
+    try {
+        const auto params = mrpt_vslam::eval::parseEvalCommandLine(argc, argv);
+        if (!params) return 0;  // --help or --version
+        mrpt_vslam::eval::EvalApp app;
+        app.params = *params;
+        app.run();
+        return 0;
+    } catch (const std::exception& e) {
+        std::cerr << "vslam-eval: error: " << e.what() << "\n";
+    }
+    return 1;
+}

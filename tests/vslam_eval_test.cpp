@@ -1,0 +1,214 @@
+#include <gtest/gtest.h>
+#include <mrpt/core/bits_math.h>
+#include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/core/TumTrajectory.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+using mrpt_vslam::core::LandmarkFile;
+using mrpt_vslam::core::TumTrajectory;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A per-process scratch folder, removed at exit.
+struct TTempDir {
+    fs::path path = fs::temp_directory_path() / ("vslam_eval_test_" + std::to_string(::getpid()));
+    TTempDir() { fs::create_directories(path); }
+    ~TTempDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
+const fs::path& tempDir() {
+    static const TTempDir dir;
+    return dir.path;
+}
+
+/// A curvy planar path at 10 Hz, optionally shifted by (dx, dy).
+TumTrajectory makePath(double dx = 0, double dy = 0, size_t n = 60) {
+    TumTrajectory p;
+    for (size_t i = 0; i < n; i++) {
+        const double a = 0.05 * i;
+        p.push_back(500 + 0.1 * i, {4 * std::cos(a) + dx, 2 * std::sin(a) + dy, 0,
+                                    mrpt::math::wrapToPi(a + M_PI / 2), 0, 0});
+    }
+    return p;
+}
+
+LandmarkFile landmarks(const std::vector<std::array<double, 3>>& xyz, int first_id) {
+    LandmarkFile f;
+    for (const auto& p : xyz) {
+        mrpt_vslam::core::TLandmark lm;
+        lm.id = first_id++;
+        lm.position = {p[0], p[1], p[2]};
+        f.landmarks.push_back(lm);
+    }
+    return f;
+}
+
+struct TRunResult {
+    int exit_code = -1;
+    std::string stderr_text;
+};
+
+/// Under LeakSanitizer, ignores leaks inside the font and plugin loaders PLplot uses (third-party
+/// allocations kept until exit); leaks in our code are still reported.
+void suppressThirdPartyLeaks() {
+    if (std::getenv("LSAN_OPTIONS")) return;  // the caller's choice wins
+    const auto file = (tempDir() / "lsan.supp").string();
+    std::ofstream(file) << "leak:libfontconfig.so\nleak:libltdl.so\nleak:libcairo.so\n"
+                           "leak:libpango\n";
+    ::setenv("LSAN_OPTIONS", ("suppressions=" + file).c_str(), 1);
+}
+
+TRunResult runEval(const std::string& args) {
+    suppressThirdPartyLeaks();
+    const auto errFile = (tempDir() / "stderr.txt").string();
+    const std::string cmd = std::string("\"") + MRPT_VSLAM_BIN_DIR "/vslam-eval\" " + args +
+                            " > /dev/null 2> \"" + errFile + "\"";
+    const int status = std::system(cmd.c_str());
+    TRunResult r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream in(errFile);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    r.stderr_text = ss.str();
+    return r;
+}
+
+nlohmann::json readJson(const fs::path& file) {
+    std::ifstream in(file);
+    return nlohmann::json::parse(in);
+}
+
+void expectNonEmptyPng(const fs::path& file) {
+    ASSERT_TRUE(fs::exists(file)) << file;
+    EXPECT_GT(fs::file_size(file), 1000u) << file;
+    std::ifstream in(file, std::ios::binary);
+    char magic[4] = {};
+    in.read(magic, 4);
+    EXPECT_EQ(std::string(magic + 1, 3), "PNG") << file;
+    EXPECT_FALSE(fs::exists(file.string() + ".tmp"));
+}
+
+}  // namespace
+
+TEST(VslamEval, LooseFilesGiveTheKnownOffset) {
+    const auto dir = tempDir() / "loose";
+    fs::create_directories(dir);
+    makePath().save((dir / "gt.tum").string());
+    makePath(0.3, -0.4).save((dir / "est.tum").string());
+    landmarks({{0, 0, 0}, {5, 0, 0}, {0, 5, 0}, {-5, -5, 0}}, 0).save((dir / "lm.txt").string());
+    // Map: two landmarks 0.1 m and 0.3 m off, one false far away; landmarks 2 and 3 missed
+    // (the second estimate near landmark 0 is a duplicate).
+    landmarks({{0.1, 0, 0}, {5, 0.3, 0}, {0, 0.5, 0}, {40, 40, 0}}, 10)
+        .save((dir / "map.txt").string());
+    const auto out = dir / "out";
+    const auto r =
+        runEval("--estimate " + (dir / "est.tum").string() + " --ground-truth " +
+                (dir / "gt.tum").string() + " --landmarks-gt " + (dir / "lm.txt").string() +
+                " --map " + (dir / "map.txt").string() + " --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+    const auto j = readJson(out / "metrics.json");
+    const auto& est = j["estimate"];
+    EXPECT_EQ(est["matched_poses"].get<int>(), 60);
+    EXPECT_NEAR(est["ate_rmse_m"].get<double>(), 0.5, 1e-6);
+    EXPECT_NEAR(est["ate_mean_m"].get<double>(), 0.5, 1e-6);
+    EXPECT_NEAR(est["ate_max_m"].get<double>(), 0.5, 1e-6);
+    EXPECT_NEAR(est["heading_rmse_deg"].get<double>(), 0, 1e-4);
+    EXPECT_DOUBLE_EQ(est["heading_share_under_threshold"].get<double>(), 1.0);
+    EXPECT_NEAR(est["aligned_se2"]["ate_max_m"].get<double>(), 0, 1e-6);
+    EXPECT_NEAR(est["aligned_se2"]["alignment"]["x_m"].get<double>(), -0.3, 1e-6);
+    EXPECT_TRUE(j["odometry"].is_null());
+
+    const auto& lm = j["landmarks"];
+    EXPECT_EQ(lm["matched"].get<int>(), 2);
+    EXPECT_EQ(lm["missed"].get<int>(), 2);
+    EXPECT_EQ(lm["false"].get<int>(), 2);
+    EXPECT_EQ(lm["duplicated"].get<int>(), 1);
+    EXPECT_NEAR(lm["error_mean_m"].get<double>(), 0.2, 1e-6);
+    EXPECT_NEAR(lm["error_max_m"].get<double>(), 0.3, 1e-6);
+    ASSERT_EQ(lm["table"].size(), 4u);
+    EXPECT_EQ(lm["table"][1]["est_id"].get<int>(), 11);
+    EXPECT_NEAR(lm["table"][1]["ey"].get<double>(), 0.3, 1e-9);
+    EXPECT_TRUE(lm["table"][3]["est_id"].is_null());
+    EXPECT_EQ(j["map"]["elements"].get<int>(), 4);
+
+    expectNonEmptyPng(out / "paths.png");
+    expectNonEmptyPng(out / "errors.png");
+    expectNonEmptyPng(out / "landmark_errors.png");
+    EXPECT_FALSE(fs::exists(out / "metrics.json.tmp"));
+}
+
+TEST(VslamEval, RunFolderWithRobotsAndRunJson) {
+    const auto dir = tempDir() / "multi";
+    const auto run = dir / "run";
+    fs::create_directories(run);
+    makePath().save((dir / "scene.groundtruth_R1.tum").string());
+    makePath(10, 0).save((dir / "scene.groundtruth_R2.tum").string());
+    makePath(0, 0.5).save((run / "estimated_path_R1.tum").string());
+    makePath(11, 0).save((run / "estimated_path_R2.tum").string());
+    makePath(0, 2).save((run / "odometry_path_R1.tum").string());
+    std::ofstream(run / "run.json")
+        << nlohmann::json{{"ground_truth", (dir / "scene.rawlog").string()}};
+
+    const auto r = runEval(run.string());
+    ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+    const auto j = readJson(run / "metrics.json");
+    ASSERT_TRUE(j.contains("robots"));
+    EXPECT_NEAR(j["robots"]["R1"]["estimate"]["ate_rmse_m"].get<double>(), 0.5, 1e-6);
+    EXPECT_NEAR(j["robots"]["R1"]["odometry"]["ate_rmse_m"].get<double>(), 2.0, 1e-6);
+    EXPECT_NEAR(j["robots"]["R2"]["estimate"]["ate_max_m"].get<double>(), 1.0, 1e-6);
+    EXPECT_TRUE(j["robots"]["R2"]["odometry"].is_null());
+    EXPECT_TRUE(j["landmarks"].is_null());
+    expectNonEmptyPng(run / "paths.png");
+    expectNonEmptyPng(run / "errors.png");
+    EXPECT_FALSE(fs::exists(run / "landmark_errors.png"));
+}
+
+TEST(VslamEval, MissingFileFailsWithOneLineNamingIt) {
+    const auto dir = tempDir() / "missing";
+    fs::create_directories(dir);
+    makePath().save((dir / "gt.tum").string());
+    const auto missing = (dir / "nope.tum").string();
+    const auto r = runEval("--estimate " + missing + " --ground-truth " +
+                           (dir / "gt.tum").string() + " --out " + (dir / "out").string());
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_EQ(r.stderr_text.rfind("vslam-eval: error: " + missing + ": ", 0), 0u) << r.stderr_text;
+    EXPECT_EQ(std::count(r.stderr_text.begin(), r.stderr_text.end(), '\n'), 1);
+    EXPECT_FALSE(fs::exists(dir / "out" / "metrics.json"));
+}
+
+TEST(VslamEval, MalformedGroundTruthNamesFileAndLine) {
+    const auto dir = tempDir() / "malformed";
+    fs::create_directories(dir);
+    makePath().save((dir / "est.tum").string());
+    std::ofstream(dir / "gt.tum") << "500 0 0 0 0 0 0 1\n500.1 0 0 zero 0 0 0 1\n";
+    const auto r = runEval("--estimate " + (dir / "est.tum").string() + " --ground-truth " +
+                           (dir / "gt.tum").string() + " --out " + (dir / "out").string());
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.stderr_text.find((dir / "gt.tum").string() + ":2:"), std::string::npos)
+        << r.stderr_text;
+}
+
+TEST(VslamEval, RunFolderWithoutGroundTruthIsAnError) {
+    const auto run = tempDir() / "nogt";
+    fs::create_directories(run);
+    makePath().save((run / "estimated_path.tum").string());
+    const auto r = runEval(run.string());
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.stderr_text.find("ground truth"), std::string::npos) << r.stderr_text;
+    EXPECT_FALSE(fs::exists(run / "metrics.json"));
+}
