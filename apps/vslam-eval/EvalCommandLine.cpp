@@ -29,7 +29,7 @@ class EvalCmdLine : public TCLAP::CmdLine {
 
 }  // namespace
 
-std::optional<TEvalParams> parseEvalCommandLine(int argc, char** argv) {
+std::optional<core::TEvalParams> parseEvalCommandLine(int argc, char** argv) {
     ErrorCapturingOutput output;
     EvalCmdLine cmd(
         "vslam-eval: trajectory and map metrics of a SLAM run against ground truth, with PNG "
@@ -73,7 +73,7 @@ std::optional<TEvalParams> parseEvalCommandLine(int argc, char** argv) {
     }
     if (runDir.getValue().rfind('-', 0) == 0)
         throw std::runtime_error(runDir.getValue() + ": unknown option (see --help)");
-    TEvalParams p;
+    core::TEvalParams p;
     p.run_dir = runDir.getValue();
     p.estimate_file = estimate.getValue();
     p.odometry_file = odometry.getValue();

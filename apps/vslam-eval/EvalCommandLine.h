@@ -2,12 +2,12 @@
 
 #include <optional>
 
-#include "EvalInputs.h"
+#include <mrpt_vslam/core/EvalInputs.h>
 
 namespace mrpt_vslam::eval {
 
 /** Parses the command line of vslam-eval. Returns nullopt after printing --help or --version;
  *  throws std::runtime_error "ARG: problem" on a bad command line. */
-std::optional<TEvalParams> parseEvalCommandLine(int argc, char** argv);
+std::optional<core::TEvalParams> parseEvalCommandLine(int argc, char** argv);
 
 }  // namespace mrpt_vslam::eval

@@ -17,11 +17,11 @@ constexpr int kRobotColors[] = {PngFigure::kBlue, PngFigure::kGreen, PngFigure::
 
 int estimateColor(size_t robot) { return kRobotColors[robot % std::size(kRobotColors)]; }
 /// Odometry is orange for one robot, else the robot's colour (drawn dashed).
-int odometryColor(const TEvalResult& r, size_t robot) {
+int odometryColor(const core::TEvalResult& r, size_t robot) {
     return r.robots.size() == 1 ? PngFigure::kOrange : estimateColor(robot);
 }
 
-std::string labelOf(const TRobotResult& r, const std::string& what) {
+std::string labelOf(const core::TRobotResult& r, const std::string& what) {
     return r.files.robot.empty() ? what : r.files.robot + " " + what;
 }
 
@@ -39,7 +39,7 @@ struct TBounds {
 };
 
 /// XY of a path, optionally moved by the trajectory's SE(2) alignment.
-void pathXY(const TTrajectoryResult& t, bool aligned, std::vector<double>& x,
+void pathXY(const core::TTrajectoryResult& t, bool aligned, std::vector<double>& x,
             std::vector<double>& y) {
     for (const auto& p : t.path.poses) {
         const auto q = aligned ? core::applySE2(t.aligned.alignment, p) : p;
@@ -59,7 +59,7 @@ void landmarkXY(const std::vector<core::TLandmark>& lms, const mrpt::math::TPose
 
 }  // namespace
 
-void plotPaths(const TEvalResult& result, bool aligned, const std::string& file) {
+void plotPaths(const core::TEvalResult& result, bool aligned, const std::string& file) {
     // Aligning the map only makes sense with one robot (one transform).
     const bool alignMap = aligned && result.robots.size() == 1;
     const mrpt::math::TPose2D mapMove =
@@ -120,13 +120,13 @@ void plotPaths(const TEvalResult& result, bool aligned, const std::string& file)
     fig.commit();
 }
 
-void plotErrors(const TEvalResult& result, bool aligned, const std::string& file) {
+void plotErrors(const core::TEvalResult& result, bool aligned, const std::string& file) {
     double t0 = std::numeric_limits<double>::infinity(), t1 = -t0, eMax = 0, hMax = 0;
     const auto metricsOf =
-        [aligned](const TTrajectoryResult& t) -> const core::TTrajectoryMetrics& {
+        [aligned](const core::TTrajectoryResult& t) -> const core::TTrajectoryMetrics& {
         return aligned ? t.aligned : t.unaligned;
     };
-    std::vector<std::pair<const TTrajectoryResult*, size_t>> series;  // (trajectory, robot)
+    std::vector<std::pair<const core::TTrajectoryResult*, size_t>> series;  // (trajectory, robot)
     for (size_t k = 0; k < result.robots.size(); k++) {
         const auto& r = result.robots[k];
         series.emplace_back(&r.estimate, k);

@@ -34,7 +34,7 @@ RunReport::RunReport(const std::string& app_name) : m_impl(std::make_unique<Impl
     d["version"] = projectVersion();
     d["mrpt_version"] = mrptVersion();
     for (const char* key : {"opencv_version", "command_line", "config_file", "config", "rawlog",
-                            "seed", "start_time"})
+                            "ground_truth", "seed", "start_time"})
         d[key] = nullptr;
     d["counts"] = Json::object();
     d["timing"] = {{"total_s", nullptr},
@@ -59,6 +59,7 @@ void RunReport::setConfig(const std::string& file, const std::string& effective_
 }
 
 void RunReport::setRawlog(const std::string& file) { m_impl->doc["rawlog"] = file; }
+void RunReport::setGroundTruth(const std::string& name) { m_impl->doc["ground_truth"] = name; }
 void RunReport::setSeed(uint32_t seed) { m_impl->doc["seed"] = seed; }
 void RunReport::setOpenCvVersion(const std::string& v) { m_impl->doc["opencv_version"] = v; }
 

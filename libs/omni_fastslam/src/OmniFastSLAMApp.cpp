@@ -20,6 +20,7 @@
 #include <mrpt_vslam/core/PajdlaBaksteinCamera.h>
 #include <mrpt_vslam/core/ProgressReporter.h>
 #include <mrpt_vslam/core/RawlogReader.h>
+#include <mrpt_vslam/core/RunEvaluation.h>
 #include <mrpt_vslam/core/RunOutputs.h>
 #include <mrpt_vslam/core/RunReport.h>
 #include <mrpt_vslam/core/RunTimer.h>
@@ -269,8 +270,15 @@ void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTi
     report.setCount("landmarks", best.map.landmarks().size());
     report.setCount("candidates", best.map.candidates().size());
     report.setTiming(timer);
-    if (groundTruth) report.setResultText("ground_truth", groundTruthPrefix);
+    if (groundTruth) report.setGroundTruth(groundTruthPrefix);
     report.write(out.file("run.json"));
+
+    if (groundTruth) {
+        core::TEvalParams eval;
+        eval.run_dir = app.outDir;
+        eval.ground_truth = groundTruthPrefix;
+        core::evaluateRunFolder(eval);
+    }
 
 }
 

@@ -43,7 +43,7 @@ TEST(OmniFastSLAMApp, WritesTheRunFolder)
     EXPECT_EQ(app.estimatedPath.size(), 320u);
     EXPECT_EQ(app.odometryPath.size(), 320u);
     for (const char* f : {"estimated_path.tum", "odometry_path.tum", "map.txt", "final_map.gz",
-                          "final.3Dscene", "run.json", "config.ini"})
+                          "final.3Dscene", "run.json", "config.ini", "metrics.json"})
         EXPECT_TRUE(mrpt::system::fileExists(out + "/" + f)) << f;
     const auto map = core::LandmarkFile::load(out + "/map.txt");
     EXPECT_GE(map.size(), 10u);

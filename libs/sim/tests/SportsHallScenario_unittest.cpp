@@ -120,10 +120,13 @@ TEST(SportsHallScenario, RawlogHoldsActionsAndFramesConsistentWithTheTextFiles)
         EXPECT_FALSE(img->image.isColor());
         EXPECT_EQ(img->cameraPose, mrpt::poses::CPose3D(0, 0, 1.8, 0, 0, 0));
         EXPECT_EQ(brg->sensorLocationOnRobot, mrpt::poses::CPose3D(0, 0, 1.8, 0, 0, 0));
-        EXPECT_FALSE(brg->validCovariances);
-        EXPECT_GT(brg->sensor_std_yaw, 0.f);
+        EXPECT_TRUE(brg->validCovariances);
         EXPECT_GE(brg->sensedData.size(), 3u);
         for (const auto& m : brg->sensedData) {
+            // per-measurement σ of 0.7 px through Eq. 1: a few mrad in φ and θ
+            EXPECT_GT(m.covariance(1, 1), 1e-6);
+            EXPECT_LT(m.covariance(1, 1), 1e-3);
+            EXPECT_NEAR(m.covariance(2, 2), 0.0045 * 0.0045, 0.3 * 0.0045 * 0.0045);
             EXPECT_TRUE(std::isnan(m.range));
             EXPECT_EQ(m.landmarkID, -1);
             // θ ≤ max_light_theta (70°) up to the pixel noise: elevation above 19°

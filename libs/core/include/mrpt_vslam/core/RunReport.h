@@ -13,7 +13,7 @@ namespace mrpt_vslam::core {
 /** The `run.json` of a run folder: what was run, with what, and how long it took.
  *
  *  Fields, in this order (doc/app-conventions.md): app, version, mrpt_version, opencv_version,
- *  command_line, config_file, config (effective text), rawlog, seed, start_time (ISO 8601 UTC),
+ *  command_line, config_file, config (effective text), rawlog, ground_truth, seed, start_time (ISO 8601 UTC),
  *  counts {name: number}, timing {total_s, steps, per_step_ms {mean, median, p95, max}},
  *  results {name: value}. Fields never set are null; non-finite numbers are written as null.
  *
@@ -32,6 +32,8 @@ public:
     void setCommandLine(const std::vector<std::string>& args);
     void setConfig(const std::string& file, const std::string& effective_text);
     void setRawlog(const std::string& file);
+    /** Ground truth the run was compared with (`NAME` prefix or file); vslam-eval reads it. */
+    void setGroundTruth(const std::string& name);
     void setSeed(uint32_t seed);
     void setOpenCvVersion(const std::string& version);
     void setStartTime(std::chrono::system_clock::time_point t);

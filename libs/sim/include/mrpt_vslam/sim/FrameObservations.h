@@ -27,8 +27,8 @@ mrpt::obs::CObservationImage::Ptr makeImageObservation(const std::string& image_
 
 /** `OMNICAM_BEARINGS` bearing-only observation: range NaN, yaw = φ, pitch = −(π/2 − θ),
  *  landmarkID −1; per-measurement covariances diag(0, σ_φ(θ)², σ_θ(θ)²) from `std_at_theta`
- *  (validCovariances = true) and `angular_std` = (σ_yaw, σ_pitch) [rad] at a reference θ in
- *  sensor_std_yaw/pitch for tools that ignore them; fieldOfView_yaw = 2π,
+ *  (validCovariances = true; MRPT then serializes those instead of sensor_std_yaw/pitch, which
+ *  get `angular_std` = (σ_yaw, σ_pitch) [rad] at a reference θ in memory only); fieldOfView_yaw = 2π,
  *  fieldOfView_pitch = 2·max_theta (the full cone of detection). */
 mrpt::obs::CObservationBearingRange::Ptr makeBearingObservation(
     const TFrameDetections& frame, const mrpt::poses::CPose3D& camera_on_robot,

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-namespace mrpt_vslam::eval {
+namespace mrpt_vslam::core {
 
 /** Command-line parameters of vslam-eval (see README.md). */
 struct TEvalParams {
@@ -38,4 +38,4 @@ struct TEvalInputs {
  *  from `--ground-truth` or run.json. Throws std::runtime_error "FILE: problem". */
 TEvalInputs resolveInputs(const TEvalParams& params);
 
-}  // namespace mrpt_vslam::eval
+}  // namespace mrpt_vslam::core

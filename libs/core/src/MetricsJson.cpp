@@ -1,4 +1,4 @@
-#include "MetricsJson.h"
+#include <mrpt_vslam/core/MetricsJson.h>
 
 #include <mrpt/core/bits_math.h>
 #include <mrpt_vslam/core/AtomicFile.h>
@@ -8,7 +8,7 @@
 #include <iomanip>
 #include <nlohmann/json.hpp>
 
-namespace mrpt_vslam::eval {
+namespace mrpt_vslam::core {
 namespace {
 
 using nlohmann::json;
@@ -16,7 +16,7 @@ using nlohmann::json;
 /// A number, or null when it is not finite (no frame or landmark to average over).
 json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-json errorSummary(const core::TTrajectoryMetrics& m) {
+json errorSummary(const TTrajectoryMetrics& m) {
     return {{"matched_poses", m.matchedPoses()},
             {"ate_rmse_m", num(m.ate_rmse)},
             {"ate_mean_m", num(m.ate_mean)},
@@ -47,7 +47,7 @@ json robotBlock(const TRobotResult& r) {
     return j;
 }
 
-json landmarkBlock(const core::TLandmarkMetrics& m, const std::string& truth_file) {
+json landmarkBlock(const TLandmarkMetrics& m, const std::string& truth_file) {
     json table = json::array();
     for (const auto& t : m.matches) {
         json row = {{"true_id", t.true_id},
@@ -90,7 +90,7 @@ json landmarkBlock(const core::TLandmarkMetrics& m, const std::string& truth_fil
 void writeMetricsJson(const TEvalResult& result, const TEvalInputs& inputs,
                       const TEvalParams& params, const std::string& file) {
     json j = {{"generator", "vslam-eval"},
-              {"versions", {{"mrpt_vslam", core::projectVersion()}, {"mrpt", core::mrptVersion()}}},
+              {"versions", {{"mrpt_vslam", projectVersion()}, {"mrpt", mrptVersion()}}},
               {"options",
                {{"time_tolerance_s", params.time_tolerance},
                 {"heading_threshold_deg", params.heading_threshold_deg},
@@ -114,9 +114,9 @@ void writeMetricsJson(const TEvalResult& result, const TEvalInputs& inputs,
     } else {
         j["landmarks"] = nullptr;
     }
-    core::AtomicFile out(file);
+    AtomicFile out(file);
     out.stream() << std::setw(2) << j << "\n";
     out.commit();
 }
 
-}  // namespace mrpt_vslam::eval
+}  // namespace mrpt_vslam::core

@@ -2,12 +2,12 @@
 
 #include <string>
 
-#include "EvalApp.h"
+#include <mrpt_vslam/core/RunEvaluation.h>
 
-namespace mrpt_vslam::eval {
+namespace mrpt_vslam::core {
 
 /** Writes metrics.json (fields in doc/data-formats.md) atomically. */
 void writeMetricsJson(const TEvalResult& result, const TEvalInputs& inputs,
                       const TEvalParams& params, const std::string& file);
 
-}  // namespace mrpt_vslam::eval
+}  // namespace mrpt_vslam::core

@@ -1,4 +1,4 @@
-#include "EvalInputs.h"
+#include <mrpt_vslam/core/EvalInputs.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-namespace mrpt_vslam::eval {
+namespace mrpt_vslam::core {
 namespace fs = std::filesystem;
 namespace {
 
@@ -114,4 +114,4 @@ TEvalInputs resolveInputs(const TEvalParams& p) {
     return in;
 }
 
-}  // namespace mrpt_vslam::eval
+}  // namespace mrpt_vslam::core

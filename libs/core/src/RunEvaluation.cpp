@@ -1,0 +1,71 @@
+#include <mrpt/core/bits_math.h>
+#include <mrpt_vslam/core/MetricsJson.h>
+#include <mrpt_vslam/core/RunEvaluation.h>
+
+#include <filesystem>
+#include <stdexcept>
+
+namespace mrpt_vslam::core {
+
+namespace {
+TTrajectoryResult evaluatePath(const std::string& file, const TumTrajectory& ground_truth,
+                               const TEvalParams& params)
+{
+    TTrajectoryResult r;
+    r.file = file;
+    r.path = TumTrajectory::load(file);
+    if (r.path.empty()) throw std::runtime_error(file + ": no poses");
+    TTrajectoryMetricsOptions opts;
+    opts.time_tolerance = params.time_tolerance;
+    opts.heading_threshold = mrpt::DEG2RAD(params.heading_threshold_deg);
+    try {
+        r.unaligned = evaluateTrajectory(r.path, ground_truth, opts);
+        opts.align_se2 = true;
+        r.aligned = evaluateTrajectory(r.path, ground_truth, opts);
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(file + ": " + e.what());
+    }
+    return r;
+}
+}  // namespace
+
+TEvalResult evaluateRun(const TEvalInputs& inputs, const TEvalParams& params)
+{
+    TEvalResult result;
+    for (const auto& files : inputs.robots) {
+        TRobotResult robot;
+        robot.files = files;
+        robot.ground_truth = TumTrajectory::load(files.ground_truth);
+        if (robot.ground_truth.empty()) throw std::runtime_error(files.ground_truth + ": no poses");
+        robot.estimate = evaluatePath(files.estimate, robot.ground_truth, params);
+        if (!files.odometry.empty())
+            robot.odometry = evaluatePath(files.odometry, robot.ground_truth, params);
+        result.robots.push_back(std::move(robot));
+    }
+    if (!inputs.map_file.empty()) result.map = LandmarkFile::load(inputs.map_file);
+    if (!inputs.landmarks_gt.empty())
+        result.true_landmarks = LandmarkFile::load(inputs.landmarks_gt);
+    if (result.map && result.true_landmarks && !result.map->is_view_map)
+        result.landmarks = evaluateLandmarks(
+            result.map->landmarks, result.true_landmarks->landmarks, params.landmark_cutoff);
+    return result;
+}
+
+TEvalResult evaluateRunFolder(const TEvalParams& params)
+{
+    if (!(params.landmark_cutoff > 0)) throw std::runtime_error("--landmark-cutoff: must be > 0");
+    if (!(params.time_tolerance >= 0)) throw std::runtime_error("--time-tolerance: must be >= 0");
+    if (!(params.heading_threshold_deg > 0))
+        throw std::runtime_error("--heading-threshold-deg: must be > 0");
+    const auto inputs = resolveInputs(params);
+    auto result = evaluateRun(inputs, params);
+    std::error_code ec;
+    std::filesystem::create_directories(inputs.out_dir, ec);
+    if (!std::filesystem::is_directory(inputs.out_dir))
+        throw std::runtime_error(inputs.out_dir + ": cannot create output folder");
+    writeMetricsJson(result, inputs, params,
+                     (std::filesystem::path(inputs.out_dir) / "metrics.json").string());
+    return result;
+}
+
+}  // namespace mrpt_vslam::core
