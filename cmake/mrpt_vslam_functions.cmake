@@ -58,6 +58,7 @@ function(mrpt_vslam_add_test name)
   cmake_parse_arguments(A "" "" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${A_SOURCES})
   target_link_libraries(${name} PRIVATE ${A_DEPS} GTest::gtest GTest::gtest_main)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
   target_compile_definitions(${name} PRIVATE
     MRPT_VSLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     MRPT_VSLAM_BIN_DIR="${CMAKE_RUNTIME_OUTPUT_DIRECTORY}")

@@ -1,9 +1,9 @@
 #include <gtest/gtest.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/core/TumTrajectory.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -21,19 +21,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// A per-process scratch folder, removed at exit.
-struct TTempDir {
-    fs::path path = fs::temp_directory_path() / ("vslam_eval_test_" + std::to_string(::getpid()));
-    TTempDir() { fs::create_directories(path); }
-    ~TTempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
-
-const fs::path& tempDir() {
-    static const TTempDir dir;
-    return dir.path;
+const mrpt_vslam::test::ScratchFolder& scratch()
+{
+    static const mrpt_vslam::test::ScratchFolder folder("vslam_eval_test");
+    return folder;
 }
 
 /// A curvy planar path at 10 Hz, optionally shifted by (dx, dy).
@@ -67,7 +58,7 @@ struct TRunResult {
 /// allocations kept until exit); leaks in our code are still reported.
 void suppressThirdPartyLeaks() {
     if (std::getenv("LSAN_OPTIONS")) return;  // the caller's choice wins
-    const auto file = (tempDir() / "lsan.supp").string();
+    const auto file = (scratch().path() / "lsan.supp").string();
     std::ofstream(file) << "leak:libfontconfig.so\nleak:libltdl.so\nleak:libcairo.so\n"
                            "leak:libpango\n";
     ::setenv("LSAN_OPTIONS", ("suppressions=" + file).c_str(), 1);
@@ -75,7 +66,7 @@ void suppressThirdPartyLeaks() {
 
 TRunResult runEval(const std::string& args) {
     suppressThirdPartyLeaks();
-    const auto errFile = (tempDir() / "stderr.txt").string();
+    const auto errFile = (scratch().path() / "stderr.txt").string();
     const std::string cmd = std::string("\"") + MRPT_VSLAM_BIN_DIR "/vslam-eval\" " + args +
                             " > /dev/null 2> \"" + errFile + "\"";
     const int status = std::system(cmd.c_str());
@@ -106,7 +97,7 @@ void expectNonEmptyPng(const fs::path& file) {
 }  // namespace
 
 TEST(VslamEval, LooseFilesGiveTheKnownOffset) {
-    const auto dir = tempDir() / "loose";
+    const auto dir = scratch().path() / "loose";
     fs::create_directories(dir);
     makePath().save((dir / "gt.tum").string());
     makePath(0.3, -0.4).save((dir / "est.tum").string());
@@ -153,7 +144,7 @@ TEST(VslamEval, LooseFilesGiveTheKnownOffset) {
 }
 
 TEST(VslamEval, RunFolderWithRobotsAndRunJson) {
-    const auto dir = tempDir() / "multi";
+    const auto dir = scratch().path() / "multi";
     const auto run = dir / "run";
     fs::create_directories(run);
     makePath().save((dir / "scene.groundtruth_R1.tum").string());
@@ -179,7 +170,7 @@ TEST(VslamEval, RunFolderWithRobotsAndRunJson) {
 }
 
 TEST(VslamEval, MissingFileFailsWithOneLineNamingIt) {
-    const auto dir = tempDir() / "missing";
+    const auto dir = scratch().path() / "missing";
     fs::create_directories(dir);
     makePath().save((dir / "gt.tum").string());
     const auto missing = (dir / "nope.tum").string();
@@ -192,7 +183,7 @@ TEST(VslamEval, MissingFileFailsWithOneLineNamingIt) {
 }
 
 TEST(VslamEval, MalformedGroundTruthNamesFileAndLine) {
-    const auto dir = tempDir() / "malformed";
+    const auto dir = scratch().path() / "malformed";
     fs::create_directories(dir);
     makePath().save((dir / "est.tum").string());
     std::ofstream(dir / "gt.tum") << "500 0 0 0 0 0 0 1\n500.1 0 0 zero 0 0 0 1\n";
@@ -204,7 +195,7 @@ TEST(VslamEval, MalformedGroundTruthNamesFileAndLine) {
 }
 
 TEST(VslamEval, RunFolderWithoutGroundTruthIsAnError) {
-    const auto run = tempDir() / "nogt";
+    const auto run = scratch().path() / "nogt";
     fs::create_directories(run);
     makePath().save((run / "estimated_path.tum").string());
     const auto r = runEval(run.string());

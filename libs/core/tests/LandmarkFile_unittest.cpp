@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -11,26 +11,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// A per-process scratch folder (parallel runs do not share files), removed at exit.
-struct TTempDir {
-    fs::path path =
-        fs::temp_directory_path() / ("LandmarkFile_unittest_" + std::to_string(::getpid()));
-    TTempDir() { fs::create_directories(path); }
-    ~TTempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
-
-const fs::path& tempDir() {
-    static const TTempDir dir;
-    return dir.path;
+const mrpt_vslam::test::ScratchFolder& scratch()
+{
+    static const mrpt_vslam::test::ScratchFolder folder("LandmarkFile_unittest");
+    return folder;
 }
 
-std::string writeTemp(const std::string& name, const std::string& text) {
-    const auto path = (tempDir() / name).string();
-    std::ofstream(path) << text;
-    return path;
+std::string writeTemp(const std::string& name, const std::string& text)
+{
+    return scratch().write(name, text);
 }
 
 std::string loadError(const std::string& file) {
@@ -96,7 +85,7 @@ TEST(LandmarkFile, SaveLoadRoundTrip) {
         lm.has_cov = true;
         f.landmarks.push_back(lm);
     }
-    const auto path = (tempDir() / "rt.txt").string();
+    const auto path = (scratch().path() / "rt.txt").string();
     f.save(path, "round trip");
     const auto back = LandmarkFile::load(path);
     ASSERT_EQ(back.size(), 3u);
@@ -138,7 +127,7 @@ TEST(LandmarkFile, NegativeVarianceIsAnError) {
 }
 
 TEST(LandmarkFile, MissingFileNamesTheFile) {
-    const auto path = (tempDir() / "missing.txt").string();
+    const auto path = (scratch().path() / "missing.txt").string();
     fs::remove(path);
     EXPECT_EQ(loadError(path).rfind(path + ":", 0), 0u);
 }

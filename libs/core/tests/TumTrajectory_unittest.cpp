@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt_vslam/core/TumTrajectory.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -13,26 +13,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// A per-process scratch folder (parallel runs do not share files), removed at exit.
-struct TTempDir {
-    fs::path path =
-        fs::temp_directory_path() / ("TumTrajectory_unittest_" + std::to_string(::getpid()));
-    TTempDir() { fs::create_directories(path); }
-    ~TTempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
-
-const fs::path& tempDir() {
-    static const TTempDir dir;
-    return dir.path;
+const mrpt_vslam::test::ScratchFolder& scratch()
+{
+    static const mrpt_vslam::test::ScratchFolder folder("TumTrajectory_unittest");
+    return folder;
 }
 
-std::string writeTemp(const std::string& name, const std::string& text) {
-    const auto path = (tempDir() / name).string();
-    std::ofstream(path) << text;
-    return path;
+std::string writeTemp(const std::string& name, const std::string& text)
+{
+    return scratch().write(name, text);
 }
 
 /// Message of the exception thrown by TumTrajectory::load(file), or "" if none.
@@ -52,7 +41,7 @@ TEST(TumTrajectory, SaveLoadRoundTrip) {
     traj.push_back(1000.25, {1.5, -2.0, 0.0, mrpt::DEG2RAD(30.0), 0, 0});
     traj.push_back(1000.5, {1.75, -1.5, 0.1, mrpt::DEG2RAD(-170.0), 0, 0});
     traj.push_back(1001.0, {2.0, -1.0, 0.2, mrpt::DEG2RAD(90.0), mrpt::DEG2RAD(5.0), 0});
-    const auto path = (tempDir() / "rt.tum").string();
+    const auto path = (scratch().path() / "rt.tum").string();
     traj.save(path, "round trip");
     EXPECT_FALSE(fs::exists(path + ".tmp"));
     const auto back = TumTrajectory::load(path);
@@ -111,7 +100,7 @@ TEST(TumTrajectory, NonFiniteValueIsAnError) {
 }
 
 TEST(TumTrajectory, MissingFileNamesTheFile) {
-    const auto path = (tempDir() / "missing.tum").string();
+    const auto path = (scratch().path() / "missing.tum").string();
     fs::remove(path);
     const auto msg = loadError(path);
     EXPECT_EQ(msg.rfind(path + ":", 0), 0u) << msg;

@@ -8,9 +8,9 @@
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/omni_fastslam/OmniFastSLAMApp.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
 
 #include <fstream>
-#include <unistd.h>
 
 using namespace mrpt_vslam;
 
@@ -19,12 +19,6 @@ const std::string kSource = MRPT_VSLAM_SOURCE_DIR;
 const std::string kConfig = kSource + "/share/mrpt-vslam/config/omni-fastslam/sports-hall.ini";
 const std::string kRawlog = kSource + "/datasets/sports-hall/hall.rawlog";
 
-std::string tempDir(const std::string& name)
-{
-    const auto dir = mrpt::system::getTempFileName() + "_" + name + std::to_string(getpid());
-    mrpt::system::deleteFilesInDirectory(dir, true);
-    return dir;
-}
 
 core::AppArguments args(const std::vector<std::string>& extra)
 {
@@ -36,7 +30,8 @@ core::AppArguments args(const std::vector<std::string>& extra)
 
 TEST(OmniFastSLAMApp, WritesTheRunFolder)
 {
-    const auto out = tempDir("omni_run");
+    const test::ScratchFolder scratch("OmniFastSLAMApp_run");
+    const auto out = scratch.file("out");
     omni_fastslam::OmniFastSLAMApp app(args({kConfig, kRawlog, "--out", out, "--quiet"}));
     app.initialize();
     app.run();
@@ -55,7 +50,6 @@ TEST(OmniFastSLAMApp, WritesTheRunFolder)
     mrpt::io::CFileGZInputStream f(out + "/final.3Dscene");
     mrpt::serialization::archiveFrom(f) >> scene;
     EXPECT_GE(scene.getViewport()->size(), 4u);
-    mrpt::system::deleteFilesInDirectory(out, true);
 }
 
 TEST(OmniFastSLAMApp, RejectsAnUnknownKey)
@@ -79,12 +73,12 @@ TEST(OmniFastSLAMApp, FailsOnAMissingRawlog)
 TEST(OmniFastSLAMApp, FailsOnARawlogWithoutLightMeasurements)
 {
     // A rawlog whose frames hold neither bearings nor images of the configured labels.
-    const auto out = tempDir("omni_nolights");
+    const test::ScratchFolder scratch("OmniFastSLAMApp_nolights");
+    const auto out = scratch.file("out");
     omni_fastslam::OmniFastSLAMApp app(args({kConfig, kRawlog, "--out", out, "--quiet", "--set",
                                              "OmniFastSLAM.bearings_label=NONE", "--set",
                                              "OmniFastSLAM.image_label=NONE"}));
     app.initialize();
     EXPECT_THROW(app.run(), std::runtime_error);
     EXPECT_FALSE(mrpt::system::fileExists(out + "/run.json"));
-    mrpt::system::deleteFilesInDirectory(out, true);
 }

@@ -4,9 +4,9 @@
 #include <mrpt/system/filesystem.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/core/TumTrajectory.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
 
 #include <cstdlib>
-#include <unistd.h>
 
 using namespace mrpt_vslam;
 
@@ -14,7 +14,8 @@ TEST(StockRbpfSlam, BuildsACeilingLightsMapWithThePluginPreloaded)
 {
     if (!mrpt::system::fileExists("/usr/bin/rbpf-slam")) GTEST_SKIP() << "rbpf-slam not installed";
     const std::string src = MRPT_VSLAM_SOURCE_DIR;
-    const std::string out = mrpt::system::getTempFileName() + "_rbpf" + std::to_string(getpid());
+    const test::ScratchFolder scratch("StockRbpfSlam");
+    const std::string out = scratch.file("out");
     // rbpf-slam has no --set: a copy of the config names the output folder
     const std::string ini = out + ".ini";
     ASSERT_EQ(std::system(("sed 's#^logOutput_dir = .*#logOutput_dir = " + out + "#' " + src +
@@ -46,5 +47,4 @@ TEST(StockRbpfSlam, BuildsACeilingLightsMapWithThePluginPreloaded)
     EXPECT_GE(map.size(), 10u);
     EXPECT_LE(map.size(), 18u);
     EXPECT_GE(near, 10u) << "lights within 1 m of a true light";
-    mrpt::system::deleteFilesInDirectory(out, true);
 }
