@@ -2,6 +2,8 @@
 
 #include <mrpt_vslam/core/RunEvaluation.h>
 
+#include <ostream>
+
 namespace mrpt_vslam::eval {
 
 /** vslam-eval: evaluates a run folder or loose files against ground truth and writes
@@ -13,6 +15,8 @@ class EvalApp {
     core::TEvalResult result;
     /// Loads, evaluates and writes everything; throws std::runtime_error "FILE: problem".
     void run();
+    /// One line per trajectory and one for the landmarks, for people.
+    void printSummary(std::ostream& os) const;
 };
 
 }  // namespace mrpt_vslam::eval
