@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Installs the build tree into a scratch prefix and builds and runs an outside program that
+# find_package(mrpt_vslam)s it. Usage: check-install.sh BUILD_DIR
+set -euo pipefail
+build="$1"
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+scratch="$(mktemp -d)"
+trap 'rm -rf "$scratch"' EXIT
+cmake --install "$build" --prefix "$scratch/prefix" >/dev/null
+cmake -S "$here/consumer" -B "$scratch/build" -DCMAKE_PREFIX_PATH="$scratch/prefix" >/dev/null
+cmake --build "$scratch/build" >/dev/null
+LD_LIBRARY_PATH="$scratch/prefix/lib" "$scratch/build/consumer"
+test -f "$scratch/prefix/share/mrpt-vslam/config/omni-fastslam/sports-hall.ini"
+test -x "$scratch/prefix/bin/omni-fastslam"
