@@ -1,6 +1,6 @@
 // omni-fastslam: FastSLAM 2.0 with an upward fisheye camera and ceiling lights (paper 000).
-#include <mrpt/core/exceptions.h>
 #include <mrpt_vslam/core/AppArguments.h>
+#include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/omni_fastslam/OmniFastSLAMApp.h>
 
@@ -28,7 +28,7 @@ int main(int argc, char** argv)
         std::cerr << "omni-fastslam: error: " << e.what() << "\n";
         return 2;
     } catch (const std::exception& e) {
-        std::cerr << "omni-fastslam: error: " << mrpt::exception_to_str(e) << "\n";
+        std::cerr << "omni-fastslam: error: " << core::oneLineMessage(e) << "\n";
         return 1;
     }
 }

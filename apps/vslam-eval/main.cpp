@@ -1,3 +1,5 @@
+#include <mrpt_vslam/core/ErrorMessage.h>
+
 #include <iostream>
 
 #include "EvalApp.h"
@@ -12,7 +14,7 @@ int main(int argc, char** argv) {
         app.run();
         return 0;
     } catch (const std::exception& e) {
-        std::cerr << "vslam-eval: error: " << e.what() << "\n";
+        std::cerr << "vslam-eval: error: " << mrpt_vslam::core::oneLineMessage(e) << "\n";
     }
     return 1;
 }

@@ -1,6 +1,7 @@
 // vslam-sim: simulates a scenario and writes its dataset (see doc/simulator.md).
 #include <mrpt/system/CTicTac.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
+#include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/sim/ScenarioFactory.h>
 #include <unistd.h>
@@ -25,18 +26,6 @@ void printProgress(const std::string& scenario, int done, int total)
     } else if (done == total || done % std::max(1, total / 10) == 0) {
         std::fprintf(stderr, "vslam-sim: %s frame %d/%d\n", scenario.c_str(), done, total);
     }
-}
-
-/// The reason of an exception on one line: MRPT exceptions carry a banner, a "Message:" line,
-/// the location and a backtrace; keep only the message.
-std::string oneLine(const std::exception& e)
-{
-    std::string msg = e.what();
-    if (const size_t at = msg.find("Message:"); at != std::string::npos) {
-        msg.erase(0, at + 8);
-        msg.erase(0, msg.find_first_not_of(' '));
-    }
-    return msg.substr(0, msg.find('\n'));
 }
 
 }  // namespace
@@ -75,10 +64,10 @@ int main(int argc, char** argv)
                          s.path_length, static_cast<unsigned long long>(opts.seed), timer.Tac());
         return 0;
     } catch (const mrpt_vslam::core::UsageError& e) {
-        std::cerr << "vslam-sim: error: " << oneLine(e) << "\n";
+        std::cerr << "vslam-sim: error: " << mrpt_vslam::core::oneLineMessage(e) << "\n";
         return 2;
     } catch (const std::exception& e) {
-        std::cerr << "vslam-sim: error: " << oneLine(e) << "\n";
+        std::cerr << "vslam-sim: error: " << mrpt_vslam::core::oneLineMessage(e) << "\n";
         return 1;
     }
 }

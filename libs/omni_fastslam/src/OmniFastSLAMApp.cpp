@@ -15,6 +15,7 @@
 #include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/AtomicFile.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
+#include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/core/OutputDirectory.h>
 #include <mrpt_vslam/core/PajdlaBaksteinCamera.h>
@@ -164,8 +165,20 @@ void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
     if (input == TInput::Bearings || (input == TInput::Auto && hasBearings)) return;
     if (!image) return;
     if (!detector) detector = std::make_unique<CeilingLightDetector>(camera, detectorOptions);
+    mrpt::obs::CObservationBearingRange::Ptr bearings;
+    try {
+        bearings = detector->detect(*image, filterOptions.bearings_label);
+    } catch (const std::exception& e) {
+        const auto& img = image->image;
+        throw std::runtime_error(
+            rawlog + ": frame " + std::to_string(frames) + ": cannot use the " + imageLabel +
+            " image" +
+            (img.isExternallyStored() ? " '" + img.getExternalStorageFileAbsolutePath() + "'"
+                                      : std::string()) +
+            ": " + core::oneLineMessage(e));
+    }
     sf.eraseByLabel(filterOptions.bearings_label);
-    sf.insert(detector->detect(*image, filterOptions.bearings_label));
+    sf.insert(bearings);
     image->unload();
 }
 

@@ -1,16 +1,51 @@
-// MRPT reuse: stock rbpf-slam, with this library preloaded, builds a map of ceiling lights with
-// CCeilingLightsMap on the sports-hall bearings (its frame starts at the origin).
+// MRPT reuse: stock MRPT apps with this library loaded as a plugin.
 #include <gtest/gtest.h>
 #include <mrpt/system/filesystem.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/core/RunOutputs.h>
 #include <mrpt_vslam/core/TumTrajectory.h>
+#include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
 
+#include <array>
+#include <cstdio>
 #include <cstdlib>
+#include <memory>
 
 using namespace mrpt_vslam;
 
-TEST(StockRbpfSlam, BuildsACeilingLightsMapWithThePluginPreloaded)
+namespace {
+/// Runs a shell command and returns what it printed (stdout and stderr).
+std::string outputOf(const std::string& cmd)
+{
+    std::string out;
+    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((cmd + " 2>&1").c_str(), "r"), pclose);
+    std::array<char, 512> buf{};
+    while (pipe && fgets(buf.data(), buf.size(), pipe.get())) out += buf.data();
+    return out;
+}
+}  // namespace
+
+TEST(StockMrptApps, RawlogEditReadsTheMapOnlyWithThePlugin)
+{
+    if (!mrpt::system::fileExists("/usr/bin/rawlog-edit")) GTEST_SKIP() << "rawlog-edit not installed";
+    const test::ScratchFolder scratch("StockRawlogEdit");
+    omni_fastslam::CCeilingLightsMap map;
+    map.addLandmark({1, 2, 6.5}, Eigen::Matrix3d::Identity() * 0.01);
+    const auto file = scratch.file("final_map.gz");
+    core::saveObjectGz(map, file);
+
+    const auto without = outputOf("rawlog-edit --info -i " + file);
+    EXPECT_NE(without.find("not registered"), std::string::npos) << without;
+    const auto with = outputOf(std::string("rawlog-edit -p ") + OMNI_FASTSLAM_PLUGIN +
+                               " --info -i " + file);
+    EXPECT_EQ(with.find("not registered"), std::string::npos) << with;
+    EXPECT_NE(with.find("Overall number of objects         : 1"), std::string::npos) << with;
+}
+
+// rbpf-slam, with the library preloaded, maps the sports-hall lights with CCeilingLightsMap (its
+// frame starts at the origin).
+TEST(StockMrptApps, RbpfSlamBuildsACeilingLightsMapWithThePluginPreloaded)
 {
     if (!mrpt::system::fileExists("/usr/bin/rbpf-slam")) GTEST_SKIP() << "rbpf-slam not installed";
     const std::string src = MRPT_VSLAM_SOURCE_DIR;

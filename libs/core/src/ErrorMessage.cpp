@@ -1,0 +1,22 @@
+#include <mrpt_vslam/core/ErrorMessage.h>
+
+#include <algorithm>
+
+namespace mrpt_vslam::core {
+
+std::string oneLineMessage(const std::exception& e)
+{
+    std::string text = e.what();
+    const std::string tag = "Message:";
+    // MRPT nests messages outermost first; the last "Message:" is where the error arose.
+    if (const auto pos = text.rfind(tag); pos != std::string::npos) {
+        text = text.substr(pos + tag.size());
+        text = text.substr(0, text.find('\n'));
+    }
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    const auto first = text.find_first_not_of(" \t");
+    const auto last = text.find_last_not_of(" \t");
+    return first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
+}
+
+}  // namespace mrpt_vslam::core
