@@ -1,4 +1,5 @@
 #include <mrpt_vslam/core/ProgressReporter.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -43,11 +44,16 @@ ProgressReporter::ProgressReporter(std::string app_name, size_t total, bool quie
 ProgressReporter::ProgressReporter(std::string app_name, size_t total, bool quiet)
     : ProgressReporter(std::move(app_name), total, quiet, std::cerr)
 {
+    // Logs and pipes get a plain line every few seconds instead of '\r' redraws.
+    if (!isatty(STDERR_FILENO)) {
+        m_in_place = false;
+        m_min_interval_s = 5.0;
+    }
 }
 
 ProgressReporter::~ProgressReporter()
 {
-    if (m_drawn && !m_finished) m_out << '\n' << std::flush;
+    if (m_in_place && m_drawn && !m_finished) m_out << '\n' << std::flush;
 }
 
 std::string ProgressReporter::formatLine(size_t done, double elapsed_s, bool final_line) const
@@ -86,12 +92,17 @@ void ProgressReporter::finish(size_t done)
 {
     if (m_quiet || m_finished) return;
     draw(formatLine(done, std::chrono::duration<double>(m_now() - m_start).count(), true));
-    m_out << '\n' << std::flush;
+    if (m_in_place) m_out << '\n' << std::flush;
     m_finished = true;
 }
 
 void ProgressReporter::draw(const std::string& line)
 {
+    if (!m_in_place) {
+        m_out << line << '\n' << std::flush;
+        m_drawn = true;
+        return;
+    }
     // Blank out what is left of a longer previous line.
     const std::string pad(m_last_width > line.size() ? m_last_width - line.size() : 0, ' ');
     m_out << '\r' << line << pad << std::flush;

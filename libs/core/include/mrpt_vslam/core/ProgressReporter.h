@@ -28,7 +28,7 @@ public:
     ProgressReporter(std::string app_name, size_t total, bool quiet, std::ostream& out,
                      TimeSource now = Clock::now, std::string unit = "frame",
                      double min_interval_s = 0.25);
-    /** Writes to std::cerr. */
+    /** Writes to std::cerr: redrawn in place on a terminal, else a plain line every 5 s. */
     ProgressReporter(std::string app_name, size_t total, bool quiet);
     /** Ends a pending line with a newline, so later messages start on their own line. */
     ~ProgressReporter();
@@ -57,6 +57,7 @@ private:
     double m_min_interval_s;
     Clock::time_point m_start;
     Clock::time_point m_last_draw;
+    bool m_in_place = true;  ///< redraw one line with '\r' (a terminal) or print lines (a log)
     bool m_drawn = false;
     bool m_finished = false;
     size_t m_last_width = 0;
