@@ -1,6 +1,7 @@
 #include <mrpt/bayes/CParticleFilter.h>
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
+#include <mrpt/gui/CDisplayWindow3D.h>
 #include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/maps/TMetricMapInitializer.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -31,6 +32,7 @@
 #include <mrpt_vslam/omni_fastslam/OmniFastSLAMApp.h>
 #include <opencv2/core/version.hpp>
 
+#include <cstdlib>
 #include <optional>
 #include <stdexcept>
 
@@ -72,6 +74,10 @@ struct OmniFastSLAMApp::Impl {
     /// Measurements from the frame's image when images are the input (Sec. III-A).
     void prepareFrame(mrpt::obs::CSensoryFrame& sf);
     void writeOutputs(OmniFastSLAMApp& app, const core::RunTimer& timer);
+    /// The scene of the best particle: map with ellipsoids and its path (final.3Dscene, --gui).
+    void drawBestParticle(mrpt::opengl::COpenGLScene& scene) const;
+
+    mrpt::gui::CDisplayWindow3D::Ptr window;  ///< --gui
 };
 
 OmniFastSLAMApp::OmniFastSLAMApp(core::AppArguments args) : m_impl(std::make_unique<Impl>())
@@ -195,6 +201,21 @@ void OmniFastSLAMApp::initialize()
     mrpt::random::getRandomGenerator().randomize(d.seed);
     d.filter->options = d.filterOptions;
     d.pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
+    if (d.args.gui) {
+        if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
+            throw core::UsageError("--gui needs a display (DISPLAY is not set)");
+        d.window = mrpt::gui::CDisplayWindow3D::Create("omni-fastslam", 1000, 700);
+    }
+}
+
+void OmniFastSLAMApp::Impl::drawBestParticle(mrpt::opengl::COpenGLScene& scene) const
+{
+    const auto& best = filter->bestParticle();
+    core::TumTrajectory path;
+    for (const auto& [t, p] : COmniFastSLAM::pathOf(best)) path.push_back(t, to3D(p));
+    scene.insert(mrpt::opengl::CGridPlaneXY::Create(-10, 40, -15, 15, 0, 1));
+    scene.insert(best.map.getVisualization());
+    scene.insert(core::trajectoryAsLines(path, {0, 0.8f, 0}, "estimate"));
 }
 
 void OmniFastSLAMApp::run()
@@ -228,6 +249,13 @@ void OmniFastSLAMApp::run()
         odometryPath.push_back(t, to3D(odometry.asTPose()));
         d.measurements += d.filter->lastStepStats.measurements;
         progress.update(++d.frames);
+        if (d.window) {
+            auto& scene = d.window->get3DSceneAndLock();
+            scene->clear();
+            d.drawBestParticle(*scene);
+            d.window->unlockAccess3DScene();
+            d.window->forceRepaint();
+        }
     }
     progress.finish(d.frames);
     if (d.frames == 0)
@@ -255,9 +283,7 @@ void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTi
     core::saveObjectGz(best.map, out.file("final_map.gz"));
 
     mrpt::opengl::COpenGLScene scene;
-    scene.insert(mrpt::opengl::CGridPlaneXY::Create(-10, 40, -15, 15, 0, 1));
-    scene.insert(best.map.getVisualization());
-    scene.insert(core::trajectoryAsLines(app.estimatedPath, {0, 0.8f, 0}, "estimate"));
+    drawBestParticle(scene);
     scene.insert(core::trajectoryAsLines(app.odometryPath, {0.9f, 0.1f, 0.1f}, "odometry"));
     if (groundTruth) scene.insert(core::trajectoryAsLines(*groundTruth, {0, 0, 0}, "ground truth"));
     const std::string landmarksFile = groundTruthPrefix + ".landmarks.txt";
