@@ -14,6 +14,7 @@
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt/system/filesystem.h>
 #include <mrpt/system/string_utils.h>
+#include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/AtomicFile.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
@@ -66,6 +67,8 @@ struct OmniFastSLAMApp::Impl {
     std::unique_ptr<CeilingLightDetector> detector;
     std::unique_ptr<COmniFastSLAM> filter;
     std::optional<core::TumTrajectory> groundTruth;
+    /// Motion model of the actions built for observation-only rawlogs ([MotionModel]).
+    mrpt::obs::CActionRobotMovement2D::TMotionModelOptions motionModel;
 
     size_t frames = 0, framesWithImages = 0, measurements = 0;
 
@@ -130,6 +133,18 @@ void OmniFastSLAMApp::Impl::loadConfig()
         throw usage(
             "[ParticleFilter] PF_algorithm must be pfOptimalProposal (FastSLAM 2.0) or "
             "pfStandardProposal (FastSLAM 1.0)");
+
+    // [MotionModel]: MRPT's Gaussian model, used for observation-only rawlogs
+    auto& g = motionModel.gaussianModel;
+    g.a1 = cfg.read_double("MotionModel", "a1", g.a1);
+    g.a2 = cfg.read_double("MotionModel", "a2", g.a2);
+    g.a3 = cfg.read_double("MotionModel", "a3", g.a3);
+    g.a4 = cfg.read_double("MotionModel", "a4", g.a4);
+    g.minStdXY = cfg.read_double("MotionModel", "minStdXY", g.minStdXY);
+    g.minStdPHI =
+        mrpt::DEG2RAD(cfg.read_double("MotionModel", "minStdPHI_deg", mrpt::RAD2DEG(g.minStdPHI)));
+    if (g.a1 < 0 || g.a2 < 0 || g.a3 < 0 || g.a4 < 0 || g.minStdXY < 0 || g.minStdPHI < 0)
+        throw usage("[MotionModel] the noise parameters must be >= 0");
 
     // Every particle's map comes from the .ini through MRPT's map registry.
     mrpt::maps::TSetOfMetricMapInitializers inits;
@@ -226,26 +241,25 @@ void OmniFastSLAMApp::run()
     core::RawlogReader reader(d.rawlog);
     core::ProgressReporter progress("omni-fastslam", 0, d.args.quiet);
 
+    core::ActionFrameSource source(reader, {d.filterOptions.bearings_label, d.imageLabel},
+                                   d.motionModel);
     mrpt::poses::CPose2D odometry(d.initialPose);
     bool started = false;
-    for (core::TRawlogEntry e; reader.next(e);) {
-        if (!e.actions || !e.observations) continue;
-        if (!e.actions->getBestMovementEstimation())
-            throw std::runtime_error(d.rawlog + ": entry " + std::to_string(e.index) +
-                                     " has an action collection without odometry");
-        d.prepareFrame(*e.observations);
-        const double t = mrpt::Clock::toDouble(e.observations->size()
-                                                   ? (*e.observations->begin())->timestamp
-                                                   : e.timestamp);
+    mrpt::obs::CActionCollection::Ptr actions;
+    mrpt::obs::CSensoryFrame::Ptr frame;
+    while (source.next(actions, frame)) {
+        d.prepareFrame(*frame);
+        const double t = mrpt::Clock::toDouble(frame->size() ? (*frame->begin())->timestamp
+                                                             : actions->begin()->get()->timestamp);
         if (!started) {
             d.filter->reset(d.initialPose, t);
             started = true;
         }
         timer.startStep();
-        d.pf.executeOn(*d.filter, e.actions.get(), e.observations.get());
+        d.pf.executeOn(*d.filter, actions.get(), frame.get());
         timer.endStep();
 
-        odometry = odometry + e.actions->getBestMovementEstimation()->poseChange->getMeanVal();
+        odometry = odometry + actions->getBestMovementEstimation()->poseChange->getMeanVal();
         odometryPath.push_back(t, to3D(odometry.asTPose()));
         d.measurements += d.filter->lastStepStats.measurements;
         progress.update(++d.frames);
@@ -260,8 +274,10 @@ void OmniFastSLAMApp::run()
     progress.finish(d.frames);
     if (d.frames == 0)
         throw std::runtime_error(d.rawlog +
-                                 ": no odometry action / sensory frame pairs (format #1); the "
-                                 "rawlog has: " + reader.summary().describe());
+                                 ": no frames with odometry (action / sensory-frame pairs, or "
+                                 "CObservationOdometry with " + d.filterOptions.bearings_label +
+                                 " or " + d.imageLabel + "); the rawlog has: " +
+                                 reader.summary().describe());
     if (d.measurements == 0)
         throw std::runtime_error(d.rawlog + ": no ceiling-light measurements (" +
                                  d.filterOptions.bearings_label + " or " + d.imageLabel +

@@ -1,15 +1,22 @@
 // The omni-fastslam driver on the shipped dataset: outputs of BRIEF §4 and failures on bad input.
 #include <gtest/gtest.h>
 #include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt/system/filesystem.h>
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/core/RawlogReader.h>
+#include <mrpt_vslam/core/TumTrajectory.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/omni_fastslam/OmniFastSLAMApp.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
 
+#include <cmath>
 #include <fstream>
 
 using namespace mrpt_vslam;
@@ -50,6 +57,40 @@ TEST(OmniFastSLAMApp, WritesTheRunFolder)
     mrpt::io::CFileGZInputStream f(out + "/final.3Dscene");
     mrpt::serialization::archiveFrom(f) >> scene;
     EXPECT_GE(scene.getViewport()->size(), 4u);
+}
+
+TEST(OmniFastSLAMApp, ReadsObservationOnlyRawlogs)
+{
+    // The shipped rawlog rewritten in format #2: odometry readings + the frames' observations.
+    const test::ScratchFolder scratch("OmniFastSLAMApp_format2");
+    const auto rawlog = scratch.file("hall2.rawlog");
+    {
+        mrpt::io::CFileGZOutputStream f(rawlog);
+        auto ar = mrpt::serialization::archiveFrom(f);
+        core::RawlogReader reader(kRawlog);
+        mrpt::poses::CPose2D odometry;
+        for (core::TRawlogEntry e; reader.next(e);) {
+            if (!e.actions || !e.observations) continue;
+            odometry = odometry + e.actions->getBestMovementEstimation()->poseChange->getMeanVal();
+            mrpt::obs::CObservationOdometry odo;
+            odo.sensorLabel = "ODOM";
+            odo.timestamp = (*e.observations->begin())->timestamp;
+            odo.odometry = odometry;
+            ar << odo;
+            for (const auto& obs : *e.observations)
+                if (obs->sensorLabel != "OMNICAM") ar << *obs;  // bearings + ground truth
+        }
+    }
+    omni_fastslam::OmniFastSLAMApp app(args({kConfig, rawlog, "--out", scratch.file("out"),
+                                             "--quiet", "--ground-truth",
+                                             kSource + "/datasets/sports-hall/hall"}));
+    app.initialize();
+    app.run();
+    EXPECT_EQ(app.estimatedPath.size(), 320u);
+    const auto gt = core::TumTrajectory::load(kSource + "/datasets/sports-hall/hall.groundtruth.tum");
+    const auto& last = app.estimatedPath.poses.back();
+    const auto& truth = gt.poses.back();
+    EXPECT_LT(std::hypot(last.x - truth.x, last.y - truth.y), 0.6);
 }
 
 TEST(OmniFastSLAMApp, RejectsAnUnknownKey)

@@ -1,0 +1,48 @@
+#pragma once
+
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose2D.h>
+#include <mrpt_vslam/core/RawlogReader.h>
+
+#include <optional>
+#include <set>
+#include <string>
+
+namespace mrpt_vslam::core {
+
+/** Filter steps (odometry action + sensory frame) from a rawlog in either format (BRIEF §3):
+ *  - format #1: each `CActionCollection` with the `CSensoryFrame` that follows it;
+ *  - format #2 (observation-only): `CObservationOdometry` readings give the odometry, and every
+ *    group of observations with the same timestamp that holds one of `step_labels` becomes a
+ *    frame, with a `CActionRobotMovement2D` built from the odometry increment since the previous
+ *    frame and `motion_model`. Frames before the first odometry reading are dropped.
+ *
+ *  Usage: `ActionFrameSource src(reader, {"OMNICAM_BEARINGS", "OMNICAM"}, motion);` then
+ *  `while (src.next(acts, sf)) ...`.
+ */
+class ActionFrameSource {
+public:
+    ActionFrameSource(RawlogReader& reader, std::set<std::string> step_labels,
+                      const mrpt::obs::CActionRobotMovement2D::TMotionModelOptions& motion_model);
+
+    /** The next step. \return false at the end of the rawlog. Throws std::runtime_error naming
+     *  the rawlog for an action collection without odometry. */
+    bool next(mrpt::obs::CActionCollection::Ptr& actions, mrpt::obs::CSensoryFrame::Ptr& frame);
+
+private:
+    /// The pending format-#2 frame as a step, built from the odometry since the last step.
+    void emitPending(mrpt::obs::CActionCollection::Ptr& actions,
+                     mrpt::obs::CSensoryFrame::Ptr& frame);
+
+    RawlogReader& m_reader;
+    std::set<std::string> m_step_labels;
+    mrpt::obs::CActionRobotMovement2D::TMotionModelOptions m_motion_model;
+    std::optional<mrpt::poses::CPose2D> m_odometry, m_odometry_at_last_step;
+    mrpt::obs::CSensoryFrame::Ptr m_pending;  ///< format #2 frame being assembled
+    mrpt::Clock::time_point m_pending_time;
+    bool m_pending_is_step = false;
+};
+
+}  // namespace mrpt_vslam::core
