@@ -144,27 +144,30 @@ std::vector<TBearingMeasurement> COmniFastSLAM::measurementsFromFrame(
     return {};
 }
 
-TPose2D COmniFastSLAM::sampleMotion(const TPose2D& from, const TMotion& motion)
+Eigen::Vector3d COmniFastSLAM::drawGaussian(const Eigen::Matrix3d& cov)
 {
-    const Eigen::Matrix3d L = motion.cov.llt().matrixL();
+    const Eigen::Matrix3d L = cov.llt().matrixL();
     Eigen::Vector3d n;
     for (int i = 0; i < 3; i++) n[i] = m_rng.drawGaussian1D_normalized();
-    return compose(from, plus(motion.delta, L * n));
+    return L * n;
+}
+
+TPose2D COmniFastSLAM::sampleMotion(const TPose2D& from, const TMotion& motion)
+{
+    return compose(from, plus(motion.delta, drawGaussian(motion.cov)));
 }
 
 TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
                                                const std::vector<TBearingMeasurement>& z,
-                                               const TMotion& motion,
+                                               const TMotion& motion, const Eigen::Matrix3d& R,
                                                std::vector<int>& landmark_of_measurement)
 {
     const auto& map = p.map;
     const auto& lms = map.landmarks();
     const auto model = map.measurementModel();
 
-    // x̂_t and R_t
+    // x̂_t (R_t comes from the caller)
     const TPose2D x_hat = compose(p.robot_in_map, motion.delta);
-    const Eigen::Matrix3d Jd = composeJacobianWrtIncrement(p.robot_in_map.phi);
-    const Eigen::Matrix3d R = Jd * motion.cov * Jd.transpose();
     const Eigen::Matrix3d R_inv = R.inverse();
 
     // Alg. 2: φ_{l,j} for every measurement and landmark
@@ -220,10 +223,7 @@ TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
                           BearingMeasurementModel::innovation(z[l].z, pred.z));  // line 9
     }
     // line 14: x_t ~ N(μ_xt, Σ_xt)
-    const Eigen::Matrix3d L = Sigma.llt().matrixL();
-    Eigen::Vector3d n;
-    for (int i = 0; i < 3; i++) n[i] = m_rng.drawGaussian1D_normalized();
-    return plus(mu, L * n);
+    return plus(mu, drawGaussian(Sigma));
 }
 
 void COmniFastSLAM::updateParticle(TOmniFastSLAMParticle& p, double& log_w, const TPose2D& x_t,
@@ -261,9 +261,10 @@ void COmniFastSLAM::runStep(const mrpt::obs::CActionCollection* action,
         TPose2D x_t;
         Eigen::Matrix3d R_t = Eigen::Matrix3d::Zero();
         if (fastslam2) {
-            x_t = sampleFastSLAM2Proposal(p, z, motion, assoc);
+            // R_t: the odometry covariance in the map frame
             const Eigen::Matrix3d Jd = composeJacobianWrtIncrement(p.robot_in_map.phi);
             R_t = Jd * motion.cov * Jd.transpose();
+            x_t = sampleFastSLAM2Proposal(p, z, motion, R_t, assoc);
         } else {
             x_t = sampleMotion(p.robot_in_map, motion);
             Eigen::VectorXd log_p_new(z.size());

@@ -109,11 +109,14 @@ private:
     std::vector<TBearingMeasurement> measurementsFromFrame(const mrpt::obs::CSensoryFrame* sf,
                                                            const CCeilingLightsMap& map,
                                                            double& timestamp) const;
+    /// A zero-mean sample of N(0, cov) from the filter's generator.
+    Eigen::Vector3d drawGaussian(const Eigen::Matrix3d& cov);
     mrpt::math::TPose2D sampleMotion(const mrpt::math::TPose2D& from, const TMotion& motion);
-    /// Steps 2-4 for one particle: returns the sampled pose and level-1 association.
+    /// Steps 2-4 for one particle, with R_t of step 1: returns the sampled pose and the
+    /// level-1 association.
     mrpt::math::TPose2D sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
                                                 const std::vector<TBearingMeasurement>& z,
-                                                const TMotion& motion,
+                                                const TMotion& motion, const Eigen::Matrix3d& R,
                                                 std::vector<int>& landmark_of_measurement);
     /// Step 5 and the path bookkeeping, shared by both proposals.
     void updateParticle(TOmniFastSLAMParticle& p, double& log_w, const mrpt::math::TPose2D& x_t,
