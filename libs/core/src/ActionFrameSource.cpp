@@ -1,26 +1,60 @@
 #include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/core/bits_math.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
+#include <mrpt_vslam/core/UsageError.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace mrpt_vslam::core {
 
 ActionFrameSource::ActionFrameSource(
     RawlogReader& reader, std::set<std::string> step_labels,
-    const mrpt::obs::CActionRobotMovement2D::TMotionModelOptions& motion_model)
-    : m_reader(reader), m_step_labels(std::move(step_labels)), m_motion_model(motion_model)
+    const mrpt::obs::CActionRobotMovement2D::TMotionModelOptions& motion_model,
+    std::vector<std::string> odometry_labels)
+    : m_reader(reader),
+      m_step_labels(std::move(step_labels)),
+      m_motion_model(motion_model),
+      m_odometry_labels(std::move(odometry_labels)),
+      m_odometry(std::max<size_t>(1, m_odometry_labels.size())),
+      m_odometry_at_last_step(m_odometry.size())
 {
+}
+
+mrpt::obs::CActionRobotMovement2D::TMotionModelOptions ActionFrameSource::loadMotionModel(
+    const mrpt::config::CConfigFileBase& cfg, const std::string& section)
+{
+    mrpt::obs::CActionRobotMovement2D::TMotionModelOptions model;
+    auto& g = model.gaussianModel;
+    g.a1 = cfg.read_double(section, "a1", g.a1);
+    g.a2 = cfg.read_double(section, "a2", g.a2);
+    g.a3 = cfg.read_double(section, "a3", g.a3);
+    g.a4 = cfg.read_double(section, "a4", g.a4);
+    g.minStdXY = cfg.read_double(section, "minStdXY", g.minStdXY);
+    g.minStdPHI =
+        mrpt::DEG2RAD(cfg.read_double(section, "minStdPHI_deg", mrpt::RAD2DEG(g.minStdPHI)));
+    if (!(g.a1 >= 0 && g.a2 >= 0 && g.a3 >= 0 && g.a4 >= 0 && g.minStdXY >= 0 && g.minStdPHI >= 0))
+        throw UsageError("[" + section + "] the noise parameters must be >= 0");
+    return model;
+}
+
+bool ActionFrameSource::haveOdometry() const
+{
+    return std::all_of(m_odometry_at_last_step.begin(), m_odometry_at_last_step.end(),
+                       [](const auto& o) { return o.has_value(); });
 }
 
 void ActionFrameSource::emitPending(mrpt::obs::CActionCollection::Ptr& actions,
                                     mrpt::obs::CSensoryFrame::Ptr& frame)
 {
-    mrpt::obs::CActionRobotMovement2D move;
-    move.timestamp = m_pending_time;
-    move.computeFromOdometry(*m_odometry - *m_odometry_at_last_step, m_motion_model);
-    m_odometry_at_last_step = m_odometry;
     actions = mrpt::obs::CActionCollection::Create();
-    actions->insert(move);
+    for (size_t k = 0; k < m_odometry.size(); k++) {
+        mrpt::obs::CActionRobotMovement2D move;
+        move.timestamp = m_pending_time;
+        move.computeFromOdometry(*m_odometry[k] - *m_odometry_at_last_step[k], m_motion_model);
+        m_odometry_at_last_step[k] = m_odometry[k];
+        actions->insert(move);
+    }
     frame = m_pending;
     m_pending.reset();
 }
@@ -40,14 +74,19 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
         }
         if (!e.observation) continue;
         // format #2: a new timestamp closes the pending frame
-        const bool ready = m_pending && m_pending_is_step && m_odometry_at_last_step &&
+        const bool ready = m_pending && m_pending_is_step && haveOdometry() &&
                            e.observation->timestamp != m_pending_time;
         if (m_pending && e.observation->timestamp != m_pending_time && !ready) m_pending.reset();
         if (ready) emitPending(actions, frame);
         if (const auto odo =
                 std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(e.observation)) {
-            m_odometry = odo->odometry;
-            if (!m_odometry_at_last_step) m_odometry_at_last_step = m_odometry;
+            const auto it = std::find(m_odometry_labels.begin(), m_odometry_labels.end(),
+                                      odo->sensorLabel);
+            const size_t k = static_cast<size_t>(it - m_odometry_labels.begin());  // 0 if none
+            if (m_odometry_labels.empty() || it != m_odometry_labels.end()) {
+                m_odometry[k] = odo->odometry;
+                if (!m_odometry_at_last_step[k]) m_odometry_at_last_step[k] = odo->odometry;
+            }
         } else {
             if (!m_pending) {
                 m_pending = mrpt::obs::CSensoryFrame::Create();
@@ -60,7 +99,7 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
         }
         if (ready) return true;
     }
-    if (m_pending && m_pending_is_step && m_odometry_at_last_step) {
+    if (m_pending && m_pending_is_step && haveOdometry()) {
         emitPending(actions, frame);
         return true;
     }

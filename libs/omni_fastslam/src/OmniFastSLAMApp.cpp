@@ -135,16 +135,11 @@ void OmniFastSLAMApp::Impl::loadConfig()
             "pfStandardProposal (FastSLAM 1.0)");
 
     // [MotionModel]: MRPT's Gaussian model, used for observation-only rawlogs
-    auto& g = motionModel.gaussianModel;
-    g.a1 = cfg.read_double("MotionModel", "a1", g.a1);
-    g.a2 = cfg.read_double("MotionModel", "a2", g.a2);
-    g.a3 = cfg.read_double("MotionModel", "a3", g.a3);
-    g.a4 = cfg.read_double("MotionModel", "a4", g.a4);
-    g.minStdXY = cfg.read_double("MotionModel", "minStdXY", g.minStdXY);
-    g.minStdPHI =
-        mrpt::DEG2RAD(cfg.read_double("MotionModel", "minStdPHI_deg", mrpt::RAD2DEG(g.minStdPHI)));
-    if (g.a1 < 0 || g.a2 < 0 || g.a3 < 0 || g.a4 < 0 || g.minStdXY < 0 || g.minStdPHI < 0)
-        throw usage("[MotionModel] the noise parameters must be >= 0");
+    try {
+        motionModel = core::ActionFrameSource::loadMotionModel(cfg, "MotionModel");
+    } catch (const core::UsageError& e) {
+        throw usage(e.what());
+    }
 
     // Every particle's map comes from the .ini through MRPT's map registry.
     mrpt::maps::TSetOfMetricMapInitializers inits;

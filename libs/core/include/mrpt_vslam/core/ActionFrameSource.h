@@ -1,5 +1,6 @@
 #pragma once
 
+#include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CSensoryFrame.h>
@@ -9,6 +10,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace mrpt_vslam::core {
 
@@ -25,7 +27,14 @@ namespace mrpt_vslam::core {
 class ActionFrameSource {
 public:
     ActionFrameSource(RawlogReader& reader, std::set<std::string> step_labels,
-                      const mrpt::obs::CActionRobotMovement2D::TMotionModelOptions& motion_model);
+                      const mrpt::obs::CActionRobotMovement2D::TMotionModelOptions& motion_model,
+                      std::vector<std::string> odometry_labels = {});
+
+    /** MRPT's Gaussian odometry model from an ini section: a1, a2, a3, a4, minStdXY [m],
+     *  minStdPHI_deg (MRPT's defaults where absent). Throws UsageError naming the section for
+     *  negative values. */
+    static mrpt::obs::CActionRobotMovement2D::TMotionModelOptions loadMotionModel(
+        const mrpt::config::CConfigFileBase& cfg, const std::string& section);
 
     /** The next step. \return false at the end of the rawlog. Throws std::runtime_error naming
      *  the rawlog for an action collection without odometry. */
@@ -35,11 +44,15 @@ private:
     /// The pending format-#2 frame as a step, built from the odometry since the last step.
     void emitPending(mrpt::obs::CActionCollection::Ptr& actions,
                      mrpt::obs::CSensoryFrame::Ptr& frame);
+    /// Whether every robot has had an odometry reading.
+    bool haveOdometry() const;
 
     RawlogReader& m_reader;
     std::set<std::string> m_step_labels;
     mrpt::obs::CActionRobotMovement2D::TMotionModelOptions m_motion_model;
-    std::optional<mrpt::poses::CPose2D> m_odometry, m_odometry_at_last_step;
+    std::vector<std::string> m_odometry_labels;  ///< empty: one robot, any label
+    /// Per robot: the latest reading and the one at the last step.
+    std::vector<std::optional<mrpt::poses::CPose2D>> m_odometry, m_odometry_at_last_step;
     mrpt::obs::CSensoryFrame::Ptr m_pending;  ///< format #2 frame being assembled
     mrpt::Clock::time_point m_pending_time;
     bool m_pending_is_step = false;

@@ -1,0 +1,36 @@
+// multirobot-vslam: one Rao-Blackwellized particle filter over a robot team's paths and a shared
+// map of 3D visual landmarks (paper 003).
+#include <mrpt_vslam/core/AppArguments.h>
+#include <mrpt_vslam/core/ErrorMessage.h>
+#include <mrpt_vslam/core/UsageError.h>
+#include <mrpt_vslam/multirobot/MultiRobotVSLAMApp.h>
+
+#include <iostream>
+
+int main(int argc, char** argv)
+{
+    using namespace mrpt_vslam;
+    try {
+        auto args = core::AppArguments::parse(
+            argc, argv, "multirobot-vslam",
+            "Multi-robot stereo visual SLAM (Gil, Reinoso, Ballesta, Julia, Paya 2010): one "
+            "Rao-Blackwellized particle filter over the paths of a robot team and one shared map "
+            "of 3D landmarks with U-SURF descriptors. Reads an observation-only rawlog with "
+            "<ROBOT>_ODOM odometry and <ROBOT>_LANDMARKS or <ROBOT>_STEREO observations; writes "
+            "the run folder described in doc/multirobot.md.");
+        if (args.request != core::AppArguments::Request::Run) {
+            std::cout << args.message;
+            return 0;
+        }
+        multirobot::MultiRobotVSLAMApp app(std::move(args));
+        app.initialize();
+        app.run();
+        return 0;
+    } catch (const core::UsageError& e) {
+        std::cerr << "multirobot-vslam: error: " << e.what() << "\n";
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "multirobot-vslam: error: " << core::oneLineMessage(e) << "\n";
+        return 1;
+    }
+}

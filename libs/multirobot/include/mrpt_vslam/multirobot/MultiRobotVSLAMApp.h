@@ -1,0 +1,45 @@
+#pragma once
+
+#include <mrpt_vslam/core/AppArguments.h>
+#include <mrpt_vslam/core/TumTrajectory.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mrpt_vslam::multirobot {
+
+/** The `multirobot-vslam` driver: reads an observation-only rawlog with each robot's odometry
+ *  (`<ROBOT>_ODOM`) and either pre-extracted landmarks (`<ROBOT>_LANDMARKS`) or stereo images
+ *  (`<ROBOT>_STEREO`, turned into landmarks by one StereoFrontEnd per robot), runs
+ *  CMultiRobotVisualSLAM through `CParticleFilter::executeOn()` and writes the run folder of
+ *  BRIEF §4 with one estimated path per robot.
+ *
+ *  Steps of run(): load the config, open the rawlog and the ground truth, then per team step:
+ *  (stereo → landmarks) → filter step → progress; at the end paths, map, scene, run.json and
+ *  metrics.json. Tests drive this class exactly as the binary does. */
+class MultiRobotVSLAMApp {
+public:
+    explicit MultiRobotVSLAMApp(core::AppArguments args);
+    ~MultiRobotVSLAMApp();
+
+    /// Loads the config and the inputs; throws core::UsageError for config problems and
+    /// std::runtime_error for data problems, naming the file.
+    void initialize();
+    /// Processes the whole rawlog and writes the outputs.
+    void run();
+
+    /// @name Results (valid after run())
+    /// @{
+    std::vector<std::string> robots;
+    std::vector<core::TumTrajectory> estimatedPaths;  ///< best particle's, one per robot
+    std::vector<core::TumTrajectory> odometryPaths;   ///< dead reckoning from the same starts
+    std::string outDir;
+    /// @}
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> m_impl;
+};
+
+}  // namespace mrpt_vslam::multirobot

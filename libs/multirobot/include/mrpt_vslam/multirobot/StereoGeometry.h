@@ -1,0 +1,91 @@
+#pragma once
+
+#include <mrpt/math/CMatrixFixed.h>
+#include <mrpt/math/TPoint3D.h>
+
+namespace mrpt::obs {
+class CObservationStereoImages;
+}
+
+namespace mrpt_vslam::multirobot {
+
+/** A pixel of the left image with its disparity: row r, column c, disparity d = c − c_right
+ *  (all in [px]); the point appears at (r, c − d) in the right image. */
+struct TStereoPixel {
+    double row = 0;
+    double col = 0;
+    double disparity = 0;
+};
+
+/** Standard deviations of the pixel measurements behind R_t (Gil et al. 2010, Sec. 3.2:
+ *  σ_d = 1 px, σ_r = σ_c = 10 px, "typical errors in cameras that take into account the
+ *  uncertainty in the camera calibration parameters"). */
+struct TStereoPixelNoise {
+    double sigma_disparity = 1.0;  ///< σ_d [px]
+    double sigma_row = 10.0;       ///< σ_r [px]
+    double sigma_col = 10.0;       ///< σ_c [px]
+};
+
+/** The standard rectified stereo pair of Gil et al. (2010), Sec. 3.2, Eq. 12: two pin-hole
+ *  cameras with parallel optical axes, the right one displaced by the baseline B along the left
+ *  camera's x axis, same intrinsics (f_x, f_y, c_x, c_y).
+ *
+ *  Frame: MRPT's camera frame of the left camera, x right, y down, z forward. Eq. 12 writes
+ *  Y = I(C_y − r)/d with Y pointing up; here Y = +B·(f_x/f_y)(r − c_y)/d points down, i.e.
+ *  Y_here = −Y_Eq.12 (and f_x = f_y = f recovers the paper's X and Z exactly):
+ *
+ *    X = B (c − c_x) / d,   Y = B (f_x/f_y) (r − c_y) / d,   Z = f_x B / d      (Eq. 12)
+ *
+ *  The disparity is d = c − c_right > 0 (the paper writes the right pixel as (r, c + d), the
+ *  same relation with the opposite sign convention for d).
+ *
+ *  Usage:
+ *   1. `StereoGeometry g = StereoGeometry::fromObservation(stereo_obs);` (checks rectification)
+ *   2. `auto p = g.triangulate({r, c, d}); auto R = g.covariance({r, c, d}, noise);`
+ */
+class StereoGeometry {
+  public:
+    /** \param fx, fy focal lengths [px]; \param cx, cy principal point [px];
+     *  \param baseline B [m], distance between the optical centres.
+     *  \throw std::invalid_argument if a value is not finite, or fx, fy or B is not positive. */
+    StereoGeometry(double fx, double fy, double cx, double cy, double baseline);
+
+    /** The geometry of a rectified stereo observation: intrinsics of `leftCamera`, baseline =
+     *  x of `rightCameraPose`.
+     *  \throw std::invalid_argument (one line) if the pair is not rectified: a distortion
+     *  parameter of either camera is non-zero, the two intrinsic matrices differ, the right
+     *  camera is rotated w.r.t. the left one or displaced off its x axis, or the baseline is
+     *  not positive; or if a parameter is not finite. */
+    static StereoGeometry fromObservation(const mrpt::obs::CObservationStereoImages& obs);
+
+    /** Eq. 12: the 3D point [m] in the left camera frame (x right, y down, z forward).
+     *  \throw std::invalid_argument unless the disparity is finite and positive. */
+    mrpt::math::TPoint3D triangulate(const TStereoPixel& px) const;
+
+    /** J = ∂(X, Y, Z)/∂(d, r, c) of Eq. 12 at `px` (columns in the order d, r, c):
+     *
+     *    [ −X/d        0             B/d ]
+     *    [ −Y/d   B (f_x/f_y)/d       0  ]
+     *    [ −Z/d        0              0  ]
+     */
+    mrpt::math::CMatrixDouble33 jacobian(const TStereoPixel& px) const;
+
+    /** R_t = J R_sp Jᵀ with R_sp = diag(σ_d², σ_r², σ_c²) (Sec. 3.2) [m²]. */
+    mrpt::math::CMatrixDouble33 covariance(const TStereoPixel& px,
+                                           const TStereoPixelNoise& noise) const;
+
+    /** Inverse of triangulate(): (r, c, d) of a point in the left camera frame.
+     *  \throw std::invalid_argument unless the point is finite with z > 0. */
+    TStereoPixel project(const mrpt::math::TPoint3D& point) const;
+
+    double fx() const { return m_fx; }
+    double fy() const { return m_fy; }
+    double cx() const { return m_cx; }
+    double cy() const { return m_cy; }
+    double baseline() const { return m_baseline; }
+
+  private:
+    double m_fx, m_fy, m_cx, m_cy, m_baseline;
+};
+
+}  // namespace mrpt_vslam::multirobot

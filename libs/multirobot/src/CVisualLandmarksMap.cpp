@@ -1,0 +1,246 @@
+#include <mrpt/obs/CObservationVisualLandmarks.h>
+#include <mrpt/opengl/CEllipsoid3D.h>
+#include <mrpt/opengl/CPointCloudColoured.h>
+#include <mrpt/opengl/CSetOfObjects.h>
+#include <mrpt_vslam/core/AtomicFile.h>
+#include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/multirobot/CVisualLandmarksMap.h>
+
+#include <Eigen/Cholesky>
+#include <bitset>
+#include <cmath>
+#include <sstream>
+
+using mrpt_vslam::multirobot::CVisualLandmarksMap;
+
+MAP_DEFINITION_REGISTER("mrpt_vslam::multirobot::CVisualLandmarksMap,visualLandmarksMap",
+                        mrpt_vslam::multirobot::CVisualLandmarksMap)
+
+IMPLEMENTS_SERIALIZABLE(CVisualLandmarksMap, mrpt::maps::CMetricMap, mrpt_vslam::multirobot)
+
+namespace mrpt_vslam::multirobot {
+
+CVisualLandmarksMap::TMapDefinition::TMapDefinition() = default;
+
+void CVisualLandmarksMap::TMapDefinition::loadFromConfigFile_map_specific(
+    const mrpt::config::CConfigFileBase& source, const std::string& sectionNamePrefix)
+{
+    insertionOpts.loadFromConfigFile(source, sectionNamePrefix + "_insertOpts");
+    renderOpts.loadFromConfigFile(source, sectionNamePrefix + "_renderOpts");
+}
+
+void CVisualLandmarksMap::TMapDefinition::dumpToTextStream_map_specific(std::ostream& out) const
+{
+    insertionOpts.dumpToTextStream(out);
+    renderOpts.dumpToTextStream(out);
+}
+
+mrpt::maps::CMetricMap* CVisualLandmarksMap::internal_CreateFromMapDefinition(
+    const mrpt::maps::TMetricMapInitializer& def)
+{
+    const auto& d = dynamic_cast<const CVisualLandmarksMap::TMapDefinition&>(def);
+    auto* map = new CVisualLandmarksMap(
+        std::make_shared<LandmarkDescriptorPool>(d.insertionOpts.grid_cell_size));
+    map->insertionOptions = d.insertionOpts;
+    map->renderOptions = d.renderOpts;
+    return map;
+}
+
+CVisualLandmarksMap::CVisualLandmarksMap()
+    : m_pool(std::make_shared<LandmarkDescriptorPool>(insertionOptions.grid_cell_size))
+{
+}
+
+CVisualLandmarksMap::CVisualLandmarksMap(std::shared_ptr<LandmarkDescriptorPool> pool)
+    : m_pool(std::move(pool))
+{
+    if (!m_pool) throw std::invalid_argument("CVisualLandmarksMap: null descriptor pool");
+}
+
+uint32_t CVisualLandmarksMap::addLandmark(const TVisualLandmark& landmark,
+                                          const LandmarkDescriptorPool::TDescriptor& descriptor)
+{
+    const uint32_t id = m_pool->add(descriptor, landmark.mean);
+    m_store.insert(id, landmark);
+    return id;
+}
+
+TMeasurementCandidates CVisualLandmarksMap::findCandidates(const TLandmarkMeasurement& m,
+                                                           const TMapMeasurement& in_map,
+                                                           double extra_radius) const
+{
+    TMeasurementCandidates c;
+    m_pool->findCandidates(in_map.z, insertionOptions.search_radius + extra_radius, m.d,
+                           insertionOptions.E0, c.candidates);
+    return c;
+}
+
+double CVisualLandmarksMap::logGaussian3(const Eigen::Vector3d& v, const Eigen::Matrix3d& Z,
+                                         double& D)
+{
+    const Eigen::LLT<Eigen::Matrix3d> llt(Z);
+    const Eigen::Vector3d w = llt.matrixL().solve(v);
+    D = w.squaredNorm();
+    const Eigen::Vector3d diag = llt.matrixL().toDenseMatrix().diagonal();
+    const double log_det = 2 * (std::log(diag[0]) + std::log(diag[1]) + std::log(diag[2]));
+    return -0.5 * (3 * std::log(2 * M_PI) + log_det + D);  // Eq. 13
+}
+
+std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
+    const TMapMeasurement& m, const TMeasurementCandidates& candidates) const
+{
+    std::optional<TAssociation> best;
+    float best_E = 0;
+    for (const auto& c : candidates.candidates) {  // Alg. 1 lines 19-26, E ≤ E0 already
+        const TVisualLandmark* lm = m_store.find(c.id);
+        if (!lm || (best && c.E >= best_E)) continue;
+        TAssociation a;
+        a.id = c.id;
+        a.log_likelihood = logGaussian3(m.z - lm->mean, lm->cov + m.R, a.D);  // Eq. 6-8, 15
+        if (!(a.D <= insertionOptions.D0)) continue;  // line 28
+        best = a;  // line 29: smallest E among the gated
+        best_E = c.E;
+    }
+    return best;
+}
+
+TFusionResult CVisualLandmarksMap::fuse(const TLandmarkMeasurement& m, const TMapMeasurement& in_map,
+                                        TMeasurementCandidates& candidates, unsigned robot)
+{
+    TFusionResult r;
+    const auto a = associate(in_map, candidates);
+    if (!a) {  // Alg. 1 lines 33-36
+        if (!candidates.new_id) candidates.new_id = m_pool->add(m.d, in_map.z);
+        TVisualLandmark lm;
+        lm.mean = in_map.z;
+        lm.cov = in_map.R;
+        lm.times_seen = 1;
+        lm.seen_by = 1u << robot;
+        m_store.insert(*candidates.new_id, lm);
+        r.id = *candidates.new_id;
+        r.created = true;
+        r.log_w = std::log(insertionOptions.p0);
+        return r;
+    }
+    TVisualLandmark& lm = m_store.modify(a->id);  // lines 39-42
+    const Eigen::Matrix3d Z = lm.cov + in_map.R;
+    const Eigen::Matrix3d K = Z.llt().solve(lm.cov).transpose();  // Σ Z⁻¹ (Σ, Z symmetric)
+    lm.mean += K * (in_map.z - lm.mean);
+    const Eigen::Matrix3d cov = lm.cov - K * lm.cov;
+    lm.cov = 0.5 * (cov + cov.transpose());
+    lm.times_seen++;
+    lm.seen_by |= 1u << robot;
+    r.id = a->id;
+    r.log_w = a->log_likelihood;  // Eq. 13
+    return r;
+}
+
+bool CVisualLandmarksMap::isEmpty() const { return m_store.empty(); }
+
+void CVisualLandmarksMap::internal_clear() { m_store.clear(); }
+
+bool CVisualLandmarksMap::internal_insertObservation(
+    const mrpt::obs::CObservation& obs, const std::optional<const mrpt::poses::CPose3D>& robotPose)
+{
+    const auto* o = dynamic_cast<const mrpt::obs::CObservationVisualLandmarks*>(&obs);
+    if (!o) return false;
+    const mrpt::math::TPose2D robot =
+        robotPose ? mrpt::math::TPose2D(robotPose->x(), robotPose->y(), robotPose->yaw())
+                  : mrpt::math::TPose2D(0, 0, 0);
+    for (const auto& m : measurementsFromObservation(*o)) {
+        const TMapMeasurement in_map = toMapFrame(m, robot);
+        auto candidates = findCandidates(m, in_map);
+        fuse(m, in_map, candidates, 0);
+    }
+    return true;
+}
+
+bool CVisualLandmarksMap::internal_canComputeObservationLikelihood(
+    const mrpt::obs::CObservation& obs) const
+{
+    return dynamic_cast<const mrpt::obs::CObservationVisualLandmarks*>(&obs) != nullptr;
+}
+
+double CVisualLandmarksMap::internal_computeObservationLikelihood(
+    const mrpt::obs::CObservation& obs, const mrpt::poses::CPose3D& takenFrom) const
+{
+    const auto* o = dynamic_cast<const mrpt::obs::CObservationVisualLandmarks*>(&obs);
+    if (!o) return 0;
+    const mrpt::math::TPose2D robot(takenFrom.x(), takenFrom.y(), takenFrom.yaw());
+    double log_lik = 0;
+    for (const auto& m : measurementsFromObservation(*o)) {
+        const TMapMeasurement in_map = toMapFrame(m, robot);
+        const auto a = associate(in_map, findCandidates(m, in_map));
+        log_lik += a ? a->log_likelihood : std::log(insertionOptions.p0);
+    }
+    return log_lik;
+}
+
+float CVisualLandmarksMap::compute3DMatchingRatio(const mrpt::maps::CMetricMap*,
+                                                  const mrpt::poses::CPose3D&,
+                                                  const mrpt::maps::TMatchingRatioParams&) const
+{
+    return 0;  // not defined for sparse landmark maps
+}
+
+void CVisualLandmarksMap::saveMetricMapRepresentationToFile(const std::string& filNamePrefix) const
+{
+    core::LandmarkFile file;
+    core::AtomicFile descriptor_file(filNamePrefix + "_descriptors.txt");
+    std::ostream& descriptors = descriptor_file.stream();
+    descriptors << "# visual landmarks (CVisualLandmarksMap): id times_seen seen_by_robot_mask "
+                   "and the 64 U-SURF values\n";
+    m_store.forEach([&](uint32_t id, const TVisualLandmark& lm) {
+        core::TLandmark out;
+        out.id = static_cast<int>(id);
+        out.position = {lm.mean.x(), lm.mean.y(), lm.mean.z()};
+        out.cov = lm.cov;
+        out.has_cov = true;
+        file.landmarks.push_back(out);
+        descriptors << id << ' ' << lm.times_seen << ' ' << lm.seen_by;
+        for (const float v : m_pool->descriptor(id)) descriptors << ' ' << v;
+        descriptors << '\n';
+    });
+    file.save(filNamePrefix + ".txt", "multi-robot visual landmarks map (CVisualLandmarksMap)");
+    descriptor_file.commit();
+}
+
+void CVisualLandmarksMap::getVisualizationInto(mrpt::opengl::CSetOfObjects& o) const
+{
+    if (!genericMapParams.enableSaveAs3DObject) return;
+    // colour: landmarks one robot saw in blue, landmarks several robots merged in red
+    const auto colourOf = [](const TVisualLandmark& lm) {
+        return std::bitset<32>(lm.seen_by).count() > 1 ? mrpt::img::TColorf(0.9f, 0.1f, 0.1f)
+                                                       : mrpt::img::TColorf(0.1f, 0.3f, 1.0f);
+    };
+    auto cloud = mrpt::opengl::CPointCloudColoured::Create();
+    cloud->setPointSize(renderOptions.point_size);
+    m_store.forEach([&](uint32_t id, const TVisualLandmark& lm) {
+        const auto c = colourOf(lm);
+        cloud->push_back(static_cast<float>(lm.mean.x()), static_cast<float>(lm.mean.y()),
+                         static_cast<float>(lm.mean.z()), c.R, c.G, c.B);
+        if (!renderOptions.draw_ellipsoids) return;
+        auto ellipsoid = mrpt::opengl::CEllipsoid3D::Create();
+        ellipsoid->setCovMatrixAndMean(mrpt::math::CMatrixDouble33(lm.cov),
+                                       mrpt::math::CMatrixFixed<double, 3, 1>(lm.mean));
+        ellipsoid->setQuantiles(static_cast<float>(renderOptions.ellipsoid_quantiles));
+        ellipsoid->setColor(c.R, c.G, c.B, 0.4f);
+        ellipsoid->setName(mrpt::format("landmark_%u", id));
+        o.insert(ellipsoid);
+    });
+    o.insert(cloud);
+}
+
+std::string CVisualLandmarksMap::asString() const
+{
+    size_t merged = 0;
+    m_store.forEach([&](uint32_t, const TVisualLandmark& lm) {
+        merged += std::bitset<32>(lm.seen_by).count() > 1 ? 1 : 0;
+    });
+    std::ostringstream s;
+    s << "CVisualLandmarksMap: " << m_store.size() << " landmarks (" << merged
+      << " measured by several robots)";
+    return s.str();
+}
+
+}  // namespace mrpt_vslam::multirobot

@@ -1,0 +1,52 @@
+#include <mrpt/maps/CLandmarksMap.h>
+#include <mrpt/obs/CObservationVisualLandmarks.h>
+#include <mrpt_vslam/multirobot/LandmarkMeasurement.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace mrpt_vslam::multirobot {
+
+std::vector<TLandmarkMeasurement> measurementsFromObservation(
+    const mrpt::obs::CObservationVisualLandmarks& obs)
+{
+    const Eigen::Matrix3d rot = obs.refCameraPose.getRotationMatrix().asEigen();
+    const Eigen::Vector3d t(obs.refCameraPose.x(), obs.refCameraPose.y(), obs.refCameraPose.z());
+    std::vector<TLandmarkMeasurement> out;
+    out.reserve(obs.landmarks.landmarks.size());
+    for (const auto& lm : obs.landmarks.landmarks) {
+        const auto fail = [&](const std::string& what) {
+            throw std::runtime_error(obs.sensorLabel + ": landmark " + std::to_string(lm.ID) +
+                                     " " + what);
+        };
+        if (lm.features.empty() || !lm.features[0].descriptors.SURF ||
+            lm.features[0].descriptors.SURF->size() != core::USurfDescriptor::kSize)
+            fail("has no 64-D SURF descriptor");
+        TLandmarkMeasurement m;
+        const Eigen::Vector3d p(lm.pose_mean.x, lm.pose_mean.y, lm.pose_mean.z);
+        Eigen::Matrix3d C;
+        C << lm.pose_cov_11, lm.pose_cov_12, lm.pose_cov_13, lm.pose_cov_12, lm.pose_cov_22,
+            lm.pose_cov_23, lm.pose_cov_13, lm.pose_cov_23, lm.pose_cov_33;
+        if (!p.allFinite() || !C.allFinite()) fail("has a non-finite point or covariance");
+        if (!(p.z() > 0)) fail("is not in front of the camera");
+        m.z = rot * p + t;
+        m.R = rot * C * rot.transpose();
+        std::copy(lm.features[0].descriptors.SURF->begin(), lm.features[0].descriptors.SURF->end(),
+                  m.d.begin());
+        m.depth = p.z();
+        m.track_id = lm.ID;
+        out.push_back(m);
+    }
+    return out;
+}
+
+std::vector<TLandmarkMeasurement> selectNearest(std::vector<TLandmarkMeasurement> z, size_t B)
+{
+    std::stable_sort(z.begin(), z.end(), [](const auto& a, const auto& b) {
+        return a.depth < b.depth || (a.depth == b.depth && a.track_id < b.track_id);
+    });
+    if (B > 0 && z.size() > B) z.resize(B);
+    return z;
+}
+
+}  // namespace mrpt_vslam::multirobot

@@ -1,0 +1,46 @@
+#include <mrpt_vslam/multirobot/LandmarkStore.h>
+
+#include <cassert>
+
+namespace mrpt_vslam::multirobot {
+
+LandmarkStore::Block& LandmarkStore::writableBlock(size_t b)
+{
+    if (b >= m_blocks.size()) m_blocks.resize(b + 1);
+    auto& block = m_blocks[b];
+    if (!block)
+        block = std::make_shared<Block>();
+    else if (block.use_count() > 1)
+        block = std::make_shared<Block>(*block);  // copy on write
+    return *block;
+}
+
+TVisualLandmark& LandmarkStore::modify(uint32_t id)
+{
+    assert(find(id));
+    return writableBlock(id / kBlockSize).items[id % kBlockSize];
+}
+
+void LandmarkStore::insert(uint32_t id, const TVisualLandmark& landmark)
+{
+    Block& block = writableBlock(id / kBlockSize);
+    const uint32_t bit = 1u << (id % kBlockSize);
+    if (!(block.present & bit)) m_count++;
+    block.present |= bit;
+    block.items[id % kBlockSize] = landmark;
+}
+
+void LandmarkStore::clear()
+{
+    m_blocks.clear();
+    m_count = 0;
+}
+
+size_t LandmarkStore::unsharedBlocks() const
+{
+    size_t n = 0;
+    for (const auto& b : m_blocks) n += (b && b.use_count() == 1) ? 1 : 0;
+    return n;
+}
+
+}  // namespace mrpt_vslam::multirobot

@@ -1,0 +1,433 @@
+#include <mrpt/bayes/CParticleFilter.h>
+#include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/core/bits_math.h>
+#include <mrpt/gui/CDisplayWindow3D.h>
+#include <mrpt/maps/CMultiMetricMap.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationStereoImages.h>
+#include <mrpt/opengl/CGridPlaneXY.h>
+#include <mrpt/poses/CPose2D.h>
+#include <mrpt/random/RandomGenerators.h>
+#include <mrpt/system/filesystem.h>
+#include <mrpt/system/string_utils.h>
+#include <mrpt_vslam/core/ActionFrameSource.h>
+#include <mrpt_vslam/core/AtomicFile.h>
+#include <mrpt_vslam/core/CheckedConfigFile.h>
+#include <mrpt_vslam/core/ErrorMessage.h>
+#include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/core/OutputDirectory.h>
+#include <mrpt_vslam/core/ProgressReporter.h>
+#include <mrpt_vslam/core/RawlogReader.h>
+#include <mrpt_vslam/core/RunEvaluation.h>
+#include <mrpt_vslam/core/RunOutputs.h>
+#include <mrpt_vslam/core/RunReport.h>
+#include <mrpt_vslam/core/RunTimer.h>
+#include <mrpt_vslam/core/UsageError.h>
+#include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
+#include <mrpt_vslam/multirobot/MultiRobotVSLAMApp.h>
+#include <mrpt_vslam/multirobot/StereoFrontEnd.h>
+#include <opencv2/core/version.hpp>
+
+#include <bitset>
+#include <cstdlib>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+namespace mrpt_vslam::multirobot {
+
+namespace {
+constexpr const char* kAppSection = "MultiRobotVSLAM";
+constexpr const char* kMapSection = "MappingApplication";
+constexpr const char* kFrontEndSection = "StereoFrontEnd";
+
+/// Where the landmark measurements come from (ini key `input`).
+enum class TInput { Auto, Landmarks, Stereo };
+
+mrpt::math::TPose3D to3D(const mrpt::math::TPose2D& p) { return {p.x, p.y, 0, p.phi, 0, 0}; }
+
+const std::vector<mrpt::img::TColorf> kRobotColours{
+    {0.0f, 0.6f, 0.0f}, {0.0f, 0.3f, 0.9f}, {0.8f, 0.4f, 0.0f}, {0.6f, 0.0f, 0.6f},
+    {0.0f, 0.6f, 0.6f}};
+mrpt::img::TColorf robotColour(size_t k) { return kRobotColours[k % kRobotColours.size()]; }
+}  // namespace
+
+struct MultiRobotVSLAMApp::Impl {
+    core::AppArguments args;
+    core::CheckedConfigFile cfg;
+    std::string rawlog, groundTruthPrefix;
+    uint32_t seed = 1;
+    TInput input = TInput::Auto;
+    bool startFromGroundTruth = true;
+    std::vector<mrpt::math::TPose2D> startPoses;
+    double gtMatchRadius = 0.25;
+
+    mrpt::bayes::CParticleFilter pf;
+    CVisualLandmarksMap mapTemplate;
+    CMultiRobotVisualSLAM::TOptions filterOptions;
+    StereoFrontEnd::TOptions frontEndOptions;
+    std::vector<std::unique_ptr<StereoFrontEnd>> frontEnds;  ///< one per robot, on demand
+    std::unique_ptr<CMultiRobotVisualSLAM> filter;
+    std::vector<std::optional<core::TumTrajectory>> groundTruth;
+    mrpt::obs::CActionRobotMovement2D::TMotionModelOptions motionModel;
+    mrpt::gui::CDisplayWindow3D::Ptr window;  ///< --gui
+
+    size_t steps = 0, measurements = 0, stereoFrames = 0, landmarkObservations = 0;
+
+    void loadConfig();
+    void findGroundTruth();
+    /// Stereo images → landmarks where images are the input; counts the landmark inputs.
+    void prepareFrame(mrpt::obs::CSensoryFrame& sf);
+    void drawBestParticle(mrpt::opengl::COpenGLScene& scene) const;
+    void writeOutputs(MultiRobotVSLAMApp& app, const core::RunTimer& timer);
+    /// Merged vs duplicated landmarks against the true ones (doc/multirobot.md), as JSON.
+    std::string landmarkMergingJson(const core::LandmarkFile& truth) const;
+};
+
+MultiRobotVSLAMApp::MultiRobotVSLAMApp(core::AppArguments args) : m_impl(std::make_unique<Impl>())
+{
+    m_impl->args = std::move(args);
+}
+
+MultiRobotVSLAMApp::~MultiRobotVSLAMApp() = default;
+
+void MultiRobotVSLAMApp::Impl::loadConfig()
+{
+    cfg.loadFile(args.configFile, args.overrides);
+    const std::string& name = cfg.name();
+    const auto usage = [&](const std::string& what) { return core::UsageError(name + ": " + what); };
+
+    const std::string cfgRawlog = cfg.read_string(kAppSection, "rawlog_file", "");
+    rawlog = args.rawlogFile.empty() ? cfgRawlog : args.rawlogFile;
+    if (rawlog.empty())
+        throw usage(std::string("no rawlog given (argument RAWLOG or [") + kAppSection +
+                    "] rawlog_file)");
+    seed = args.resolveSeed(static_cast<uint32_t>(cfg.read_int(kAppSection, "random_seed", 0)));
+    const std::string in = cfg.read_string(kAppSection, "input", "auto");
+    if (in == "auto") input = TInput::Auto;
+    else if (in == "landmarks") input = TInput::Landmarks;
+    else if (in == "stereo") input = TInput::Stereo;
+    else throw usage("[MultiRobotVSLAM] input must be auto, landmarks or stereo, not '" + in + "'");
+    startFromGroundTruth =
+        cfg.read_bool(kAppSection, "start_poses_from_ground_truth", startFromGroundTruth);
+    gtMatchRadius = cfg.read_double(kAppSection, "gt_match_radius", gtMatchRadius);
+    if (!(gtMatchRadius > 0)) throw usage("[MultiRobotVSLAM] gt_match_radius must be > 0");
+
+    try {
+        filterOptions.loadFromConfigFile(cfg, kAppSection);
+        pf.m_options.loadFromConfigFile(cfg, "ParticleFilter");
+        frontEndOptions.loadFromConfigFile(cfg, kFrontEndSection);
+        motionModel = core::ActionFrameSource::loadMotionModel(cfg, "MotionModel");
+    } catch (const std::exception& e) {
+        throw usage(core::oneLineMessage(e));
+    }
+    for (const auto& robot : filterOptions.robots) {
+        const std::string key = "start_pose_" + robot;
+        std::vector<double> v;
+        cfg.read_vector(kAppSection, key, std::vector<double>(), v);
+        if (v.empty() && robot == filterOptions.robots.front()) v = {0, 0, 0};
+        if (v.empty() && !startFromGroundTruth)
+            throw usage("[MultiRobotVSLAM] " + key + " = x y yaw_deg is missing");
+        if (!v.empty() && v.size() != 3)
+            throw usage("[MultiRobotVSLAM] " + key + " must be 'x y yaw_deg'");
+        startPoses.push_back(v.empty() ? mrpt::math::TPose2D()
+                                       : mrpt::math::TPose2D(v[0], v[1], mrpt::DEG2RAD(v[2])));
+    }
+    if (pf.m_options.sampleSize < 1) throw usage("[ParticleFilter] sampleSize must be >= 1");
+    if (pf.m_options.adaptiveSampleSize)
+        throw usage("[ParticleFilter] adaptiveSampleSize is not supported (use 0)");
+    if (pf.m_options.PF_algorithm != mrpt::bayes::CParticleFilter::pfStandardProposal)
+        throw usage("[ParticleFilter] PF_algorithm must be pfStandardProposal (paper 003, Sec. 3.1)");
+
+    // Every particle's map comes from the .ini through MRPT's map registry.
+    mrpt::maps::TSetOfMetricMapInitializers inits;
+    try {
+        inits.loadFromConfigFile(cfg, kMapSection);
+    } catch (const std::exception& e) {
+        throw usage(core::oneLineMessage(e));
+    }
+    mrpt::maps::CMultiMetricMap maps(inits);
+    const auto map = maps.mapByClass<CVisualLandmarksMap>();
+    if (!map || maps.maps.size() != 1)
+        throw usage(std::string("[") + kMapSection +
+                    "] must define exactly one map: visualLandmarksMap_count = 1");
+    mapTemplate = *map;
+    cfg.throwIfUnreadKeys();
+}
+
+void MultiRobotVSLAMApp::Impl::findGroundTruth()
+{
+    groundTruthPrefix = args.groundTruth;
+    if (groundTruthPrefix.empty()) {
+        groundTruthPrefix = rawlog;
+        if (mrpt::system::strCmpI(mrpt::system::extractFileExtension(rawlog, true), "rawlog"))
+            groundTruthPrefix.resize(rawlog.size() - std::string(".rawlog").size());
+    }
+    size_t found = 0;
+    for (size_t k = 0; k < filterOptions.robots.size(); k++) {
+        const std::string tum =
+            groundTruthPrefix + ".groundtruth_" + filterOptions.robots[k] + ".tum";
+        groundTruth.emplace_back();
+        if (!mrpt::system::fileExists(tum)) continue;
+        groundTruth.back() = core::TumTrajectory::load(tum);
+        found++;
+        if (startFromGroundTruth && !groundTruth.back()->empty()) {
+            const auto& p = groundTruth.back()->poses.front();
+            startPoses[k] = {p.x, p.y, p.yaw};
+        }
+    }
+    if (found == 0 && !args.groundTruth.empty())
+        throw std::runtime_error(groundTruthPrefix + ".groundtruth_<ROBOT>.tum: no ground truth "
+                                 "file found (--ground-truth)");
+    if (startFromGroundTruth && found < filterOptions.robots.size())
+        for (size_t k = 1; k < filterOptions.robots.size(); k++)
+            if (!groundTruth[k] && !cfg.keyExists(kAppSection,
+                                                  "start_pose_" + filterOptions.robots[k]))
+                throw core::UsageError(cfg.name() + ": [MultiRobotVSLAM] no ground truth for " +
+                                       filterOptions.robots[k] + ": give start_pose_" +
+                                       filterOptions.robots[k] + " = x y yaw_deg");
+}
+
+void MultiRobotVSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
+{
+    const auto& robots = filterOptions.robots;
+    if (frontEnds.empty()) frontEnds.resize(robots.size());
+    for (size_t k = 0; k < robots.size(); k++) {
+        const std::string landmarksLabel = robots[k] + filterOptions.landmarks_suffix;
+        const auto stereo = sf.getObservationBySensorLabelAs<mrpt::obs::CObservationStereoImages::Ptr>(
+            robots[k] + "_STEREO");
+        const bool hasLandmarks = static_cast<bool>(sf.getObservationBySensorLabel(landmarksLabel));
+        if (stereo) stereoFrames++;
+        if (input == TInput::Landmarks || (input == TInput::Auto && hasLandmarks) || !stereo) {
+            landmarkObservations += hasLandmarks ? 1 : 0;
+            continue;
+        }
+        if (!frontEnds[k]) frontEnds[k] = std::make_unique<StereoFrontEnd>(frontEndOptions);
+        mrpt::obs::CObservationVisualLandmarks::Ptr landmarks;
+        try {
+            landmarks = frontEnds[k]->process(*stereo);
+        } catch (const std::exception& e) {
+            throw std::runtime_error(rawlog + ": step " + std::to_string(steps) + ": cannot use " +
+                                     stereo->sensorLabel + ": " + core::oneLineMessage(e));
+        }
+        landmarks->sensorLabel = landmarksLabel;
+        sf.eraseByLabel(landmarksLabel);
+        sf.insert(landmarks);
+        stereo->imageLeft.unload();
+        stereo->imageRight.unload();
+        landmarkObservations++;
+    }
+}
+
+void MultiRobotVSLAMApp::initialize()
+{
+    auto& d = *m_impl;
+    d.loadConfig();
+    if (!mrpt::system::fileExists(d.rawlog))
+        throw std::runtime_error(d.rawlog + ": cannot open rawlog");
+    d.findGroundTruth();
+    outDir = d.args.outDir;
+    robots = d.filterOptions.robots;
+    d.filter = std::make_unique<CMultiRobotVisualSLAM>(d.mapTemplate, d.pf.m_options.sampleSize,
+                                                       d.seed);
+    // CParticleFilter's resampling draws from MRPT's global generator.
+    mrpt::random::getRandomGenerator().randomize(d.seed);
+    d.filter->options = d.filterOptions;
+    d.pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
+    if (d.args.gui) {
+        if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
+            throw core::UsageError("--gui needs a display (DISPLAY is not set)");
+        d.window = mrpt::gui::CDisplayWindow3D::Create("multirobot-vslam", 1000, 700);
+    }
+}
+
+void MultiRobotVSLAMApp::Impl::drawBestParticle(mrpt::opengl::COpenGLScene& scene) const
+{
+    const auto& best = filter->bestParticle();
+    scene.insert(mrpt::opengl::CGridPlaneXY::Create(-15, 15, -10, 10, 0, 1));
+    scene.insert(best.map.getVisualization());
+    for (size_t k = 0; k < filter->robotCount(); k++) {
+        core::TumTrajectory path;
+        for (const auto& [t, p] : CMultiRobotVisualSLAM::pathOf(best, k)) path.push_back(t, to3D(p));
+        scene.insert(core::trajectoryAsLines(path, robotColour(k),
+                                             "estimate " + filterOptions.robots[k]));
+    }
+}
+
+void MultiRobotVSLAMApp::run()
+{
+    auto& d = *m_impl;
+    core::OutputDirectory out(outDir);
+    core::RunTimer timer;
+    core::RawlogReader reader(d.rawlog);
+    core::ProgressReporter progress("multirobot-vslam", 0, d.args.quiet);
+
+    std::set<std::string> stepLabels;
+    std::vector<std::string> odometryLabels;
+    for (const auto& r : robots) {
+        stepLabels.insert(r + d.filterOptions.landmarks_suffix);
+        stepLabels.insert(r + "_STEREO");
+        odometryLabels.push_back(r + "_ODOM");
+    }
+    core::ActionFrameSource source(reader, stepLabels, d.motionModel, odometryLabels);
+    std::vector<mrpt::poses::CPose2D> odometry;
+    for (const auto& p : d.startPoses) odometry.emplace_back(p);
+    estimatedPaths.assign(robots.size(), {});
+    odometryPaths.assign(robots.size(), {});
+    mrpt::obs::CActionCollection::Ptr actions;
+    mrpt::obs::CSensoryFrame::Ptr frame;
+    while (source.next(actions, frame)) {
+        d.prepareFrame(*frame);
+        const double t = mrpt::Clock::toDouble(actions->begin()->get()->timestamp);
+        if (d.steps == 0) d.filter->reset(d.startPoses, t);
+        timer.startStep();
+        d.pf.executeOn(*d.filter, actions.get(), frame.get());
+        timer.endStep();
+
+        for (size_t k = 0; k < robots.size(); k++) {
+            const auto move = std::dynamic_pointer_cast<mrpt::obs::CActionRobotMovement2D>(
+                actions->get(k));
+            odometry[k] = odometry[k] + move->poseChange->getMeanVal();
+            odometryPaths[k].push_back(t, to3D(odometry[k].asTPose()));
+        }
+        d.measurements += d.filter->lastStepStats.measurements;
+        progress.update(++d.steps);
+        if (d.window) {
+            auto& scene = d.window->get3DSceneAndLock();
+            scene->clear();
+            d.drawBestParticle(*scene);
+            d.window->unlockAccess3DScene();
+            d.window->forceRepaint();
+        }
+    }
+    progress.finish(d.steps);
+    std::string odoLabels;
+    for (const auto& l : odometryLabels) odoLabels += (odoLabels.empty() ? "" : ", ") + l;
+    if (d.steps == 0)
+        throw std::runtime_error(d.rawlog + ": no team steps (observation-only rawlog with " +
+                                 odoLabels + " and <ROBOT>" + d.filterOptions.landmarks_suffix +
+                                 " or <ROBOT>_STEREO); the rawlog has: " +
+                                 reader.summary().describe());
+    if (d.measurements == 0)
+        throw std::runtime_error(d.rawlog + ": no landmark measurements for robots " + odoLabels +
+                                 "; the rawlog has: " + reader.summary().describe());
+    for (size_t k = 0; k < robots.size(); k++)
+        for (const auto& [t, p] : CMultiRobotVisualSLAM::pathOf(d.filter->bestParticle(), k))
+            if (estimatedPaths[k].empty() || t > estimatedPaths[k].timestamps.back())
+                estimatedPaths[k].push_back(t, to3D(p));
+    d.writeOutputs(*this, timer);
+}
+
+std::string MultiRobotVSLAMApp::Impl::landmarkMergingJson(const core::LandmarkFile& truth) const
+{
+    // each map landmark goes to its nearest true landmark within gt_match_radius
+    const auto& best = filter->bestParticle();
+    std::vector<size_t> count(truth.landmarks.size(), 0);
+    std::vector<uint32_t> robotsOf(truth.landmarks.size(), 0), bitsOfOne(truth.landmarks.size(), 0);
+    size_t unmatched = 0, severalRobots = 0;
+    best.map.landmarks().forEach([&](uint32_t, const TVisualLandmark& lm) {
+        if (std::bitset<32>(lm.seen_by).count() > 1) severalRobots++;
+        double bestD = gtMatchRadius;
+        std::optional<size_t> g;
+        for (size_t i = 0; i < truth.landmarks.size(); i++) {
+            const auto& p = truth.landmarks[i].position;
+            const double dist = (lm.mean - Eigen::Vector3d(p.x, p.y, p.z)).norm();
+            if (dist <= bestD) bestD = dist, g = i;
+        }
+        if (!g) {
+            unmatched++;
+            return;
+        }
+        count[*g]++;
+        robotsOf[*g] |= lm.seen_by;
+        bitsOfOne[*g] = lm.seen_by;
+    });
+    size_t mapped = 0, once = 0, duplicated = 0, byTeam = 0, byTeamMerged = 0, byTeamDuplicated = 0;
+    for (size_t i = 0; i < count.size(); i++) {
+        if (count[i] == 0) continue;
+        mapped++;
+        (count[i] == 1 ? once : duplicated)++;
+        if (std::bitset<32>(robotsOf[i]).count() < 2) continue;
+        byTeam++;  // measured by several robots, through one landmark or several
+        if (count[i] == 1 && std::bitset<32>(bitsOfOne[i]).count() >= 2) byTeamMerged++;
+        else byTeamDuplicated++;
+    }
+    std::ostringstream j;
+    j << "{\"match_radius_m\": " << gtMatchRadius << ", \"map_landmarks\": " << best.map.size()
+      << ", \"map_landmarks_seen_by_several_robots\": " << severalRobots
+      << ", \"map_landmarks_without_true_landmark\": " << unmatched
+      << ", \"true_landmarks\": " << truth.landmarks.size()
+      << ", \"true_landmarks_mapped\": " << mapped << ", \"true_landmarks_mapped_once\": " << once
+      << ", \"true_landmarks_duplicated\": " << duplicated
+      << ", \"true_landmarks_seen_by_several_robots\": " << byTeam
+      << ", \"of_those_merged\": " << byTeamMerged
+      << ", \"of_those_duplicated\": " << byTeamDuplicated << "}";
+    return j.str();
+}
+
+void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core::RunTimer& timer)
+{
+    core::OutputDirectory out(app.outDir);
+    const auto& best = filter->bestParticle();
+    for (size_t k = 0; k < app.robots.size(); k++) {
+        const std::string& r = app.robots[k];
+        app.estimatedPaths[k].save(out.file("estimated_path_" + r + ".tum"),
+                                   "multirobot-vslam: best particle's path of " + r);
+        app.odometryPaths[k].save(out.file("odometry_path_" + r + ".tum"),
+                                  "multirobot-vslam: dead reckoning of " + r);
+    }
+    best.map.saveMetricMapRepresentationToFile(out.file("map.tmp"));
+    core::AtomicFile::commitRename(out.file("map.tmp_descriptors.txt"),
+                                   out.file("map_descriptors.txt"));
+    core::AtomicFile::commitRename(out.file("map.tmp.txt"), out.file("map.txt"));
+    core::saveObjectGz(best.map, out.file("final_map.gz"));
+
+    mrpt::opengl::COpenGLScene scene;
+    drawBestParticle(scene);
+    for (size_t k = 0; k < app.robots.size(); k++) {
+        scene.insert(core::trajectoryAsLines(app.odometryPaths[k], {0.9f, 0.1f, 0.1f},
+                                             "odometry " + app.robots[k]));
+        if (groundTruth[k])
+            scene.insert(core::trajectoryAsLines(*groundTruth[k], {0, 0, 0},
+                                                 "ground truth " + app.robots[k]));
+    }
+    const std::string landmarksFile = groundTruthPrefix + ".landmarks.txt";
+    std::optional<core::LandmarkFile> trueLandmarks;
+    if (mrpt::system::fileExists(landmarksFile)) {
+        trueLandmarks = core::LandmarkFile::load(landmarksFile);
+        std::vector<mrpt::math::TPoint3D> pts;
+        for (const auto& lm : trueLandmarks->landmarks) pts.push_back(lm.position);
+        scene.insert(core::pointsAsCrosses(pts, {0, 0, 0}));
+    }
+    core::saveScene(scene, out.file("final.3Dscene"));
+
+    cfg.writeEffectiveConfig(out.file("config.ini"));
+    core::RunReport report("multirobot-vslam");
+    report.setCommandLine(args.commandLine);
+    report.setConfig(args.configFile, cfg.effectiveText());
+    report.setRawlog(rawlog);
+    report.setSeed(seed);
+    report.setOpenCvVersion(CV_VERSION);
+    report.setCount("robots", static_cast<double>(app.robots.size()));
+    report.setCount("steps", static_cast<double>(steps));
+    report.setCount("stereo_frames", static_cast<double>(stereoFrames));
+    report.setCount("landmark_observations", static_cast<double>(landmarkObservations));
+    report.setCount("measurements", static_cast<double>(measurements));
+    report.setCount("particles", static_cast<double>(filter->particlesCount()));
+    report.setCount("landmarks", static_cast<double>(best.map.size()));
+    report.setTiming(timer);
+    if (trueLandmarks) report.setResultJson("landmark_merging", landmarkMergingJson(*trueLandmarks));
+    bool anyGroundTruth = false;
+    for (const auto& g : groundTruth) anyGroundTruth = anyGroundTruth || g.has_value();
+    if (anyGroundTruth) report.setGroundTruth(groundTruthPrefix);
+    report.write(out.file("run.json"));
+
+    if (anyGroundTruth) {
+        core::TEvalParams eval;
+        eval.run_dir = app.outDir;
+        eval.ground_truth = groundTruthPrefix;
+        core::evaluateRunFolder(eval);
+    }
+}
+
+}  // namespace mrpt_vslam::multirobot

@@ -1,0 +1,125 @@
+#include <gtest/gtest.h>
+#include <mrpt/bayes/CParticleFilter.h>
+#include <mrpt/random/RandomGenerators.h>
+#include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
+#include <mrpt_vslam/test/SyntheticTeamWorld.h>
+
+#include <bitset>
+
+using namespace mrpt_vslam::multirobot;
+using mrpt_vslam::test::SyntheticTeamWorld;
+
+namespace {
+mrpt::bayes::CParticleFilter standardFilter()
+{
+    mrpt::bayes::CParticleFilter pf;
+    pf.m_options.PF_algorithm = mrpt::bayes::CParticleFilter::pfStandardProposal;
+    pf.m_options.resamplingMethod = mrpt::bayes::CParticleFilter::prSystematic;
+    pf.m_options.BETA = 0.5;  // Alg. 1 line 13
+    pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
+    return pf;
+}
+
+double positionError(const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b)
+{
+    return std::hypot(a.x - b.x, a.y - b.y);
+}
+}  // namespace
+
+TEST(CMultiRobotVisualSLAM, TeamWeightIsTheProductOverRobotsAndMeasurements)
+{
+    SyntheticTeamWorld::TParams wp;
+    wp.landmarks = 300;
+    SyntheticTeamWorld world(wp);
+    CMultiRobotVisualSLAM filter(CVisualLandmarksMap(), 5, 3);
+    filter.options.max_observations_per_robot = 6;
+    filter.reset(world.startPoses(), world.time);
+    auto pf = standardFilter();
+    pf.m_options.BETA = 0;  // never resample: compare particle by particle
+    mrpt::obs::CActionCollection acts;
+    mrpt::obs::CSensoryFrame sf;
+    for (int i = 0; i < 3; i++) {
+        world.step(acts, sf);
+        pf.executeOn(filter, &acts, &sf);
+    }
+    // replay the next step on copies of the maps, with the poses the filter sampled
+    world.step(acts, sf);
+    std::vector<CVisualLandmarksMap> before;
+    std::vector<double> acc_before;
+    for (size_t i = 0; i < filter.particlesCount(); i++) {
+        before.push_back(filter.m_particles[i].d->map);
+        acc_before.push_back(filter.m_particles[i].d->accumulated_log_w);
+    }
+    pf.executeOn(filter, &acts, &sf);
+    ASSERT_GT(filter.lastStepStats.associated, 0u);
+    double total_expected = 0;
+    for (size_t i = 0; i < filter.particlesCount(); i++) {
+        const auto& p = *filter.m_particles[i].d;
+        double expected = 0;
+        for (size_t k = 0; k < 2; k++) {
+            auto obs = sf.getObservationBySensorLabelAs<mrpt::obs::CObservationVisualLandmarks::Ptr>(
+                "R" + std::to_string(k + 1) + "_LANDMARKS");
+            for (const auto& m : selectNearest(measurementsFromObservation(*obs), 6)) {
+                const auto in_map = toMapFrame(m, p.poses[k]);
+                // wide search: the result must not depend on the filter's spread radius
+                auto candidates = before[i].findCandidates(m, in_map, 10);
+                expected += before[i].fuse(m, in_map, candidates, static_cast<unsigned>(k)).log_w;
+            }
+        }
+        EXPECT_NEAR(p.accumulated_log_w - acc_before[i], expected, 1e-6) << "particle " << i;
+        total_expected += expected;
+    }
+    EXPECT_TRUE(std::isfinite(total_expected));
+}
+
+TEST(CMultiRobotVisualSLAM, TwoRobotsBeatOdometryAndMergeSharedLandmarks)
+{
+    SyntheticTeamWorld::TParams wp;
+    wp.landmarks = 500;
+    wp.seed = 7;
+    SyntheticTeamWorld world(wp);
+    CMultiRobotVisualSLAM filter(CVisualLandmarksMap(), 500, 11);
+    mrpt::random::getRandomGenerator().randomize(11);
+    filter.options.max_observations_per_robot = 8;
+    filter.reset(world.startPoses(), world.time);
+    auto pf = standardFilter();
+    mrpt::obs::CActionCollection acts;
+    mrpt::obs::CSensoryFrame sf;
+    const int steps = 140;  // two laps of 13.8 m circles, M = 500 as the paper online
+    std::vector<std::vector<mrpt::math::TPose2D>> truth(2), odo(2);
+    for (int i = 0; i < steps; i++) {
+        world.step(acts, sf);
+        pf.executeOn(filter, &acts, &sf);
+        for (size_t k = 0; k < 2; k++) {
+            truth[k].push_back(world.truth[k]);
+            odo[k].push_back(world.odometry[k]);
+        }
+    }
+    const auto& best = filter.bestParticle();
+    for (size_t k = 0; k < 2; k++) {
+        const auto path = CMultiRobotVisualSLAM::pathOf(best, k);
+        ASSERT_EQ(path.size(), static_cast<size_t>(steps + 1));
+        double se = 0, se_odo = 0;
+        for (int i = 0; i < steps; i++) {
+            se += std::pow(positionError(path[i + 1].second, truth[k][i]), 2);
+            se_odo += std::pow(positionError(odo[k][i], truth[k][i]), 2);
+        }
+        const double rmse = std::sqrt(se / steps), rmse_odo = std::sqrt(se_odo / steps);
+        EXPECT_LT(rmse, 0.25) << "robot " << k;
+        EXPECT_LT(rmse, 0.5 * rmse_odo) << "robot " << k << " odometry " << rmse_odo;
+    }
+    // landmarks against the true points (identified by their descriptors): a point both
+    // robots measured must be one landmark
+    size_t merged = 0, duplicated = 0, far = 0;
+    std::vector<int> hits(world.points.size(), 0);
+    best.map.landmarks().forEach([&](uint32_t id, const TVisualLandmark& lm) {
+        const size_t i = world.pointOfDescriptor(best.map.descriptorPool().descriptor(id));
+        hits[i]++;
+        if ((world.points[i] - lm.mean).norm() > 0.3) far++;
+        if (std::bitset<32>(lm.seen_by).count() == 2) merged++;
+    });
+    for (int h : hits) duplicated += h > 1 ? 1 : 0;
+    EXPECT_GT(merged, 20u) << "landmarks both robots measured";
+    EXPECT_LT(duplicated, merged / 10 + 2);
+    EXPECT_LT(far, best.map.size() / 10);
+}

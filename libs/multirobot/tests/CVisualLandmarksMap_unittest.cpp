@@ -1,0 +1,220 @@
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/io/CMemoryStream.h>
+#include <mrpt/maps/CMultiMetricMap.h>
+#include <mrpt/opengl/CSetOfObjects.h>
+#include <mrpt/serialization/CArchive.h>
+#include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/multirobot/CVisualLandmarksMap.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
+
+#include <Eigen/Dense>
+#include <random>
+
+using namespace mrpt_vslam::multirobot;
+
+namespace {
+LandmarkDescriptorPool::TDescriptor unitDescriptor(int seed)
+{
+    std::mt19937 gen(seed);
+    std::normal_distribution<float> n;
+    LandmarkDescriptorPool::TDescriptor d;
+    float norm = 0;
+    for (auto& v : d) {
+        v = n(gen);
+        norm += v * v;
+    }
+    for (auto& v : d) v /= std::sqrt(norm);
+    return d;
+}
+
+/// A measurement already in the map frame (robot at the origin, identity rotation).
+TLandmarkMeasurement measurement(const Eigen::Vector3d& z, double sigma, int descriptor_seed)
+{
+    TLandmarkMeasurement m;
+    m.z = z;
+    m.R = Eigen::Matrix3d::Identity() * sigma * sigma;
+    m.d = unitDescriptor(descriptor_seed);
+    m.depth = z.x();
+    return m;
+}
+
+TVisualLandmark landmarkAt(const Eigen::Vector3d& p, double sigma)
+{
+    TVisualLandmark lm;
+    lm.mean = p;
+    lm.cov = Eigen::Matrix3d::Identity() * sigma * sigma;
+    lm.times_seen = 1;
+    lm.seen_by = 1;
+    return lm;
+}
+
+TFusionResult fuseAtOrigin(CVisualLandmarksMap& map, const TLandmarkMeasurement& m,
+                           unsigned robot = 0)
+{
+    const TMapMeasurement in_map = toMapFrame(m, {0, 0, 0});
+    auto candidates = map.findCandidates(m, in_map);
+    return map.fuse(m, in_map, candidates, robot);
+}
+}  // namespace
+
+TEST(CVisualLandmarksMap, AmongGatedLandmarksTheDescriptorDecides)
+{
+    // Alg. 1 lines 27-29: two landmarks 5 cm apart, both inside D0; the one with the closer
+    // descriptor wins even though it is farther in Mahalanobis distance.
+    CVisualLandmarksMap map;
+    const uint32_t a = map.addLandmark(landmarkAt({2, 0, 1}, 0.1), unitDescriptor(1));
+    const uint32_t b = map.addLandmark(landmarkAt({2, 0.05, 1}, 0.1), unitDescriptor(2));
+    auto m = measurement({2, 0.01, 1}, 0.05, 2);  // nearer to a, descriptor of b
+    const auto r = fuseAtOrigin(map, m, 1);
+    EXPECT_FALSE(r.created);
+    EXPECT_EQ(r.id, b);
+    EXPECT_NE(r.id, a);
+    EXPECT_EQ(map.landmarks().find(b)->seen_by, 0b11u) << "robots 0 and 1 measured it";
+    EXPECT_EQ(map.landmarks().find(b)->times_seen, 2u);
+}
+
+TEST(CVisualLandmarksMap, SameDescriptorOutsideTheGateIsANewLandmark)
+{
+    // repetitive texture: the descriptor matches, the position does not (line 28)
+    CVisualLandmarksMap map;
+    map.insertionOptions.search_radius = 5;
+    map.addLandmark(landmarkAt({2, 0, 1}, 0.05), unitDescriptor(1));
+    const auto r = fuseAtOrigin(map, measurement({2, 1.0, 1}, 0.05, 1));
+    EXPECT_TRUE(r.created);
+    EXPECT_EQ(map.size(), 2u);
+    EXPECT_NEAR(r.log_w, std::log(map.insertionOptions.p0), 1e-12) << "line 36: ω = p0";
+}
+
+TEST(CVisualLandmarksMap, DifferentDescriptorAtTheSamePlaceIsANewLandmark)
+{
+    CVisualLandmarksMap map;
+    map.addLandmark(landmarkAt({2, 0, 1}, 0.1), unitDescriptor(1));
+    const auto r = fuseAtOrigin(map, measurement({2, 0, 1}, 0.05, 9));  // E ≈ 2 > E0
+    EXPECT_TRUE(r.created);
+    // the new landmark: μ = z, Σ = R (line 34-35)
+    const auto* lm = map.landmarks().find(r.id);
+    ASSERT_NE(lm, nullptr);
+    EXPECT_TRUE(lm->mean.isApprox(Eigen::Vector3d(2, 0, 1)));
+    EXPECT_TRUE(lm->cov.isApprox(Eigen::Matrix3d::Identity() * 0.0025));
+}
+
+TEST(CVisualLandmarksMap, EkfUpdateAndWeightMatchTheCameraFrameEquations)
+{
+    // Eq. 6-13 written in the sensor frame with g(x, l) = Rᵀ(l − t), G = Rᵀ, versus the map
+    // frame update fuse() does, for a rotated robot and full covariances.
+    CVisualLandmarksMap map;
+    TVisualLandmark lm;
+    lm.mean = {3.0, 1.0, 1.2};
+    Eigen::Matrix3d A;
+    A << 0.3, 0.1, 0.0, -0.05, 0.2, 0.07, 0.02, 0.01, 0.25;
+    lm.cov = A * A.transpose();
+    lm.times_seen = 1;
+    const uint32_t id = map.addLandmark(lm, unitDescriptor(4));
+
+    const mrpt::math::TPose2D robot(0.5, -0.3, 0.4);
+    const double c = std::cos(robot.phi), s = std::sin(robot.phi);
+    Eigen::Matrix3d Rot;
+    Rot << c, -s, 0, s, c, 0, 0, 0, 1;
+    const Eigen::Vector3d t(robot.x, robot.y, 0);
+    TLandmarkMeasurement m;
+    m.z = Rot.transpose() * (Eigen::Vector3d(3.1, 0.95, 1.25) - t);  // robot frame
+    Eigen::Matrix3d B;
+    B << 0.1, 0.02, 0.01, 0.0, 0.15, 0.03, 0.0, 0.0, 0.2;
+    m.R = B * B.transpose();
+    m.d = unitDescriptor(4);
+
+    const Eigen::Matrix3d G = Rot.transpose();                          // Eq. 7
+    const Eigen::Vector3d z_hat = G * (lm.mean - t);                     // Eq. 6
+    const Eigen::Matrix3d Z = G * lm.cov * G.transpose() + m.R;          // Eq. 8
+    const Eigen::Matrix3d K = lm.cov * G.transpose() * Z.inverse();      // Eq. 9
+    const Eigen::Vector3d mu = lm.mean + K * (m.z - z_hat);              // Eq. 10
+    const Eigen::Matrix3d Sigma = (Eigen::Matrix3d::Identity() - K * G) * lm.cov;  // Eq. 11
+    const Eigen::Vector3d v = m.z - z_hat;
+    const double w = std::exp(-0.5 * v.dot(Z.inverse() * v)) /
+                     std::sqrt((2 * M_PI * Z).determinant());            // Eq. 13
+
+    const TMapMeasurement in_map = toMapFrame(m, robot);
+    auto candidates = map.findCandidates(m, in_map);
+    const auto r = map.fuse(m, in_map, candidates, 0);
+    ASSERT_FALSE(r.created);
+    EXPECT_EQ(r.id, id);
+    EXPECT_NEAR(r.log_w, std::log(w), 1e-9);
+    EXPECT_LT((map.landmarks().find(id)->mean - mu).norm(), 1e-12);
+    EXPECT_LT((map.landmarks().find(id)->cov - Sigma).norm(), 1e-12);
+}
+
+TEST(CVisualLandmarksMap, SerializesCreatesFromIniAndWritesMapTxt)
+{
+    mrpt::config::CConfigFileMemory ini(R"(
+[Map]
+visualLandmarksMap_count = 1
+[Map_visualLandmarksMap_00_insertOpts]
+D0 = 9.0
+E0 = 0.3
+p0 = 0.2
+search_radius = 2.0
+grid_cell_size = 0.5
+[Map_visualLandmarksMap_00_renderOpts]
+draw_ellipsoids = false
+)");
+    mrpt::maps::TSetOfMetricMapInitializers inits;
+    inits.loadFromConfigFile(ini, "Map");
+    mrpt::maps::CMultiMetricMap maps(inits);
+    auto map = maps.mapByClass<CVisualLandmarksMap>();
+    ASSERT_TRUE(map);
+    EXPECT_DOUBLE_EQ(map->insertionOptions.D0, 9.0);
+    EXPECT_DOUBLE_EQ(map->insertionOptions.E0, 0.3);
+    EXPECT_DOUBLE_EQ(map->descriptorPool().cellSize(), 0.5);
+    for (int i = 0; i < 20; i++)
+        fuseAtOrigin(*map, measurement({2.0 + i * 0.3, 0.1 * i, 1}, 0.05, 100 + i), i % 2);
+    ASSERT_EQ(map->size(), 20u);
+
+    mrpt::io::CMemoryStream buf;
+    auto out = mrpt::serialization::archiveFrom(buf);
+    out << maps;  // polymorphic, as particle copies and final_map.gz do
+    buf.Seek(0);
+    mrpt::maps::CMultiMetricMap back;
+    auto in = mrpt::serialization::archiveFrom(buf);
+    in >> back;
+    auto read = back.mapByClass<CVisualLandmarksMap>();
+    ASSERT_TRUE(read);
+    ASSERT_EQ(read->size(), 20u);
+    EXPECT_DOUBLE_EQ(read->insertionOptions.p0, 0.2);
+    map->landmarks().forEach([&](uint32_t id, const TVisualLandmark& lm) {
+        const auto* r = read->landmarks().find(id);
+        ASSERT_NE(r, nullptr);
+        EXPECT_EQ(r->mean, lm.mean);
+        EXPECT_EQ(r->cov, lm.cov);
+        EXPECT_EQ(r->seen_by, lm.seen_by);
+        EXPECT_EQ(read->descriptorPool().descriptor(id), map->descriptorPool().descriptor(id));
+    });
+    // the read map associates like the original
+    const auto again = fuseAtOrigin(*read, measurement({2.3, 0.1, 1}, 0.05, 101));
+    EXPECT_FALSE(again.created);
+    EXPECT_EQ(again.id, 1u);
+
+    mrpt_vslam::test::ScratchFolder dir("visual_map_txt");
+    map->saveMetricMapRepresentationToFile((dir.path() / "map").string());
+    const auto file = mrpt_vslam::core::LandmarkFile::load((dir.path() / "map.txt").string());
+    ASSERT_EQ(file.landmarks.size(), 20u);
+    EXPECT_TRUE(file.landmarks[3].has_cov);
+    EXPECT_NEAR(file.landmarks[3].position.x, 2.9, 1e-9);
+    EXPECT_TRUE(std::filesystem::exists(dir.path() / "map_descriptors.txt"));
+
+    mrpt::opengl::CSetOfObjects scene;
+    map->getVisualizationInto(scene);
+    EXPECT_EQ(scene.size(), 1u) << "points only: draw_ellipsoids = false";
+}
+
+TEST(CVisualLandmarksMap, RejectsImpossibleOptions)
+{
+    mrpt::config::CConfigFileMemory ini(R"(
+[Map]
+visualLandmarksMap_count = 1
+[Map_visualLandmarksMap_00_insertOpts]
+E0 = -1
+)");
+    mrpt::maps::TSetOfMetricMapInitializers inits;
+    EXPECT_ANY_THROW(inits.loadFromConfigFile(ini, "Map"));
+}

@@ -1,0 +1,76 @@
+#include <gtest/gtest.h>
+#include <mrpt_vslam/multirobot/LandmarkDescriptorPool.h>
+
+#include <random>
+#include <set>
+
+using mrpt_vslam::multirobot::LandmarkDescriptorPool;
+using mrpt_vslam::multirobot::TLandmarkCandidate;
+
+namespace {
+LandmarkDescriptorPool::TDescriptor randomDescriptor(std::mt19937& gen)
+{
+    std::normal_distribution<float> n;
+    LandmarkDescriptorPool::TDescriptor d;
+    float norm = 0;
+    for (auto& v : d) {
+        v = n(gen);
+        norm += v * v;
+    }
+    for (auto& v : d) v /= std::sqrt(norm);
+    return d;
+}
+}  // namespace
+
+TEST(LandmarkDescriptorPool, CandidatesEqualABruteForceScan)
+{
+    std::mt19937 gen(5);
+    std::uniform_real_distribution<double> u(-10, 10);
+    LandmarkDescriptorPool pool(0.7);
+    // a few families of equal descriptors plus unique ones, so both E outcomes occur
+    std::vector<LandmarkDescriptorPool::TDescriptor> families;
+    for (int f = 0; f < 7; f++) families.push_back(randomDescriptor(gen));
+    std::vector<LandmarkDescriptorPool::TDescriptor> ds;
+    for (int i = 0; i < 2000; i++) {
+        const auto d = i % 5 == 0 ? randomDescriptor(gen) : families[i % 7];
+        ds.push_back(d);
+        EXPECT_EQ(pool.add(d, {u(gen), u(gen), u(gen) / 5}), static_cast<uint32_t>(i));
+    }
+    size_t total = 0;
+    for (int q = 0; q < 200; q++) {
+        const Eigen::Vector3d c(u(gen), u(gen), u(gen) / 5);
+        const double radius = 0.3 + (q % 10) * 0.4;
+        const auto query = ds[q % ds.size()];
+        const double max_E = (q % 3) * 0.5;
+        std::vector<TLandmarkCandidate> got;
+        pool.findCandidates(c, radius, query, max_E, got);
+        std::vector<uint32_t> expected;
+        for (uint32_t id = 0; id < pool.size(); id++)
+            if ((pool.creationPosition(id) - c).norm() <= radius &&
+                LandmarkDescriptorPool::squaredDistance(query, pool.descriptor(id)) <= max_E)
+                expected.push_back(id);
+        ASSERT_EQ(got.size(), expected.size()) << "query " << q;
+        for (size_t i = 0; i < got.size(); i++) {
+            EXPECT_EQ(got[i].id, expected[i]);
+            EXPECT_FLOAT_EQ(got[i].E, LandmarkDescriptorPool::squaredDistance(
+                                          query, pool.descriptor(got[i].id)));
+        }
+        total += got.size();
+    }
+    EXPECT_GT(total, 100u) << "the queries must find something for the comparison to mean much";
+}
+
+TEST(LandmarkDescriptorPool, IdsAndErrors)
+{
+    std::mt19937 gen(1);
+    LandmarkDescriptorPool pool;
+    const auto d = randomDescriptor(gen);
+    pool.addWithId(7, d, {1, 2, 3});
+    EXPECT_TRUE(pool.contains(7));
+    EXPECT_FALSE(pool.contains(3));
+    EXPECT_EQ(pool.add(d, {0, 0, 0}), 8u);
+    EXPECT_THROW(pool.addWithId(7, d, {0, 0, 0}), std::invalid_argument);
+    EXPECT_THROW(pool.add(d, {NAN, 0, 0}), std::invalid_argument);
+    EXPECT_THROW(LandmarkDescriptorPool(0.0), std::invalid_argument);
+    EXPECT_FLOAT_EQ(LandmarkDescriptorPool::squaredDistance(d, d), 0.0f);
+}

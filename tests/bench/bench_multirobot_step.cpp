@@ -1,0 +1,54 @@
+// One step of the multi-robot visual SLAM filter (paper 003, Alg. 1 lines 5-15) on the
+// synthetic team world, for the (M, B, K) of the issue: (500, 8, 2), (1500, 20, 2),
+// (3000, 20, 3). The map is first built over 60 steps; the timed steps continue the run.
+#include <benchmark/benchmark.h>
+#include <mrpt/bayes/CParticleFilter.h>
+#include <mrpt/random/RandomGenerators.h>
+#include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
+#include <mrpt_vslam/test/SyntheticTeamWorld.h>
+
+namespace {
+using namespace mrpt_vslam;
+constexpr size_t kWarmUp = 60, kTimed = 100;
+
+void BM_MultiRobotStep(benchmark::State& state)
+{
+    const auto M = static_cast<size_t>(state.range(0));
+    const auto B = static_cast<unsigned>(state.range(1));
+    const auto K = static_cast<size_t>(state.range(2));
+    test::SyntheticTeamWorld::TParams wp;
+    wp.robots = K;
+    wp.landmarks = 1500;
+    test::SyntheticTeamWorld world(wp);
+    multirobot::CMultiRobotVisualSLAM filter(multirobot::CVisualLandmarksMap(), M, 1);
+    filter.options.robots.clear();
+    for (size_t k = 0; k < K; k++) filter.options.robots.push_back("R" + std::to_string(k + 1));
+    filter.options.max_observations_per_robot = B;
+    filter.reset(world.startPoses(), world.time);
+    mrpt::random::getRandomGenerator().randomize(1);
+    mrpt::bayes::CParticleFilter pf;
+    pf.m_options.PF_algorithm = mrpt::bayes::CParticleFilter::pfStandardProposal;
+    pf.m_options.resamplingMethod = mrpt::bayes::CParticleFilter::prSystematic;
+    pf.m_options.BETA = 0.5;
+    pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
+
+    // pre-generated steps so that only the filter is timed
+    std::vector<mrpt::obs::CActionCollection> acts(kWarmUp + kTimed);
+    std::vector<mrpt::obs::CSensoryFrame> frames(kWarmUp + kTimed);
+    for (size_t i = 0; i < acts.size(); i++) world.step(acts[i], frames[i]);
+    size_t i = 0;
+    for (; i < kWarmUp; i++) pf.executeOn(filter, &acts[i], &frames[i]);
+    for (auto _ : state) {
+        pf.executeOn(filter, &acts[i], &frames[i]);
+        i++;
+    }
+    state.counters["landmarks"] = static_cast<double>(filter.bestParticle().map.size());
+}
+}  // namespace
+
+BENCHMARK(BM_MultiRobotStep)
+    ->Args({500, 8, 2})
+    ->Args({1500, 20, 2})
+    ->Args({3000, 20, 3})
+    ->Iterations(kTimed)
+    ->Unit(benchmark::kMillisecond);
