@@ -51,6 +51,10 @@ std::optional<TSimCommandLine> parseSimCommandLine(int argc, char** argv)
                                       "SECTION.KEY=VALUE", cmd);
     TCLAP::ValueArg<int> frames("n", "frames", "Simulate only the first N frames", false, -1, "N",
                                 cmd);
+    TCLAP::ValueArg<int> robots("r", "robots",
+                                "Robots of the team (office-team: 2 or 3, default 2; "
+                                "sports-hall: 1)",
+                                false, -1, "N", cmd);
     TCLAP::SwitchArg no_images("", "no-images", "Do not render nor store images", cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "No progress output", cmd);
 
@@ -64,6 +68,8 @@ std::optional<TSimCommandLine> parseSimCommandLine(int argc, char** argv)
     if (seed.getValue() < 0) throw mrpt_vslam::core::UsageError("--seed must be >= 0");
     if (frames.isSet() && frames.getValue() <= 0)
         throw mrpt_vslam::core::UsageError("--frames must be > 0");
+    if (robots.isSet() && robots.getValue() <= 0)
+        throw mrpt_vslam::core::UsageError("--robots must be > 0");
     if (out.getValue().empty()) throw mrpt_vslam::core::UsageError("--out must not be empty");
 
     TSimCommandLine c;
@@ -73,6 +79,7 @@ std::optional<TSimCommandLine> parseSimCommandLine(int argc, char** argv)
     c.sets = sets.getValue();
     c.seed = static_cast<uint64_t>(seed.getValue());
     c.frames = frames.getValue();
+    c.robots = robots.getValue();
     c.no_images = no_images.getValue();
     c.quiet = quiet.getValue();
     return c;

@@ -13,6 +13,7 @@ struct TSimCommandLine {
     std::vector<std::string> sets;  ///< --set SECTION.KEY=VALUE, in order
     uint64_t seed = 1;              ///< --seed
     int frames = -1;                ///< --frames; −1 = the scenario's full run
+    int robots = -1;                ///< --robots; −1 = the scenario's default
     bool no_images = false;         ///< --no-images
     bool quiet = false;             ///< --quiet
 };

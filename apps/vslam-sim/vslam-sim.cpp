@@ -48,6 +48,7 @@ int main(int argc, char** argv)
         opts.out_prefix = cli->out_prefix;
         opts.seed = cli->seed;
         opts.frames = cli->frames;
+        opts.robots = cli->robots;
         opts.write_images = !cli->no_images;
         if (!cli->quiet)
             opts.on_progress = [&](int done, int total) {
@@ -56,12 +57,15 @@ int main(int argc, char** argv)
 
         mrpt::system::CTicTac timer;
         const mrpt_vslam::sim::TSimulationSummary s = scenario->run(opts);
-        if (!cli->quiet)
+        if (!cli->quiet) {
+            const std::string team =
+                s.robots > 1 ? ", " + std::to_string(s.robots) + " robots" : std::string();
             std::fprintf(stderr,
-                         "vslam-sim: wrote %s.rawlog: %d frames, %zu light and %zu spurious "
-                         "bearings, path %.1f m, seed %llu, %.1f s\n",
-                         opts.out_prefix.c_str(), s.frames, s.light_bearings, s.spurious_bearings,
+                         "vslam-sim: wrote %s.rawlog: %d frames%s, %s, path %.1f m, "
+                         "seed %llu, %.1f s\n",
+                         opts.out_prefix.c_str(), s.frames, team.c_str(), s.details.c_str(),
                          s.path_length, static_cast<unsigned long long>(opts.seed), timer.Tac());
+        }
         return 0;
     } catch (const mrpt_vslam::core::UsageError& e) {
         std::cerr << "vslam-sim: error: " << mrpt_vslam::core::oneLineMessage(e) << "\n";

@@ -19,6 +19,18 @@ std::vector<TCeilingLight> CeilingLights::lights() const
     return out;
 }
 
+core::LandmarkFile CeilingLights::asLandmarkFile() const
+{
+    core::LandmarkFile file;
+    for (const TCeilingLight& l : lights()) {
+        core::TLandmark lm;
+        lm.id = l.id;
+        lm.position = l.position;
+        file.landmarks.push_back(lm);
+    }
+    return file;
+}
+
 bool CeilingLights::isWashedOut(const TCeilingLight& light, double t) const
 {
     if (light.position.x < washout_x_min) return false;

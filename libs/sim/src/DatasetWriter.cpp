@@ -14,11 +14,13 @@ namespace fs = std::filesystem;
 
 namespace mrpt_vslam::sim {
 
-DatasetWriter::DatasetWriter(const std::string& out_prefix, bool with_images)
+DatasetWriter::DatasetWriter(const std::string& out_prefix, bool with_images,
+                             const std::vector<std::string>& image_labels, TPngCoding image_coding)
     : m_prefix(out_prefix),
       m_rawlog(out_prefix + ".rawlog"),
       m_rawlog_tmp(out_prefix + ".rawlog.tmp"),
-      m_images_dir(out_prefix + "_Images")
+      m_images_dir(out_prefix + "_Images"),
+      m_image_coding(image_coding)
 {
     const fs::path parent = fs::path(out_prefix).parent_path();
     std::error_code ec;
@@ -32,8 +34,9 @@ DatasetWriter::DatasetWriter(const std::string& out_prefix, bool with_images)
         // Images of an earlier, longer run would otherwise stay beside the new ones.
         for (const auto& entry : fs::directory_iterator(m_images_dir)) {
             const std::string file = entry.path().filename().string();
-            if (file.rfind("OMNICAM_", 0) == 0 && entry.path().extension() == ".png")
-                fs::remove(entry.path());
+            for (const std::string& label : image_labels)
+                if (file.rfind(label + "_", 0) == 0 && entry.path().extension() == ".png")
+                    fs::remove(entry.path());
         }
     }
     m_rawlog_out = std::make_unique<mrpt::io::CFileGZOutputStream>();
@@ -49,21 +52,36 @@ DatasetWriter::~DatasetWriter()
     }
 }
 
-std::string DatasetWriter::imageFileName(int frame)
+std::string DatasetWriter::imageFileName(const std::string& label, int frame,
+                                         const std::string& suffix)
 {
     std::ostringstream os;
-    os << "OMNICAM_" << std::setw(6) << std::setfill('0') << frame << ".png";
+    os << label << '_' << std::setw(6) << std::setfill('0') << frame << suffix << ".png";
     return os.str();
 }
 
-void DatasetWriter::writeImage(const mrpt::img::CImage& image, int frame)
+void DatasetWriter::writePng(const mrpt::img::CImage& image, const std::string& file,
+                             TPngCoding coding)
 {
-    const std::string file = m_images_dir + "/" + imageFileName(frame);
     const std::string tmp = file + ".tmp.png";
     const cv::Mat& mat = image.asCvMatRef();
-    if (!cv::imwrite(tmp, mat, {cv::IMWRITE_PNG_COMPRESSION, 9}))
-        throw std::runtime_error(tmp + ": cannot write image");
+    std::vector<int> params{cv::IMWRITE_PNG_COMPRESSION, 9};
+    if (coding == TPngCoding::HuffmanOnly)
+        params.insert(params.end(),
+                      {cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_HUFFMAN_ONLY});
+    if (!cv::imwrite(tmp, mat, params)) throw std::runtime_error(tmp + ": cannot write image");
     core::AtomicFile::commitRename(tmp, file);
+}
+
+void DatasetWriter::writeImage(const mrpt::img::CImage& image, const std::string& file_name)
+{
+    writePng(image, m_images_dir + "/" + file_name, m_image_coding);
+}
+
+void DatasetWriter::writeImageBesideRawlog(const mrpt::img::CImage& image,
+                                           const std::string& suffix)
+{
+    writePng(image, m_prefix + "." + suffix + ".png", TPngCoding::Default);
 }
 
 void DatasetWriter::writeFrame(const mrpt::obs::CActionCollection& actions,
@@ -73,23 +91,19 @@ void DatasetWriter::writeFrame(const mrpt::obs::CActionCollection& actions,
     ar << actions << frame;
 }
 
-void DatasetWriter::commit(const core::TumTrajectory& ground_truth,
-                           const core::TumTrajectory& odometry,
-                           const std::vector<TCeilingLight>& lights)
+void DatasetWriter::writeObservation(const mrpt::obs::CObservation& observation)
 {
-    ground_truth.save(m_prefix + ".groundtruth.tum",
-                      "ground truth: robot base pose in the world (timestamp x y z qx qy qz qw)");
-    odometry.save(m_prefix + ".odometry.tum",
-                  "dead reckoning of the noisy odometry from the true initial pose");
+    auto ar = mrpt::serialization::archiveFrom(*m_rawlog_out);
+    ar << observation;
+}
 
-    core::LandmarkFile landmarks;
-    for (const TCeilingLight& l : lights) {
-        core::TLandmark lm;
-        lm.id = l.id;
-        lm.position = l.position;
-        landmarks.landmarks.push_back(lm);
-    }
-    landmarks.save(m_prefix + ".landmarks.txt");
+void DatasetWriter::commit(const std::vector<TTumFile>& trajectories,
+                           const core::LandmarkFile& landmarks,
+                           const std::string& landmarks_comment)
+{
+    for (const TTumFile& t : trajectories)
+        t.poses.save(m_prefix + "." + t.name + ".tum", t.header_comment);
+    landmarks.save(m_prefix + ".landmarks.txt", landmarks_comment);
 
     m_rawlog_out->close();
     if (m_rawlog_out->fileOpenCorrectly())

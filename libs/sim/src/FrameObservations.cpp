@@ -54,13 +54,42 @@ mrpt::obs::CObservationBearingRange::Ptr makeBearingObservation(
 }
 
 mrpt::obs::CObservationRobotPose::Ptr makeGroundTruthObservation(
-    const mrpt::poses::CPose3D& robot_in_world, mrpt::Clock::time_point stamp)
+    const mrpt::poses::CPose3D& robot_in_world, mrpt::Clock::time_point stamp,
+    const std::string& label)
 {
     auto obs = mrpt::obs::CObservationRobotPose::Create();
-    obs->sensorLabel = kGroundTruthLabel;
+    obs->sensorLabel = label;
     obs->timestamp = stamp;
     obs->pose.mean = robot_in_world;
     obs->pose.cov.setZero();
+    return obs;
+}
+
+mrpt::obs::CObservationOdometry::Ptr makeOdometryObservation(const std::string& label,
+                                                             const mrpt::poses::CPose2D& odometry,
+                                                             mrpt::Clock::time_point stamp)
+{
+    auto obs = mrpt::obs::CObservationOdometry::Create();
+    obs->sensorLabel = label;
+    obs->timestamp = stamp;
+    obs->odometry = odometry;
+    return obs;
+}
+
+mrpt::obs::CObservationStereoImages::Ptr makeStereoObservation(
+    const std::string& label, const std::string& left_file, const std::string& right_file,
+    const mrpt::img::TStereoCamera& camera, const mrpt::poses::CPose3D& camera_on_robot,
+    mrpt::Clock::time_point stamp)
+{
+    auto obs = mrpt::obs::CObservationStereoImages::Create();
+    obs->sensorLabel = label;
+    obs->timestamp = stamp;
+    obs->setStereoCameraParams(camera);
+    obs->cameraPose = mrpt::poses::CPose3DQuat(camera_on_robot);
+    obs->imageLeft.setExternalStorage(left_file);
+    obs->imageRight.setExternalStorage(right_file);
+    obs->hasImageRight = true;
+    obs->hasImageDisparity = false;
     return obs;
 }
 

@@ -15,13 +15,7 @@ namespace mrpt_vslam::sim {
 void SportsHallScenario::loadConfig(const mrpt::config::CConfigFileBase& cfg)
 {
     camera.loadFromConfigFile(cfg, "Camera");
-    const std::string s = "CameraOnRobot";
-    camera_on_robot = mrpt::poses::CPose3D(
-        cfg.read_double(s, "x", camera_on_robot.x()), cfg.read_double(s, "y", camera_on_robot.y()),
-        cfg.read_double(s, "z", camera_on_robot.z()),
-        readDegrees(cfg, s, "yaw_deg", camera_on_robot.yaw()),
-        readDegrees(cfg, s, "pitch_deg", camera_on_robot.pitch()),
-        readDegrees(cfg, s, "roll_deg", camera_on_robot.roll()));
+    camera_on_robot = readPose3D(cfg, "CameraOnRobot", camera_on_robot);
     lights.loadFromConfigFile(cfg, "Lights");
     trajectory.loadFromConfigFile(cfg, "Trajectory");
     odometry.loadFromConfigFile(cfg, "Odometry");
@@ -40,6 +34,8 @@ void SportsHallScenario::loadConfig(const mrpt::config::CConfigFileBase& cfg)
 
 TSimulationSummary SportsHallScenario::run(const TSimulationOptions& options)
 {
+    if (options.robots != -1 && options.robots != 1)
+        throw core::UsageError(name() + " has a single robot: --robots must be 1 or absent");
     const int n = options.frames < 0 ? trajectory.frames : options.frames;
     if (n <= 0) throw core::UsageError("the number of frames must be > 0");
     const std::vector<mrpt::math::TPose2D> poses = trajectory.generate(n);
@@ -50,10 +46,11 @@ TSimulationSummary SportsHallScenario::run(const TSimulationOptions& options)
     const PajdlaBaksteinInverse model(camera);
     const Eigen::Vector2d angular_std = detections.angularStd(camera, bearing_std_reference_theta);
 
-    DatasetWriter writer(options.out_prefix, options.write_images);
+    DatasetWriter writer(options.out_prefix, options.write_images, {kImageLabel});
     core::TumTrajectory ground_truth, odometry_path;
     mrpt::poses::CPose2D odometry_pose(poses.front());
     TSimulationSummary summary;
+    size_t light_bearings = 0, spurious_bearings = 0;
 
     for (int k = 0; k < n; k++) {
         const double t = k * trajectory.frame_period;
@@ -85,9 +82,10 @@ TSimulationSummary SportsHallScenario::run(const TSimulationOptions& options)
             detections.simulate(robot_in_world + camera_on_robot, lights, t, model);
         mrpt::obs::CSensoryFrame sf;
         if (options.write_images) {
-            writer.writeImage(renderer.render(frame, lights.radius, model), k);
-            sf.insert(makeImageObservation(DatasetWriter::imageFileName(k), camera.width,
-                                           camera.height, camera_on_robot, stamp));
+            const std::string file = DatasetWriter::imageFileName(kImageLabel, k);
+            writer.writeImage(renderer.render(frame, lights.radius, model), file);
+            sf.insert(
+                makeImageObservation(file, camera.width, camera.height, camera_on_robot, stamp));
         }
         sf.insert(makeBearingObservation(
             frame, camera_on_robot,
@@ -97,11 +95,17 @@ TSimulationSummary SportsHallScenario::run(const TSimulationOptions& options)
         writer.writeFrame(actions, sf);
 
         summary.frames++;
-        summary.light_bearings += frame.lights.size();
-        summary.spurious_bearings += frame.spurious.size();
+        light_bearings += frame.lights.size();
+        spurious_bearings += frame.spurious.size();
         if (options.on_progress) options.on_progress(k + 1, n);
     }
-    writer.commit(ground_truth, odometry_path, lights.lights());
+    writer.commit({{"groundtruth", ground_truth,
+                    "ground truth: robot base pose in the world (timestamp x y z qx qy qz qw)"},
+                   {"odometry", odometry_path,
+                    "dead reckoning of the noisy odometry from the true initial pose"}},
+                  lights.asLandmarkFile());
+    summary.details = std::to_string(light_bearings) + " light and " +
+                      std::to_string(spurious_bearings) + " spurious bearings";
     return summary;
 }
 

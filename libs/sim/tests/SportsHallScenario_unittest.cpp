@@ -113,7 +113,8 @@ TEST(SportsHallScenario, RawlogHoldsActionsAndFramesConsistentWithTheTextFiles)
             "GROUND_TRUTH");
         ASSERT_TRUE(img && brg && pose) << "frame " << frames;
         EXPECT_TRUE(img->image.isExternallyStored());
-        EXPECT_EQ(img->image.getExternalStorageFile(), DatasetWriter::imageFileName(frames));
+        EXPECT_EQ(img->image.getExternalStorageFile(),
+                  DatasetWriter::imageFileName("OMNICAM", frames));
         // The external image loads lazily through MRPT: 640×480, one channel.
         EXPECT_EQ(img->image.getWidth(), 640u);
         EXPECT_EQ(img->image.getHeight(), 480u);
@@ -138,6 +139,18 @@ TEST(SportsHallScenario, RawlogHoldsActionsAndFramesConsistentWithTheTextFiles)
         frames++;
     }
     EXPECT_EQ(frames, 20);
+}
+
+TEST(SportsHallScenario, RejectsATeam)
+{
+    auto scenario = createScenario("sports-hall");
+    scenario->loadConfig(test::sportsHallConfig());
+    TSimulationOptions opts;
+    opts.out_prefix =
+        (fs::temp_directory_path() / "mrpt_vslam_sim_unittest_team" / "hall").string();
+    opts.robots = 2;
+    EXPECT_THROW(scenario->run(opts), mrpt_vslam::core::UsageError);
+    EXPECT_FALSE(fs::exists(opts.out_prefix + ".rawlog.tmp"));
 }
 
 TEST(SportsHallScenario, UnknownScenarioNamesTheKnownOnes)

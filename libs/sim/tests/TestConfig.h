@@ -18,4 +18,16 @@ inline mrpt::config::CConfigFile sportsHallConfig()
     return mrpt::config::CConfigFile(sportsHallIni());
 }
 
+/// The shipped office-team scenario configuration.
+inline std::string officeTeamIni()
+{
+    return std::string(MRPT_VSLAM_SOURCE_DIR) +
+           "/share/mrpt-vslam/config/vslam-sim/office-team.ini";
+}
+
+inline mrpt::config::CConfigFile officeTeamConfig()
+{
+    return mrpt::config::CConfigFile(officeTeamIni());
+}
+
 }  // namespace mrpt_vslam::sim::test

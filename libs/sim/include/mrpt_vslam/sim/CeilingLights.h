@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPoint3D.h>
+#include <mrpt_vslam/core/LandmarkFile.h>
 
 #include <vector>
 
@@ -33,6 +34,8 @@ class CeilingLights : public mrpt::config::CLoadableOptions {
 
     /// All lights, ordered by id.
     std::vector<TCeilingLight> lights() const;
+    /// The lights as ground-truth landmarks (id, centre).
+    core::LandmarkFile asLandmarkFile() const;
     /// Whether `light` is washed out (invisible) at time t [s] from the start of the run.
     bool isWashedOut(const TCeilingLight& light, double t) const;
 

@@ -12,18 +12,20 @@ namespace mrpt_vslam::sim {
 struct TSimulationOptions {
     std::string out_prefix;    ///< DIR/NAME: files are NAME.rawlog, NAME_Images/, NAME.*.tum ...
     uint64_t seed = 1;         ///< master seed of every random stream
-    int frames = -1;           ///< frames to simulate; −1 = the scenario's full run
-    bool write_images = true;  ///< false: no images (bearings, odometry and ground truth only)
+    int frames = -1;           ///< frames (steps) to simulate; −1 = the scenario's full run
+    int robots = -1;           ///< robots of the team; −1 = the scenario's default
+    bool write_images = true;  ///< false: no images (the other sensors only)
     /// Called after each frame with (frames done, frames total); may be empty.
     std::function<void(int, int)> on_progress;
 };
 
-/** What a run produced, for the progress line and the tests. */
+/** What a run produced, for the closing line of vslam-sim and the tests. */
 struct TSimulationSummary {
-    int frames = 0;                ///< sensory frames written
-    size_t light_bearings = 0;     ///< bearings that come from lights
-    size_t spurious_bearings = 0;  ///< bearings that come from spurious reflections
-    double path_length = 0;        ///< [m] ground-truth distance travelled
+    int frames = 0;          ///< frames (steps) written; in a team every robot has one per step
+    int robots = 1;          ///< robots simulated
+    double path_length = 0;  ///< [m] ground-truth distance travelled, all robots together
+    /// Scenario-specific counts in words, e.g. "2281 light and 109 spurious bearings".
+    std::string details;
 };
 
 /** A simulated environment plus robot run that writes a dataset (BRIEF §3 layout).
