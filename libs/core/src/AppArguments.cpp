@@ -1,5 +1,6 @@
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/system/filesystem.h>
+#include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/core/Version.h>
@@ -144,6 +145,27 @@ uint32_t AppArguments::resolveSeed(uint32_t config_seed) const
 {
     if (seed != 0) return seed;
     return config_seed != 0 ? config_seed : 1;
+}
+
+std::string AppArguments::resolveRawlog(const CheckedConfigFile& cfg,
+                                        const std::string& section) const
+{
+    const std::string configured = cfg.read_string(section, "rawlog_file", "");  // always read
+    const std::string file = rawlogFile.empty() ? configured : rawlogFile;
+    if (file.empty())
+        throw UsageError(cfg.name() + ": no rawlog given (argument RAWLOG or [" + section +
+                         "] rawlog_file)");
+    return file;
+}
+
+std::string AppArguments::groundTruthPrefix(const std::string& rawlog) const
+{
+    if (!groundTruth.empty()) return groundTruth;
+    const std::string ext = ".rawlog";
+    if (rawlog.size() > ext.size() &&
+        mrpt::system::strCmpI(rawlog.substr(rawlog.size() - ext.size()), ext))
+        return rawlog.substr(0, rawlog.size() - ext.size());
+    return rawlog;
 }
 
 }  // namespace mrpt_vslam::core

@@ -4,6 +4,7 @@
 #include <mrpt_vslam/core/AtomicFile.h>
 #include <mrpt_vslam/core/RunOutputs.h>
 
+#include <filesystem>
 #include <stdexcept>
 
 namespace mrpt_vslam::core {
@@ -25,6 +26,20 @@ void saveGz(const T& obj, const std::string& file)
 void saveObjectGz(const mrpt::serialization::CSerializable& obj, const std::string& file)
 {
     saveGz(obj, file);
+}
+
+void saveFinalMap(const mrpt::maps::CMetricMap& map, const std::string& out_dir)
+{
+    namespace fs = std::filesystem;
+    const std::string tmp = "map.tmp";
+    map.saveMetricMapRepresentationToFile((fs::path(out_dir) / tmp).string());
+    for (const auto& entry : fs::directory_iterator(out_dir)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind(tmp, 0) == 0)
+            AtomicFile::commitRename(entry.path().string(),
+                                     (fs::path(out_dir) / ("map" + name.substr(tmp.size()))).string());
+    }
+    saveObjectGz(map, (fs::path(out_dir) / "final_map.gz").string());
 }
 
 void saveScene(const mrpt::opengl::COpenGLScene& scene, const std::string& file)

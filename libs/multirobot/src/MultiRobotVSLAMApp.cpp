@@ -9,9 +9,7 @@
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt/system/filesystem.h>
-#include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
-#include <mrpt_vslam/core/AtomicFile.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
@@ -97,11 +95,7 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
     const std::string& name = cfg.name();
     const auto usage = [&](const std::string& what) { return core::UsageError(name + ": " + what); };
 
-    const std::string cfgRawlog = cfg.read_string(kAppSection, "rawlog_file", "");
-    rawlog = args.rawlogFile.empty() ? cfgRawlog : args.rawlogFile;
-    if (rawlog.empty())
-        throw usage(std::string("no rawlog given (argument RAWLOG or [") + kAppSection +
-                    "] rawlog_file)");
+    rawlog = args.resolveRawlog(cfg, kAppSection);
     seed = args.resolveSeed(static_cast<uint32_t>(cfg.read_int(kAppSection, "random_seed", 0)));
     const std::string in = cfg.read_string(kAppSection, "input", "auto");
     if (in == "auto") input = TInput::Auto;
@@ -157,12 +151,7 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
 
 void MultiRobotVSLAMApp::Impl::findGroundTruth()
 {
-    groundTruthPrefix = args.groundTruth;
-    if (groundTruthPrefix.empty()) {
-        groundTruthPrefix = rawlog;
-        if (mrpt::system::strCmpI(mrpt::system::extractFileExtension(rawlog, true), "rawlog"))
-            groundTruthPrefix.resize(rawlog.size() - std::string(".rawlog").size());
-    }
+    groundTruthPrefix = args.groundTruthPrefix(rawlog);
     size_t found = 0;
     for (size_t k = 0; k < filterOptions.robots.size(); k++) {
         const std::string tum =
@@ -376,11 +365,7 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
         app.odometryPaths[k].save(out.file("odometry_path_" + r + ".tum"),
                                   "multirobot-vslam: dead reckoning of " + r);
     }
-    best.map.saveMetricMapRepresentationToFile(out.file("map.tmp"));
-    core::AtomicFile::commitRename(out.file("map.tmp_descriptors.txt"),
-                                   out.file("map_descriptors.txt"));
-    core::AtomicFile::commitRename(out.file("map.tmp.txt"), out.file("map.txt"));
-    core::saveObjectGz(best.map, out.file("final_map.gz"));
+    core::saveFinalMap(best.map, app.outDir);
 
     mrpt::opengl::COpenGLScene scene;
     drawBestParticle(scene);

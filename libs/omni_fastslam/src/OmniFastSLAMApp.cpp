@@ -13,9 +13,7 @@
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt/system/filesystem.h>
-#include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
-#include <mrpt_vslam/core/AtomicFile.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
@@ -96,11 +94,7 @@ void OmniFastSLAMApp::Impl::loadConfig()
     const std::string& name = cfg.name();
     const auto usage = [&](const std::string& what) { return core::UsageError(name + ": " + what); };
 
-    const std::string cfgRawlog = cfg.read_string(kAppSection, "rawlog_file", "");
-    rawlog = args.rawlogFile.empty() ? cfgRawlog : args.rawlogFile;
-    if (rawlog.empty())
-        throw usage(std::string("no rawlog given (argument RAWLOG or [") + kAppSection +
-                    "] rawlog_file)");
+    rawlog = args.resolveRawlog(cfg, kAppSection);
     seed = args.resolveSeed(static_cast<uint32_t>(cfg.read_int(kAppSection, "random_seed", 0)));
     const std::string in = cfg.read_string(kAppSection, "input", "auto");
     if (in == "auto") input = TInput::Auto;
@@ -155,13 +149,7 @@ void OmniFastSLAMApp::Impl::loadConfig()
 
 void OmniFastSLAMApp::Impl::findGroundTruth()
 {
-    groundTruthPrefix = args.groundTruth;
-    if (groundTruthPrefix.empty()) {
-        const std::string ext = ".rawlog";
-        groundTruthPrefix = rawlog;
-        if (mrpt::system::strCmpI(mrpt::system::extractFileExtension(rawlog, true), "rawlog"))
-            groundTruthPrefix.resize(rawlog.size() - ext.size());
-    }
+    groundTruthPrefix = args.groundTruthPrefix(rawlog);
     const std::string tum = groundTruthPrefix + ".groundtruth.tum";
     if (mrpt::system::fileExists(tum)) groundTruth = core::TumTrajectory::load(tum);
     else if (!args.groundTruth.empty())
@@ -289,9 +277,7 @@ void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTi
     const auto& best = filter->bestParticle();
     app.estimatedPath.save(out.file("estimated_path.tum"), "omni-fastslam: best particle's path");
     app.odometryPath.save(out.file("odometry_path.tum"), "omni-fastslam: dead reckoning");
-    best.map.saveMetricMapRepresentationToFile(out.file("map.tmp"));
-    core::AtomicFile::commitRename(out.file("map.tmp.txt"), out.file("map.txt"));
-    core::saveObjectGz(best.map, out.file("final_map.gz"));
+    core::saveFinalMap(best.map, app.outDir);
 
     mrpt::opengl::COpenGLScene scene;
     drawBestParticle(scene);

@@ -48,6 +48,14 @@ public:
     /** The seed to use: `--seed` if given (non-zero), else `config_seed` if non-zero, else 1.
      *  \param config_seed the config's `random_seed` key (0 if absent). */
     uint32_t resolveSeed(uint32_t config_seed) const;
+
+    /** The rawlog to read: RAWLOG if given, else the config's `[section] rawlog_file`.
+     *  Throws UsageError "CONFIG: no rawlog given (...)" when neither is there. */
+    std::string resolveRawlog(const CheckedConfigFile& cfg, const std::string& section) const;
+
+    /** Prefix `NAME` of the ground-truth files (BRIEF §3): `--ground-truth` if given, else the
+     *  rawlog's path without its `.rawlog` extension. */
+    std::string groundTruthPrefix(const std::string& rawlog) const;
 };
 
 }  // namespace mrpt_vslam::core

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <mrpt/img/TColor.h>
+#include <mrpt/maps/CMetricMap.h>
 #include <mrpt/math/TPoint3D.h>
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/opengl/CSetOfLines.h>
@@ -20,6 +21,11 @@ namespace mrpt_vslam::core {
 
 /// Serializes one object gz-compressed (`final_map.gz`), readable with `archive >> obj`.
 void saveObjectGz(const mrpt::serialization::CSerializable& obj, const std::string& file);
+
+/** The final map of a run into `out_dir`: its `saveMetricMapRepresentationToFile()` files
+ *  under the prefix `map` (`map.txt`, plus whatever else the map writes, e.g.
+ *  `map_descriptors.txt`), each renamed into place when complete, and `final_map.gz`. */
+void saveFinalMap(const mrpt::maps::CMetricMap& map, const std::string& out_dir);
 
 /// Saves a scene as MRPT's `.3Dscene` (opens in SceneViewer3D without any plugin).
 void saveScene(const mrpt::opengl::COpenGLScene& scene, const std::string& file);
