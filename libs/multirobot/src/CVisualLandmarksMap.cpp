@@ -6,7 +6,7 @@
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/multirobot/CVisualLandmarksMap.h>
 
-#include <Eigen/Cholesky>
+#include <Eigen/Core>
 #include <bitset>
 #include <cmath>
 #include <sstream>
@@ -75,33 +75,67 @@ TMeasurementCandidates CVisualLandmarksMap::findCandidates(const TLandmarkMeasur
     return c;
 }
 
+namespace {
+/// Closed-form Cholesky factor Z = L Lᵀ of a symmetric positive-definite 3 × 3 matrix (the
+/// generic Eigen path costs more than the whole update at this size).
+struct Cholesky3 {
+    double l00, l10, l11, l20, l21, l22;
+    bool ok;
+    explicit Cholesky3(const Eigen::Matrix3d& Z)
+    {
+        l00 = std::sqrt(Z(0, 0));
+        l10 = Z(1, 0) / l00;
+        l20 = Z(2, 0) / l00;
+        l11 = std::sqrt(Z(1, 1) - l10 * l10);
+        l21 = (Z(2, 1) - l20 * l10) / l11;
+        l22 = std::sqrt(Z(2, 2) - l20 * l20 - l21 * l21);
+        ok = l00 > 0 && l11 > 0 && l22 > 0;  // false for NaN too
+    }
+    /// L⁻¹ v
+    Eigen::Vector3d whiten(const Eigen::Vector3d& v) const
+    {
+        const double w0 = v[0] / l00, w1 = (v[1] - l10 * w0) / l11;
+        return {w0, w1, (v[2] - l20 * w0 - l21 * w1) / l22};
+    }
+    double logDet() const { return 2 * (std::log(l00) + std::log(l11) + std::log(l22)); }
+    /// Z⁻¹ = L⁻ᵀ L⁻¹
+    Eigen::Matrix3d inverse() const
+    {
+        Eigen::Matrix3d Li = Eigen::Matrix3d::Zero();
+        Li(0, 0) = 1 / l00;
+        Li(1, 1) = 1 / l11;
+        Li(2, 2) = 1 / l22;
+        Li(1, 0) = -l10 * Li(0, 0) / l11;
+        Li(2, 1) = -l21 * Li(1, 1) / l22;
+        Li(2, 0) = -(l20 * Li(0, 0) + l21 * Li(1, 0)) / l22;
+        return Li.transpose() * Li;
+    }
+};
+}  // namespace
+
 double CVisualLandmarksMap::logGaussian3(const Eigen::Vector3d& v, const Eigen::Matrix3d& Z,
                                          double& D)
 {
-    const Eigen::LLT<Eigen::Matrix3d> llt(Z);
-    const Eigen::Vector3d w = llt.matrixL().solve(v);
-    D = w.squaredNorm();
-    const Eigen::Vector3d diag = llt.matrixL().toDenseMatrix().diagonal();
-    const double log_det = 2 * (std::log(diag[0]) + std::log(diag[1]) + std::log(diag[2]));
-    return -0.5 * (3 * std::log(2 * M_PI) + log_det + D);  // Eq. 13
+    const Cholesky3 L(Z);
+    if (!L.ok) throw std::invalid_argument("logGaussian3: Z is not positive definite");
+    D = L.whiten(v).squaredNorm();
+    return -0.5 * (3 * std::log(2 * M_PI) + L.logDet() + D);  // Eq. 13
 }
 
 std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     const TMapMeasurement& m, const TMeasurementCandidates& candidates) const
 {
-    std::optional<TAssociation> best;
-    float best_E = 0;
-    for (const auto& c : candidates.candidates) {  // Alg. 1 lines 19-26, E ≤ E0 already
+    // Alg. 1 lines 19-29: the smallest E among the landmarks with D ≤ D0. The candidates
+    // (E ≤ E0 already) come in increasing E, so the first one inside the gate is it.
+    for (const auto& c : candidates.candidates) {
         const TVisualLandmark* lm = m_store.find(c.id);
-        if (!lm || (best && c.E >= best_E)) continue;
+        if (!lm) continue;
         TAssociation a;
         a.id = c.id;
         a.log_likelihood = logGaussian3(m.z - lm->mean, lm->cov + m.R, a.D);  // Eq. 6-8, 15
-        if (!(a.D <= insertionOptions.D0)) continue;  // line 28
-        best = a;  // line 29: smallest E among the gated
-        best_E = c.E;
+        if (a.D <= insertionOptions.D0) return a;  // line 28
     }
-    return best;
+    return std::nullopt;
 }
 
 TFusionResult CVisualLandmarksMap::fuse(const TLandmarkMeasurement& m, const TMapMeasurement& in_map,
@@ -123,8 +157,7 @@ TFusionResult CVisualLandmarksMap::fuse(const TLandmarkMeasurement& m, const TMa
         return r;
     }
     TVisualLandmark& lm = m_store.modify(a->id);  // lines 39-42
-    const Eigen::Matrix3d Z = lm.cov + in_map.R;
-    const Eigen::Matrix3d K = Z.llt().solve(lm.cov).transpose();  // Σ Z⁻¹ (Σ, Z symmetric)
+    const Eigen::Matrix3d K = lm.cov * Cholesky3(lm.cov + in_map.R).inverse();  // Σ Z⁻¹
     lm.mean += K * (in_map.z - lm.mean);
     const Eigen::Matrix3d cov = lm.cov - K * lm.cov;
     lm.cov = 0.5 * (cov + cov.transpose());

@@ -87,7 +87,7 @@ void LandmarkDescriptorPool::findCandidates(const Eigen::Vector3d& center, doubl
                 }
             }
     std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
-              [](const auto& a, const auto& b) { return a.id < b.id; });
+              [](const auto& a, const auto& b) { return a.E < b.E || (a.E == b.E && a.id < b.id); });
 }
 
 }  // namespace mrpt_vslam::multirobot

@@ -2,6 +2,7 @@
 #include <mrpt/obs/CObservationVisualLandmarks.h>
 #include <mrpt_vslam/multirobot/LandmarkMeasurement.h>
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <stdexcept>
 
@@ -28,6 +29,7 @@ std::vector<TLandmarkMeasurement> measurementsFromObservation(
         C << lm.pose_cov_11, lm.pose_cov_12, lm.pose_cov_13, lm.pose_cov_12, lm.pose_cov_22,
             lm.pose_cov_23, lm.pose_cov_13, lm.pose_cov_23, lm.pose_cov_33;
         if (!p.allFinite() || !C.allFinite()) fail("has a non-finite point or covariance");
+        if (C.llt().info() != Eigen::Success) fail("has a covariance that is not positive definite");
         if (!(p.z() > 0)) fail("is not in front of the camera");
         m.z = rot * p + t;
         m.R = rot * C * rot.transpose();

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <mrpt_vslam/multirobot/LandmarkDescriptorPool.h>
 
+#include <algorithm>
 #include <random>
 #include <set>
 
@@ -44,11 +45,15 @@ TEST(LandmarkDescriptorPool, CandidatesEqualABruteForceScan)
         const double max_E = (q % 3) * 0.5;
         std::vector<TLandmarkCandidate> got;
         pool.findCandidates(c, radius, query, max_E, got);
+        std::vector<std::pair<float, uint32_t>> byE;
+        for (uint32_t id = 0; id < pool.size(); id++) {
+            const float E = LandmarkDescriptorPool::squaredDistance(query, pool.descriptor(id));
+            if ((pool.creationPosition(id) - c).norm() <= radius && E <= max_E)
+                byE.emplace_back(E, id);
+        }
+        std::sort(byE.begin(), byE.end());
         std::vector<uint32_t> expected;
-        for (uint32_t id = 0; id < pool.size(); id++)
-            if ((pool.creationPosition(id) - c).norm() <= radius &&
-                LandmarkDescriptorPool::squaredDistance(query, pool.descriptor(id)) <= max_E)
-                expected.push_back(id);
+        for (const auto& [E, id] : byE) expected.push_back(id);
         ASSERT_EQ(got.size(), expected.size()) << "query " << q;
         for (size_t i = 0; i < got.size(); i++) {
             EXPECT_EQ(got[i].id, expected[i]);

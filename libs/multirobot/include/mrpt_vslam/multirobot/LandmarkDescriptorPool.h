@@ -47,7 +47,8 @@ public:
     const Eigen::Vector3d& creationPosition(uint32_t id) const { return m_positions[id]; }
 
     /** Appends to `out` every landmark created within `radius` of `center` whose descriptor
-     *  distance to `query` is E ≤ max_E, in increasing id order. */
+     *  distance to `query` is E ≤ max_E, in increasing E (ties: increasing id), the order in
+     *  which Alg. 1 line 29 prefers them. */
     void findCandidates(const Eigen::Vector3d& center, double radius, const TDescriptor& query,
                         double max_E, std::vector<TLandmarkCandidate>& out) const;
 
