@@ -38,10 +38,10 @@ class PngFigure {
     plstream& pl() { return *m_pl; }
 
     /// Sets the viewport (normalised page coordinates) and the world window, then draws a grid
-    /// and the labelled axes.
+    /// and the labelled axes. With log_x, x0, x1 and every x drawn are log10 of the values.
     void axes(double vx0, double vx1, double vy0, double vy1, double x0, double x1, double y0,
               double y1, const std::string& x_label, const std::string& y_label,
-              const std::string& title, bool equal_aspect = false);
+              const std::string& title, bool equal_aspect = false, bool log_x = false);
 
     /// Polyline; `style` is a PLplot line style (1 solid, 2 dashed, 3 dotted...).
     void line(const std::vector<double>& x, const std::vector<double>& y, int color, int style = 1,

@@ -47,6 +47,7 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
     MRPT_LOAD_CONFIG_VAR(initial_std_xy, double, cfg, section);
     initial_std_phi = mrpt::DEG2RAD(
         cfg.read_double(section, "initial_std_phi_deg", mrpt::RAD2DEG(initial_std_phi)));
+    MRPT_LOAD_CONFIG_VAR(resample_per_robot, bool, cfg, section);
 
     requireKey(!robots.empty() && robots.size() <= 32, section, "robots",
                "must name 1 to 32 robots");
@@ -74,6 +75,7 @@ void CMultiRobotVisualSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     cfg.write(section, "min_motion_std_phi_deg", mrpt::RAD2DEG(min_motion_std_phi));
     cfg.write(section, "initial_std_xy", initial_std_xy);
     cfg.write(section, "initial_std_phi_deg", mrpt::RAD2DEG(initial_std_phi));
+    cfg.write(section, "resample_per_robot", resample_per_robot);
 }
 
 CMultiRobotVisualSLAM::CMultiRobotVisualSLAM(const CVisualLandmarksMap& map_template,
@@ -203,7 +205,7 @@ void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandma
 
 void CMultiRobotVisualSLAM::prediction_and_update_pfStandardProposal(
     const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
-    const mrpt::bayes::CParticleFilter::TParticleFilterOptions&)
+    const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options)
 {
     lastStepStats = TStepStats();
     const size_t K = robotCount();
@@ -227,6 +229,9 @@ void CMultiRobotVisualSLAM::prediction_and_update_pfStandardProposal(
             fuseMeasurements(
                 k, selectNearest(measurementsFromObservation(*obs),
                                  options.max_observations_per_robot));
+        // after the last robot the framework resamples (Alg. 1 line 13)
+        if (options.resample_per_robot && k + 1 < K && ESS() < pf_options.BETA)
+            performResampling(pf_options);
     }
     for (auto& p : m_particles)
         p.d->path = std::make_shared<const TTeamPathNode>(timestamp, p.d->poses, p.d->path);
