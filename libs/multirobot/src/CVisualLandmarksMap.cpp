@@ -113,15 +113,6 @@ struct Cholesky3 {
 };
 }  // namespace
 
-double CVisualLandmarksMap::logGaussian3(const Eigen::Vector3d& v, const Eigen::Matrix3d& Z,
-                                         double& D)
-{
-    const Cholesky3 L(Z);
-    if (!L.ok) throw std::invalid_argument("logGaussian3: Z is not positive definite");
-    D = L.whiten(v).squaredNorm();
-    return -0.5 * (3 * std::log(2 * M_PI) + L.logDet() + D);  // Eq. 13
-}
-
 std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     const TMapMeasurement& m, const TMeasurementCandidates& candidates) const
 {
@@ -130,10 +121,15 @@ std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     for (const auto& c : candidates.candidates) {
         const TVisualLandmark* lm = m_store.find(c.id);
         if (!lm) continue;
+        const Cholesky3 L(lm->cov + m.R);  // Eq. 6-8
+        if (!L.ok) throw std::invalid_argument("landmark " + std::to_string(c.id) +
+                                               ": innovation covariance not positive definite");
         TAssociation a;
         a.id = c.id;
-        a.log_likelihood = logGaussian3(m.z - lm->mean, lm->cov + m.R, a.D);  // Eq. 6-8, 15
-        if (a.D <= insertionOptions.D0) return a;  // line 28
+        a.D = L.whiten(m.z - lm->mean).squaredNorm();  // Eq. 15
+        if (!(a.D <= insertionOptions.D0)) continue;   // line 28
+        a.log_likelihood = -0.5 * (3 * std::log(2 * M_PI) + L.logDet() + a.D);  // Eq. 13
+        return a;
     }
     return std::nullopt;
 }

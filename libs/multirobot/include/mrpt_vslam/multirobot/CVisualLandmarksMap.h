@@ -121,8 +121,6 @@ public:
      *  \param robot index of the robot that measured it (seen_by bit, < 32) */
     TFusionResult fuse(const TLandmarkMeasurement& m, const TMapMeasurement& in_map,
                        TMeasurementCandidates& candidates, unsigned robot);
-    /// log N(v; 0, Z) of Eq. 13; D receives vᵀ Z⁻¹ v (Eq. 15). Z must be positive definite.
-    static double logGaussian3(const Eigen::Vector3d& v, const Eigen::Matrix3d& Z, double& D);
     /// @}
 
     /// @name CMetricMap interface
