@@ -9,8 +9,8 @@
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt_vslam/core/RawlogReader.h>
+#include <mrpt_vslam/test/RunCommand.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
-#include <sys/wait.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -25,19 +25,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TRun {
-    int exit_code = -1;
-    std::string out;  ///< stdout and stderr
-};
-
-TRun runCommand(const std::string& command, const fs::path& log)
-{
-    const int status = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
-    std::ifstream in(log);
-    std::stringstream text;
-    text << in.rdbuf();
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
+using TRun = mrpt_vslam::test::TCommandResult;
+using mrpt_vslam::test::runCommand;
 
 int lineCount(const std::string& text)
 {

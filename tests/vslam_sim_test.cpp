@@ -1,6 +1,6 @@
 // Runs the built vslam-sim binary like a user would and checks its files and its errors.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
+#include <mrpt_vslam/test/RunCommand.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -15,21 +15,13 @@ namespace {
 
 const fs::path kWorkDir = fs::temp_directory_path() / "mrpt_vslam_vslam_sim_test";
 
-struct TRun {
-    int exit_code = -1;
-    std::string out;  ///< stdout and stderr
-};
+using TRun = mrpt_vslam::test::TCommandResult;
 
 /// Runs a shell command, capturing stdout + stderr.
 TRun runCommand(const std::string& command)
 {
     fs::create_directories(kWorkDir);
-    const fs::path log = kWorkDir / "command.log";
-    const int status = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
-    std::ifstream in(log);
-    std::stringstream text;
-    text << in.rdbuf();
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+    return mrpt_vslam::test::runCommand(command, kWorkDir / "command.log");
 }
 
 TRun runSim(const std::string& args)

@@ -1,0 +1,143 @@
+// Runs the built multirobot-vslam binary like a user would on the shipped office-team data:
+// accuracy against ground truth, stereo vs pre-extracted input, outputs and errors.
+#include <gtest/gtest.h>
+#include <mrpt_vslam/test/RunCommand.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+using mrpt_vslam::test::TCommandResult;
+
+namespace {
+
+const std::string kData = MRPT_VSLAM_SOURCE_DIR "/datasets/office-team/";
+const std::string kConfigs = MRPT_VSLAM_SOURCE_DIR "/share/mrpt-vslam/config/multirobot-vslam/";
+
+class MultiRobotVSLAMApp : public ::testing::Test {
+  protected:
+    static void SetUpTestSuite() { s_scratch = new mrpt_vslam::test::ScratchFolder("mrvslam"); }
+    static void TearDownTestSuite() { delete s_scratch; }
+    static TCommandResult run(const std::string& args)
+    {
+        return mrpt_vslam::test::runCommand(
+            std::string(MRPT_VSLAM_BIN_DIR "/multirobot-vslam ") + args,
+            s_scratch->path() / "command.log");
+    }
+    static std::string out(const std::string& name) { return s_scratch->file(name); }
+    static nlohmann::json json(const std::string& file)
+    {
+        std::ifstream in(file);
+        return nlohmann::json::parse(in);
+    }
+    static std::string bytes(const std::string& file)
+    {
+        std::ifstream in(file, std::ios::binary);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+    static mrpt_vslam::test::ScratchFolder* s_scratch;
+};
+mrpt_vslam::test::ScratchFolder* MultiRobotVSLAMApp::s_scratch = nullptr;
+
+// The shipped 40-step stereo sequence through the built-in front-end: both robots within
+// 0.15 m RMS of the truth (odometry is still good this early: 0.06-0.15 m), shared landmarks
+// mostly merged, every BRIEF §4 output written, and the seed recorded.
+TEST_F(MultiRobotVSLAMApp, StereoShortSequenceIsAccurate)
+{
+    const TCommandResult r = run(kConfigs + "office-team-2.ini " + kData +
+                                 "team2-stereo-short.rawlog --seed 1 -q --out " + out("stereo"));
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    const auto metrics = json(out("stereo/metrics.json"));
+    for (const char* robot : {"R1", "R2"}) {
+        const double est = metrics["robots"][robot]["estimate"]["ate_rmse_m"];
+        EXPECT_LT(est, 0.15) << robot;
+    }
+    const auto runJson = json(out("stereo/run.json"));
+    EXPECT_EQ(runJson["seed"], 1);
+    const auto& merging = runJson["results"]["landmark_merging"];
+    EXPECT_GE(merging["of_those_merged"].get<double>(),
+              0.6 * merging["true_landmarks_seen_by_several_robots"].get<double>());
+    for (const char* f : {"estimated_path_R1.tum", "estimated_path_R2.tum", "odometry_path_R1.tum",
+                          "map.txt", "map_descriptors.txt", "final_map.gz", "final.3Dscene"})
+        EXPECT_TRUE(fs::exists(out("stereo/") + f)) << f;
+}
+
+// The stereo-frontend app's landmarks give the same estimate as the built-in front-end.
+TEST_F(MultiRobotVSLAMApp, PreExtractedInputMatchesStereoInput)
+{
+    const std::string frontend = std::string(MRPT_VSLAM_BIN_DIR "/stereo-frontend ") + kConfigs +
+                                 "stereo-frontend.ini " + kData + "team2-stereo-short.rawlog -q --out " +
+                                 out("lm/short");
+    ASSERT_EQ(mrpt_vslam::test::runCommand(frontend, s_scratch->path() / "fe.log").exit_code, 0);
+    ASSERT_EQ(run(kConfigs + "office-team-2.ini " + out("lm/short.rawlog") +
+                  " --seed 3 -q --out " + out("from_landmarks"))
+                  .exit_code,
+              0);
+    ASSERT_EQ(run(kConfigs + "office-team-2.ini " + kData +
+                  "team2-stereo-short.rawlog --seed 3 -q --out " + out("from_stereo"))
+                  .exit_code,
+              0);
+    for (const char* f : {"estimated_path_R1.tum", "estimated_path_R2.tum", "map.txt"}) {
+        const std::string a = bytes(out("from_landmarks/") + f);
+        EXPECT_FALSE(a.empty()) << f;
+        EXPECT_EQ(a, bytes(out("from_stereo/") + f)) << f;
+    }
+}
+
+// The shipped 2-robot dataset (200 steps, M = 500, B = 8), seed 1: the bounds, each
+// robot <= 0.20 m RMS and <= 40 % of its odometry's (doc/multirobot.md has 5 seeds).
+TEST_F(MultiRobotVSLAMApp, TeamOfTwoBeatsOdometry)
+{
+    const TCommandResult r =
+        run(kConfigs + "office-team-2.ini " + kData + "team2.rawlog --seed 1 -q --out " + out("t2"));
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    const auto metrics = json(out("t2/metrics.json"));
+    for (const char* robot : {"R1", "R2"}) {
+        const double est = metrics["robots"][robot]["estimate"]["ate_rmse_m"];
+        const double odo = metrics["robots"][robot]["odometry"]["ate_rmse_m"];
+        EXPECT_LT(est, 0.20) << robot;
+        EXPECT_LT(est, 0.40 * odo) << robot;
+    }
+}
+
+TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
+{
+    const std::string cfg = kConfigs + "office-team-2.ini ";
+    const TCommandResult missing = run(cfg + out("nope.rawlog") + " -q --out " + out("e1"));
+    EXPECT_EQ(missing.exit_code, 1);
+    EXPECT_NE(missing.out.find("nope.rawlog"), std::string::npos) << missing.out;
+    EXPECT_FALSE(fs::exists(out("e1/run.json")));
+
+    const std::string garbage = s_scratch->write("garbage.rawlog", "not a rawlog at all");
+    const TCommandResult corrupt = run(cfg + garbage + " -q --out " + out("e2"));
+    EXPECT_EQ(corrupt.exit_code, 1);
+    EXPECT_NE(corrupt.out.find("garbage.rawlog"), std::string::npos) << corrupt.out;
+    EXPECT_FALSE(fs::exists(out("e2/estimated_path_R1.tum")));
+
+    const TCommandResult unknown =
+        run(cfg + kData + "team2.rawlog -q --set MultiRobotVSLAM.bogus_key=1 --out " + out("e3"));
+    EXPECT_EQ(unknown.exit_code, 2);
+    EXPECT_NE(unknown.out.find("bogus_key"), std::string::npos) << unknown.out;
+
+    const TCommandResult impossible = run(
+        cfg + kData + "team2.rawlog -q --set MultiRobotVSLAM.max_observations_per_robot=0 --out " +
+        out("e4"));
+    EXPECT_NE(impossible.exit_code, 0);
+    EXPECT_NE(impossible.out.find("max_observations_per_robot"), std::string::npos)
+        << impossible.out;
+
+    for (const auto* r : {&missing, &corrupt, &unknown, &impossible}) {
+        size_t lines = 0;
+        for (const char c : r->out) lines += c == '\n';
+        EXPECT_EQ(lines, 1u) << r->out;
+    }
+    EXPECT_EQ(run("--help").exit_code, 0);
+}
+
+}  // namespace
