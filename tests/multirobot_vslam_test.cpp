@@ -90,19 +90,28 @@ TEST_F(MultiRobotVSLAMApp, PreExtractedInputMatchesStereoInput)
     }
 }
 
-// The shipped 2-robot dataset (200 steps, M = 500, B = 8), seed 1: the issue's bounds, each
-// robot <= 0.20 m RMS and <= 40 % of its odometry's (doc/multirobot.md has 5 seeds).
+// The shipped 2-robot dataset (200 steps, M = 500, B = 8), seeds 1-3: the issue's bounds on the
+// mean over seeds, each robot <= 0.20 m RMS and <= 40 % of its odometry's (single seeds vary:
+// doc/multirobot.md has 5 seeds).
 TEST_F(MultiRobotVSLAMApp, TeamOfTwoBeatsOdometry)
 {
-    const TCommandResult r =
-        run(kConfigs + "office-team-2.ini " + kData + "team2.rawlog --seed 1 -q --out " + out("t2"));
-    ASSERT_EQ(r.exit_code, 0) << r.out;
-    const auto metrics = json(out("t2/metrics.json"));
-    for (const char* robot : {"R1", "R2"}) {
-        const double est = metrics["robots"][robot]["estimate"]["ate_rmse_m"];
-        const double odo = metrics["robots"][robot]["odometry"]["ate_rmse_m"];
-        EXPECT_LT(est, 0.20) << robot;
-        EXPECT_LT(est, 0.40 * odo) << robot;
+    double est[2] = {0, 0}, odo[2] = {0, 0};
+    for (const int seed : {1, 2, 3}) {
+        const std::string dir = out("t2_" + std::to_string(seed));
+        const TCommandResult r = run(kConfigs + "office-team-2.ini " + kData +
+                                     "team2.rawlog -q --seed " + std::to_string(seed) +
+                                     " --out " + dir);
+        ASSERT_EQ(r.exit_code, 0) << r.out;
+        const auto metrics = json(dir + "/metrics.json");
+        for (int k = 0; k < 2; k++) {
+            const auto& robot = metrics["robots"][k == 0 ? "R1" : "R2"];
+            est[k] += robot["estimate"]["ate_rmse_m"].get<double>() / 3;
+            odo[k] += robot["odometry"]["ate_rmse_m"].get<double>() / 3;
+        }
+    }
+    for (int k = 0; k < 2; k++) {
+        EXPECT_LT(est[k], 0.20) << "R" << k + 1;
+        EXPECT_LT(est[k], 0.40 * odo[k]) << "R" << k + 1;
     }
 }
 

@@ -1,6 +1,7 @@
 // One step of the multi-robot visual SLAM filter (paper 003, Alg. 1 lines 5-15) on the
 // synthetic team world, for the (M, B, K) of the issue: (500, 8, 2), (1500, 20, 2),
-// (3000, 20, 3). The map is first built over 60 steps; the timed steps continue the run.
+// (3000, 20, 3), the last also with resampling after each robot (R = 1, as office-team-3.ini).
+// The map is first built over 60 steps; the timed steps continue the run.
 #include <benchmark/benchmark.h>
 #include <mrpt/bayes/CParticleFilter.h>
 #include <mrpt/random/RandomGenerators.h>
@@ -24,6 +25,7 @@ void BM_MultiRobotStep(benchmark::State& state)
     filter.options.robots.clear();
     for (size_t k = 0; k < K; k++) filter.options.robots.push_back("R" + std::to_string(k + 1));
     filter.options.max_observations_per_robot = B;
+    filter.options.resample_per_robot = state.range(3) != 0;
     filter.reset(world.startPoses(), world.time);
     mrpt::random::getRandomGenerator().randomize(1);
     mrpt::bayes::CParticleFilter pf;
@@ -47,8 +49,10 @@ void BM_MultiRobotStep(benchmark::State& state)
 }  // namespace
 
 BENCHMARK(BM_MultiRobotStep)
-    ->Args({500, 8, 2})
-    ->Args({1500, 20, 2})
-    ->Args({3000, 20, 3})
+    ->ArgNames({"M", "B", "K", "R"})
+    ->Args({500, 8, 2, 0})
+    ->Args({1500, 20, 2, 0})
+    ->Args({3000, 20, 3, 0})
+    ->Args({3000, 20, 3, 1})
     ->Iterations(kTimed)
     ->Unit(benchmark::kMillisecond);

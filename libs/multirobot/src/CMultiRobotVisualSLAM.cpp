@@ -187,14 +187,21 @@ void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandma
                            std::abs(mrpt::math::wrapToPi(p.d->poses[k].phi - mean_pose.phi)));
     }
 
-    for (const auto& m : z) {
-        const double range_xy = std::hypot(m.z.x(), m.z.y());
-        TMeasurementCandidates candidates = m_template.findCandidates(
-            m, toMapFrame(m, mean_pose), max_xy + std::min(max_phi, M_PI) * range_xy);
-        lastStepStats.candidates += candidates.candidates.size();
-        for (auto& p : m_particles) {  // Alg. 1 lines 18-46
-            const TFusionResult r =
-                p.d->map.fuse(m, toMapFrame(m, p.d->poses[k]), candidates, static_cast<unsigned>(k));
+    // Alg. 1 lines 19-26 once per measurement: the shared pool's candidates (E ≤ E0, near the
+    // point). Landmarks created from this frame are not candidates for its other points.
+    std::vector<TMeasurementCandidates> candidates(z.size());
+    for (size_t j = 0; j < z.size(); j++) {
+        const double range_xy = std::hypot(z[j].z.x(), z[j].z.y());
+        candidates[j] = m_template.findCandidates(
+            z[j], toMapFrame(z[j], mean_pose), max_xy + std::min(max_phi, M_PI) * range_xy);
+        lastStepStats.candidates += candidates[j].candidates.size();
+    }
+    // Alg. 1 lines 18-46, particle by particle so that its landmarks stay in the cache
+    for (auto& p : m_particles) {
+        const TPlanarTransform pose(p.d->poses[k]);
+        for (size_t j = 0; j < z.size(); j++) {
+            const TFusionResult r = p.d->map.fuse(z[j], toMapFrame(z[j], pose), candidates[j],
+                                                  static_cast<unsigned>(k));
             p.log_w += r.log_w;  // line 44 and line 11: the product over the team
             p.d->accumulated_log_w += r.log_w;
             (r.created ? lastStepStats.created : lastStepStats.associated)++;

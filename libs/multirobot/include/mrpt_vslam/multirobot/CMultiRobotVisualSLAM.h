@@ -25,9 +25,11 @@ namespace mrpt_vslam::multirobot {
  *   1. sample each particle's pose of that robot from the odometry's Gaussian (Sec. 3.1);
  *   2. keep its B nearest measurements (Sec. 6.2) and, for each one, search the shared pool
  *      for candidates once (E ≤ E0 near the point, radius widened by the particles' spread);
- *   3. in every particle fuse the measurement (CVisualLandmarksMap::fuse(): D0 gate, min E,
- *      EKF or new landmark) and multiply its weight by ω (Eq. 13) or p0; the weights of the
- *      K robots multiply (line 11);
+ *   3. particle by particle (its landmarks stay in the cache), fuse the measurements one
+ *      after the other (CVisualLandmarksMap::fuse(): D0 gate, min E, EKF or new landmark) and
+ *      multiply its weight by ω (Eq. 13) or p0; the weights of the K robots multiply (line 11).
+ *      The candidates are searched before the frame is fused, so two points of one frame never
+ *      become one landmark;
  *   4. with `resample_per_robot` (ours), resample when N_eff < BETA before the next robot's
  *      motion is sampled. The robots' motions are independent, so this is the same posterior
  *      processed one robot at a time; it keeps the particles from having to be good for all

@@ -41,13 +41,36 @@ std::vector<TLandmarkMeasurement> measurementsFromObservation(
  *  in that order (ties: lower track id); all of them if B = 0 or fewer. */
 std::vector<TLandmarkMeasurement> selectNearest(std::vector<TLandmarkMeasurement> z, size_t B);
 
-/// The measurement in the map frame seen from `robot`.
+/** The map-frame transform of a robot pose, x = (x, y, θ): translation and cos θ, sin θ once,
+ *  for the many measurements fused from it. */
+struct TPlanarTransform {
+    double x, y, c, s;
+    explicit TPlanarTransform(const mrpt::math::TPose2D& robot)
+        : x(robot.x), y(robot.y), c(std::cos(robot.phi)), s(std::sin(robot.phi))
+    {
+    }
+};
+
+/// The measurement in the map frame seen from a robot pose (R(θ) turns about z only, so the
+/// products are written out).
+inline TMapMeasurement toMapFrame(const TLandmarkMeasurement& m, const TPlanarTransform& t)
+{
+    const double c = t.c, s = t.s;
+    const Eigen::Matrix3d& R = m.R;
+    TMapMeasurement w;
+    w.z = {c * m.z.x() - s * m.z.y() + t.x, s * m.z.x() + c * m.z.y() + t.y, m.z.z()};
+    const double a = R(0, 0), b = R(0, 1), e = R(1, 1), d = R(0, 2), f = R(1, 2);
+    const double xx = c * c * a - 2 * c * s * b + s * s * e;
+    const double xy = c * s * (a - e) + (c * c - s * s) * b;
+    const double yy = s * s * a + 2 * c * s * b + c * c * e;
+    const double xz = c * d - s * f, yz = s * d + c * f;
+    w.R << xx, xy, xz, xy, yy, yz, xz, yz, R(2, 2);
+    return w;
+}
+
 inline TMapMeasurement toMapFrame(const TLandmarkMeasurement& m, const mrpt::math::TPose2D& robot)
 {
-    const double c = std::cos(robot.phi), s = std::sin(robot.phi);
-    Eigen::Matrix3d rot;
-    rot << c, -s, 0, s, c, 0, 0, 0, 1;
-    return {rot * m.z + Eigen::Vector3d(robot.x, robot.y, 0), rot * m.R * rot.transpose()};
+    return toMapFrame(m, TPlanarTransform(robot));
 }
 
 }  // namespace mrpt_vslam::multirobot

@@ -1,0 +1,144 @@
+#!/usr/bin/env bash
+# Paper 003, Sec. 6 on the shipped office-team datasets (doc/multirobot.md):
+#   1. Fig. 3 / Fig. 6: 2 robots (M = 500, B = 8) and 3 robots (M = 3000, B = 20), several seeds:
+#      per-robot RMSE vs odometry, merged vs duplicated shared landmarks, step time; paths.png and
+#      errors.png of each run (vslam-eval);
+#   2. Fig. 4(a): RMSE vs M in {1, 10, 50, 100, 200, 500, 1000, 1500, 2500} (2 robots, B = 8);
+#   3. Fig. 4(b): RMSE vs B in {1, 5, 10, 20} (2 robots, M = 500);
+#   4. descriptor threshold E0 (0.25 vs 0.7) and the paper's R_t pixel sigmas (1, 10, 10) vs ours.
+# Writes run folders, tables (*.txt) and plots (*.png) under out/reproduce-multirobot/ (or $OUT)
+# and prints markdown tables. Builds first (scripts/setup.sh). Takes about 15 min on one core.
+# Environment: SEEDS (default 1 2 3 4 5), OUT.
+set -euo pipefail
+REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$REPO_DIR/scripts/setup.sh"
+
+OUT="${OUT:-$REPO_DIR/out/reproduce-multirobot}"
+BIN="$BUILD_DIR/bin"
+DATA="$REPO_DIR/datasets/office-team"
+CONFIGS="$REPO_DIR/share/mrpt-vslam/config/multirobot-vslam"
+SEEDS="${SEEDS:-1 2 3 4 5}"
+MAP_OPTS="MappingApplication_visualLandmarksMap_00_insertOpts"
+mkdir -p "$OUT"
+
+# run DIR CONFIG RAWLOG [multirobot-vslam options...]: one run and its evaluation; prints
+# "est_1 odo_1 est_2 odo_2 [...] | merged shared step_ms" (RMSE in m).
+run() {
+  local dir="$1" config="$2" rawlog="$3"; shift 3
+  "$BIN/multirobot-vslam" "$config" "$rawlog" --out "$dir" --quiet "$@"
+  "$BIN/vslam-eval" "$dir" --ground-truth "${rawlog%.rawlog}" > "$dir/summary.txt"
+  local rmse merged shared ms
+  rmse=$(awk '/^R[0-9]+ (estimate|odometry):/ {printf "%s ", $5}' "$dir/summary.txt")
+  merged=$(grep -o '"of_those_merged": [0-9]*' "$dir/run.json" | awk '{print $2}')
+  shared=$(grep -o '"true_landmarks_seen_by_several_robots": [0-9]*' "$dir/run.json" | awk '{print $2}')
+  ms=$(grep -A1 '"per_step_ms"' "$dir/run.json" | awk '/"mean"/ {gsub(",", "", $2); printf "%.1f", $2}')
+  echo "$rmse| $merged $shared $ms"
+}
+
+# mean_rmse "est_1 odo_1 est_2 odo_2 ... | ...": mean of the robots' estimate RMSE
+mean_rmse() { echo "$1" | awk -F'|' '{n = split($1, v, " "); s = 0; for (i = 1; i < n; i += 2) s += v[i]; printf "%.4f", s / (n / 2)}'; }
+
+# mean_sd FILE: mean and sample standard deviation of a column of numbers
+mean_sd() { awk '{s += $1; q += $1 * $1; n++} END {m = s / n; v = n > 1 ? (q - n * m * m) / (n - 1) : 0; printf "%.4f %.4f", m, (v > 0 ? sqrt(v) : 0)}' "$1"; }
+
+# --- 1. Fig. 3 and Fig. 6: the shipped configurations, several seeds -------------------------
+team_table() {
+  local name="$1" config="$2" rawlog="$3" robots="$4"
+  echo
+  echo "### $name ($(basename "$config"))"
+  echo
+  local header="| seed |" rule="|---|"
+  for r in $(seq 1 "$robots"); do header+=" R$r RMSE [m] | R$r odometry [m] | R$r ratio |"; rule+="---|---|---|"; done
+  echo "$header merged / shared | step [ms] |"
+  echo "$rule---|---|"
+  : > "$OUT/$name-rmse.txt"
+  for seed in $SEEDS; do
+    local res line
+    res=$(run "$OUT/$name-seed$seed" "$config" "$rawlog" --seed "$seed")
+    line="| $seed |"
+    read -r -a v <<< "${res%%|*}"
+    for r in $(seq 0 $((robots - 1))); do
+      line+=$(awk -v e="${v[$((2 * r))]}" -v o="${v[$((2 * r + 1))]}" 'BEGIN {printf " %.3f | %.3f | %.2f |", e, o, e / o}')
+      echo "R$((r + 1)) ${v[$((2 * r))]} ${v[$((2 * r + 1))]}" >> "$OUT/$name-rmse.txt"
+    done
+    read -r merged shared ms <<< "${res##*|}"
+    echo "$line $merged / $shared | $ms |"
+  done
+  for r in $(seq 1 "$robots"); do
+    awk -v r="R$r" '$1 == r {e += $2; o += $3; n++} END {printf "R%s mean over seeds: RMSE %.3f m, odometry %.3f m, ratio %.2f\n", substr(r, 2), e / n, o / n, e / o}' "$OUT/$name-rmse.txt"
+  done
+}
+team_table team2 "$CONFIGS/office-team-2.ini" "$DATA/team2.rawlog" 2
+team_table team3 "$CONFIGS/office-team-3.ini" "$DATA/team3.rawlog" 3
+
+# --- 2./3. Fig. 4: RMSE (mean of both robots) vs M and vs B ------------------------------------
+sweep() {
+  local name="$1" key="$2"; shift 2
+  echo
+  echo "### RMSE vs $name (team2; mean of both robots; mean ± sd over seeds $SEEDS)"
+  echo
+  echo "| $name | mean RMSE [m] | sd [m] | step [ms] |"
+  echo "|---|---|---|---|"
+  : > "$OUT/rmse-vs-$name.txt"
+  for value in "$@"; do
+    : > "$OUT/sweep.tmp"
+    local ms_sum=0
+    for seed in $SEEDS; do
+      local res
+      res=$(run "$OUT/$name$value-seed$seed" "$CONFIGS/office-team-2.ini" "$DATA/team2.rawlog" \
+        --seed "$seed" --set "$key=$value")
+      mean_rmse "$res" >> "$OUT/sweep.tmp"; echo >> "$OUT/sweep.tmp"
+      ms_sum=$(awk -v a="$ms_sum" -v b="${res##* }" 'BEGIN {print a + b}')
+    done
+    read -r m sd <<< "$(mean_sd "$OUT/sweep.tmp")"
+    local ms
+    ms=$(awk -v s="$ms_sum" -v n="$(echo "$SEEDS" | wc -w)" 'BEGIN {printf "%.1f", s / n}')
+    echo "| $value | $m | $sd | $ms |"
+    awk -v x="$value" -v m="$m" -v sd="$sd" 'BEGIN {printf "team2 %s %s %.4f %.4f\n", x, m, m - sd, m + sd}' >> "$OUT/rmse-vs-$name.txt"
+  done
+  rm -f "$OUT/sweep.tmp"
+}
+sweep M ParticleFilter.sampleSize 1 10 50 100 200 500 1000 1500 2500
+"$BIN/vslam-plot" "$OUT/rmse-vs-M.txt" "$OUT/rmse-vs-M.png" --log-x --y-from-zero \
+  --title "RMSE vs number of particles M (B = 8, mean ± sd over seeds)" \
+  --x-label "M" --y-label "position RMSE [m]"
+sweep B MultiRobotVSLAM.max_observations_per_robot 1 5 10 20
+"$BIN/vslam-plot" "$OUT/rmse-vs-B.txt" "$OUT/rmse-vs-B.png" --y-from-zero \
+  --title "RMSE vs observations per robot and step B (M = 500, mean ± sd over seeds)" \
+  --x-label "B" --y-label "position RMSE [m]"
+
+# --- 4. E0 and the paper's R_t ------------------------------------------------------------------
+echo
+echo "### Variants (team2, seeds $SEEDS): mean RMSE of both robots, merged / shared landmarks"
+echo
+echo "| variant | mean RMSE [m] | sd [m] | merged / shared (sum) |"
+echo "|---|---|---|---|"
+variant() {
+  local name="$1" rawlog="$2"; shift 2
+  : > "$OUT/variant.tmp"
+  local merged=0 shared=0
+  for seed in $SEEDS; do
+    local res mg sh
+    res=$(run "$OUT/$name-seed$seed" "$CONFIGS/office-team-2.ini" "$rawlog" --seed "$seed" "$@")
+    mean_rmse "$res" >> "$OUT/variant.tmp"; echo >> "$OUT/variant.tmp"
+    read -r mg sh _ <<< "${res##*|}"
+    merged=$((merged + mg)); shared=$((shared + sh))
+  done
+  read -r m sd <<< "$(mean_sd "$OUT/variant.tmp")"
+  echo "| $name | $m | $sd | $merged / $shared |"
+  rm -f "$OUT/variant.tmp"
+}
+variant "shipped (E0 = 0.7, sigma 0.5/3/3)" "$DATA/team2.rawlog"
+variant "E0 = 0.25" "$DATA/team2.rawlog" --set "$MAP_OPTS.E0=0.25"
+# the paper's sigmas need the landmarks extracted again from the stereo images
+if [ ! -f "$OUT/paper-sigma/team2.rawlog" ]; then
+  "$BIN/vslam-sim" office-team --robots 2 --seed 1 --quiet --out "$OUT/stereo/team2"
+  sed -e 's/^sigma_disparity = .*/sigma_disparity = 1/' -e 's/^sigma_row = .*/sigma_row = 10/' \
+    -e 's/^sigma_col = .*/sigma_col = 10/' "$CONFIGS/stereo-frontend.ini" > "$OUT/paper-sigma.ini"
+  "$BIN/stereo-frontend" "$OUT/paper-sigma.ini" "$OUT/stereo/team2.rawlog" --quiet \
+    --out "$OUT/paper-sigma/team2"
+fi
+variant "paper sigma 1/10/10" "$OUT/paper-sigma/team2.rawlog"
+
+echo
+echo "Run folders (paths.png, errors.png, metrics.json, run.json), tables and plots in $OUT"
