@@ -1,0 +1,85 @@
+#pragma once
+
+#include <mrpt/math/TPose2D.h>
+#include <mrpt_vslam/viewmap/ViewObservation.h>
+
+#include <Eigen/Core>
+#include <cstddef>
+
+namespace mrpt_vslam::viewmap {
+
+/** EKF of view-based SLAM (method reconstruction §1.2-1.3, §2.4-2.5) over the state
+ *  x = [x_v, x_l1, …, x_lN] (3 + 3N): the planar robot pose x_v = (x, y, θ) followed by the
+ *  poses of the N views, with the full covariance P.
+ *
+ *   - predict(): odometry composes x_v; only P_vv and the cross blocks P_vl change, in O(N).
+ *   - addView(): a new view at the current robot pose. It is a deterministic copy of x_v, so
+ *     cloning the robot's row and column of P is the exact augmentation (G = I₃).
+ *   - update(): one observation z = (φ, β) of a view (§2.3) with χ² gating on the NIS. The gain
+ *     and the Joseph-form covariance use only the six non-zero columns of H, in O(n²).
+ *
+ *  Every θ of the state stays wrapped by mrpt::math::wrapToPi. P is kept exactly symmetric.
+ *
+ *  Usage: `ViewMapEKF ekf(start); ekf.predict(u, Q); const size_t l = ekf.addView();
+ *  if (ekf.update(l, z, R, 9.21).accepted) ...`
+ */
+class ViewMapEKF {
+  public:
+    /// Outcome of update().
+    struct TUpdateResult {
+        bool accepted = false;  ///< false: gated out, the filter is unchanged
+        double nis = 0;         ///< normalised innovation squared νᵀ S⁻¹ ν
+        Eigen::Vector2d innovation = Eigen::Vector2d::Zero();  ///< [rad] ν, both angles wrapped
+    };
+
+    /** Robot at `start` with covariance P0 and no views.
+     *  \throw std::invalid_argument for a non-finite pose or a P0 that is not symmetric PSD. */
+    explicit ViewMapEKF(const mrpt::math::TPose2D& start,
+                        const Eigen::Matrix3d& P0 = Eigen::Matrix3d::Zero());
+
+    size_t viewCount() const;
+    mrpt::math::TPose2D robotPose() const;
+    /// \throw std::invalid_argument if i ≥ viewCount().
+    mrpt::math::TPose2D viewPose(size_t i) const;
+    const Eigen::VectorXd& mean() const { return m_x; }
+    const Eigen::MatrixXd& covariance() const { return m_P; }
+    /// P_vv.
+    Eigen::Matrix3d robotCovariance() const;
+    /// P_lili. \throw std::invalid_argument if i ≥ viewCount().
+    Eigen::Matrix3d viewCovariance(size_t i) const;
+
+    /** Prediction (§1.3) with the odometry increment u = (Δx, Δy, Δθ), expressed in the robot
+     *  frame at t−1, of covariance Q: x_v ← x_v ⊕ u, P_vv ← F_x P_vv F_xᵀ + F_u Q F_uᵀ,
+     *  P_vl ← F_x P_vl; the view blocks P_ll do not change.
+     *  \throw std::invalid_argument for a non-finite u or a Q that is not symmetric PSD. */
+    void predict(const mrpt::math::TPose2D& increment, const Eigen::Matrix3d& Q);
+
+    /** Augmentation (§2.5): appends a view at the current robot pose. Its block and its cross
+     *  terms are copies of P_vv and of the robot's cross terms (x_l = x_v exactly).
+     *  \return the index of the new view. */
+    size_t addView();
+
+    /** EKF update (§2.4) with the observation z of view `view` and its covariance R.
+     *  The update is rejected, leaving the filter unchanged, when NIS > gate (a χ²₂ threshold,
+     *  e.g. 9.21 for 99 %; +∞ accepts everything).
+     *  \throw std::invalid_argument for a bad view index, a non-finite z, an R that is not
+     *         symmetric positive definite or a gate that is not > 0.
+     *  \throw std::domain_error when the estimated robot stands on the view (h undefined). */
+    TUpdateResult update(size_t view, const TViewObservation& z, const Eigen::Matrix2d& R,
+                         double gate);
+
+    /** NEES of the robot pose against the true pose: eᵀ P_vv⁻¹ e, e = x_v − truth with the
+     *  angle wrapped.
+     *  \throw std::invalid_argument for a non-finite truth.
+     *  \throw std::domain_error if P_vv is not positive definite. */
+    double robotNEES(const mrpt::math::TPose2D& truth) const;
+
+  private:
+    /// Offset of view i's pose in the state; throws std::invalid_argument if i is out of range.
+    Eigen::Index viewOffset(size_t i) const;
+
+    Eigen::VectorXd m_x;  ///< [x_v, x_l1, …, x_lN]
+    Eigen::MatrixXd m_P;  ///< covariance of m_x
+};
+
+}  // namespace mrpt_vslam::viewmap
