@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds into build/, then runs omni-fastslam on the shipped
-# sports-hall dataset and evaluates it against ground truth (metrics.json + PNG plots).
+# sports-hall dataset and multirobot-vslam on the shipped 2-robot office-team dataset, and
+# evaluates both against ground truth (metrics.json + PNG plots).
 # Results go to out/demo/ (or $DEMO_OUT).
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -15,7 +16,15 @@ DATA="$REPO_DIR/datasets/sports-hall/hall.rawlog"
 echo
 "$BIN/vslam-eval" "$OUT/omni-fastslam" --ground-truth "${DATA%.rawlog}"
 
+
+TEAM="$REPO_DIR/datasets/office-team/team2.rawlog"
 echo
-echo "Demo results in $OUT/omni-fastslam:"
-echo "  estimated_path.tum, map.txt, metrics.json, run.json, paths.png, errors.png, landmark_errors.png"
+"$BIN/multirobot-vslam" "$REPO_DIR/share/mrpt-vslam/config/multirobot-vslam/office-team-2.ini" \
+  "$TEAM" --out "$OUT/multirobot-vslam" --seed 1
+echo
+"$BIN/vslam-eval" "$OUT/multirobot-vslam" --ground-truth "${TEAM%.rawlog}"
+
+echo
+echo "Demo results in $OUT/omni-fastslam and $OUT/multirobot-vslam:"
+echo "  estimated_path*.tum, map.txt, metrics.json, run.json, paths.png, errors.png, landmark_errors.png"
 echo "  final.3Dscene (open with: SceneViewer3D $OUT/omni-fastslam/final.3Dscene)"
