@@ -234,7 +234,7 @@ TEST(VslamSim, BadArgumentsFailWithOneLineErrorAndCode2)
 TEST(VslamSim, UnknownScenarioListsTheKnownOnes)
 {
     const TRun r = runSim("gym --out " + (kWorkDir / "bad" / "y").string());
-    EXPECT_NE(r.out.find("unknown scenario 'gym' (known: sports-hall, office-team)"),
+    EXPECT_NE(r.out.find("unknown scenario 'gym' (known: sports-hall, office-team, omni-views)"),
               std::string::npos)
         << r.out;
 }

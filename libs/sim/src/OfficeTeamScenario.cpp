@@ -2,6 +2,7 @@
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/sim/ConfigReading.h>
 #include <mrpt_vslam/sim/DatasetWriter.h>
+#include <mrpt_vslam/sim/DeadReckoning.h>
 #include <mrpt_vslam/sim/FrameObservations.h>
 #include <mrpt_vslam/sim/OfficeTeamScenario.h>
 #include <mrpt_vslam/sim/OfficeTopView.h>
@@ -152,13 +153,11 @@ TSimulationSummary OfficeTeamScenario::run(const TSimulationOptions& options)
     }
     DatasetWriter writer(options.out_prefix, options.write_images, image_labels,
                          TPngCoding::HuffmanOnly);
-    std::vector<core::TumTrajectory> gt_files(K), odo_files(K);
-    std::vector<mrpt::poses::CPose2D> odo_pose;
-    for (size_t r = 0; r < K; r++) odo_pose.emplace_back(truth[r].front());
+    std::vector<DeadReckoning> tracks;
+    for (size_t r = 0; r < K; r++) tracks.emplace_back(mrpt::poses::CPose2D(truth[r].front()));
 
     m_statistics = TTeamStatistics();
     m_statistics.corners = model.corners.size();
-    m_statistics.path_length.assign(K, 0.0);
     // Per robot and corner: frames seen in a row up to the last frame, and the best run.
     std::vector<std::vector<int>> run_length(K, std::vector<int>(model.corners.size(), 0));
     std::vector<std::vector<int>> best_run = run_length;
@@ -169,17 +168,9 @@ TSimulationSummary OfficeTeamScenario::run(const TSimulationOptions& options)
         const mrpt::Clock::time_point stamp = mrpt::Clock::fromDouble(t);
         for (size_t r = 0; r < K; r++) {
             const mrpt::poses::CPose2D robot(truth[r][static_cast<size_t>(k)]);
-            if (k > 0) {
-                const mrpt::poses::CPose2D true_increment =
-                    robot - mrpt::poses::CPose2D(truth[r][static_cast<size_t>(k - 1)]);
-                odo_pose[r] = odo_pose[r] + odo[r].simulateIncrement(true_increment);
-                m_statistics.path_length[r] += true_increment.norm();
-            }
-            gt_files[r].push_back(t,
-                                  mrpt::math::TPose3D(robot.x(), robot.y(), 0, robot.phi(), 0, 0));
-            odo_files[r].push_back(t, mrpt::math::TPose3D(odo_pose[r].x(), odo_pose[r].y(), 0,
-                                                          odo_pose[r].phi(), 0, 0));
-            writer.writeObservation(*makeOdometryObservation(label(r, "ODOM"), odo_pose[r], stamp));
+            tracks[r].step(t, robot, odo[r]);
+            writer.writeObservation(
+                *makeOdometryObservation(label(r, "ODOM"), tracks[r].odometryPose(), stamp));
 
             const mrpt::poses::CPose3D robot_in_world(robot);
             const mrpt::poses::CPose3D left_in_world = robot_in_world + camera_on_robot;
@@ -211,20 +202,14 @@ TSimulationSummary OfficeTeamScenario::run(const TSimulationOptions& options)
 
     std::vector<TTumFile> tum;
     for (size_t r = 0; r < K; r++) {
-        tum.push_back({"groundtruth_" + robotName(r), gt_files[r],
+        tum.push_back({"groundtruth_" + robotName(r), tracks[r].ground_truth,
                        "ground truth of " + robotName(r) +
                            ": robot base pose in the world (timestamp x y z qx qy qz qw)"});
-        tum.push_back({"odometry_" + robotName(r), odo_files[r],
+        tum.push_back({"odometry_" + robotName(r), tracks[r].odometry,
                        "dead reckoning of the noisy odometry of " + robotName(r) +
                            " from its true initial pose"});
     }
-    core::LandmarkFile landmarks;
-    for (const TCornerLandmark& c : model.corners) {
-        core::TLandmark lm;
-        lm.id = c.id;
-        lm.position = {c.position.x(), c.position.y(), c.position.z()};
-        landmarks.landmarks.push_back(lm);
-    }
+    const core::LandmarkFile landmarks = model.cornerLandmarks();
     writer.writeImageBesideRawlog(drawOfficeTopView(world, model, truth), "topview");
     writer.commit(tum, landmarks,
                   "designed texture corners of the office world (ground-truth landmarks) [m]");
@@ -235,7 +220,8 @@ TSimulationSummary OfficeTeamScenario::run(const TSimulationOptions& options)
     summary.robots = robots;
     std::string seen, tracked;
     for (size_t r = 0; r < K; r++) {
-        summary.path_length += m_statistics.path_length[r];
+        m_statistics.path_length.push_back(tracks[r].path_length);
+        summary.path_length += tracks[r].path_length;
         const std::string sep = r ? ", " : "";
         seen += sep + robotName(r) + " " + std::to_string(m_statistics.seen[r]);
         tracked += sep + std::to_string(m_statistics.tracked[r]);

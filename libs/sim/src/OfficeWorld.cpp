@@ -9,6 +9,18 @@
 
 namespace mrpt_vslam::sim {
 
+core::LandmarkFile TOfficeModel::cornerLandmarks() const
+{
+    core::LandmarkFile file;
+    for (const TCornerLandmark& c : corners) {
+        core::TLandmark lm;
+        lm.id = c.id;
+        lm.position = {c.position.x(), c.position.y(), c.position.z()};
+        file.landmarks.push_back(lm);
+    }
+    return file;
+}
+
 namespace {
 
 using Vec2 = Eigen::Vector2d;

@@ -3,6 +3,7 @@
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/sim/ConfigReading.h>
 #include <mrpt_vslam/sim/DatasetWriter.h>
+#include <mrpt_vslam/sim/DeadReckoning.h>
 #include <mrpt_vslam/sim/FrameObservations.h>
 #include <mrpt_vslam/sim/PajdlaBaksteinInverse.h>
 #include <mrpt_vslam/sim/RandomStreams.h>
@@ -47,8 +48,7 @@ TSimulationSummary SportsHallScenario::run(const TSimulationOptions& options)
     const Eigen::Vector2d angular_std = detections.angularStd(camera, bearing_std_reference_theta);
 
     DatasetWriter writer(options.out_prefix, options.write_images, {kImageLabel});
-    core::TumTrajectory ground_truth, odometry_path;
-    mrpt::poses::CPose2D odometry_pose(poses.front());
+    DeadReckoning track{mrpt::poses::CPose2D(poses.front())};
     TSimulationSummary summary;
     size_t light_bearings = 0, spurious_bearings = 0;
 
@@ -58,18 +58,7 @@ TSimulationSummary SportsHallScenario::run(const TSimulationOptions& options)
         const mrpt::poses::CPose2D robot(poses[k]);
 
         // Odometry: noisy increment from the previous frame (none before frame 0).
-        mrpt::poses::CPose2D increment;
-        if (k > 0) {
-            const mrpt::poses::CPose2D true_increment = robot - mrpt::poses::CPose2D(poses[k - 1]);
-            increment = odometry.simulateIncrement(true_increment);
-            summary.path_length += true_increment.norm();
-        }
-        odometry_pose = odometry_pose + increment;
-        ground_truth.push_back(start_time + t,
-                               mrpt::math::TPose3D(robot.x(), robot.y(), 0, robot.phi(), 0, 0));
-        odometry_path.push_back(start_time + t,
-                                mrpt::math::TPose3D(odometry_pose.x(), odometry_pose.y(), 0,
-                                                    odometry_pose.phi(), 0, 0));
+        const mrpt::poses::CPose2D increment = track.step(start_time + t, robot, odometry);
         mrpt::obs::CActionRobotMovement2D movement;
         movement.computeFromOdometry(increment, odometry.motionModel());
         movement.timestamp = stamp;
@@ -99,9 +88,10 @@ TSimulationSummary SportsHallScenario::run(const TSimulationOptions& options)
         spurious_bearings += frame.spurious.size();
         if (options.on_progress) options.on_progress(k + 1, n);
     }
-    writer.commit({{"groundtruth", ground_truth,
+    summary.path_length = track.path_length;
+    writer.commit({{"groundtruth", track.ground_truth,
                     "ground truth: robot base pose in the world (timestamp x y z qx qy qz qw)"},
-                   {"odometry", odometry_path,
+                   {"odometry", track.odometry,
                     "dead reckoning of the noisy odometry from the true initial pose"}},
                   lights.asLandmarkFile());
     summary.details = std::to_string(light_bearings) + " light and " +

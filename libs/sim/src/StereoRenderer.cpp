@@ -164,14 +164,15 @@ TRenderedView StereoRenderer::renderView(const TexturedScene& scene,
     return view;
 }
 
-mrpt::img::CImage StereoRenderer::addNoise(const TRenderedView& view)
+mrpt::img::CImage addPixelNoise(const TRenderedView& view, double noise_std,
+                                mrpt::random::CRandomGenerator& rng)
 {
     cv::Mat gray(view.height, view.width, CV_8UC1);
     for (int r = 0; r < view.height; r++) {
         uint8_t* row = gray.ptr<uint8_t>(r);
         for (int c = 0; c < view.width; c++) {
             const double v = view.radiance[static_cast<size_t>(r) * view.width + c] +
-                             (noise_std > 0 ? noise_std * m_rng.drawGaussian1D_normalized() : 0);
+                             (noise_std > 0 ? noise_std * rng.drawGaussian1D_normalized() : 0);
             row[c] = cv::saturate_cast<uint8_t>(v);
         }
     }
@@ -181,8 +182,9 @@ mrpt::img::CImage StereoRenderer::addNoise(const TRenderedView& view)
 std::pair<mrpt::img::CImage, mrpt::img::CImage> StereoRenderer::render(
     const TexturedScene& scene, const mrpt::poses::CPose3D& left_in_world)
 {
-    mrpt::img::CImage left = addNoise(renderView(scene, left_in_world));
-    mrpt::img::CImage right = addNoise(renderView(scene, left_in_world + rightCameraInLeft()));
+    mrpt::img::CImage left = addPixelNoise(renderView(scene, left_in_world), noise_std, m_rng);
+    mrpt::img::CImage right =
+        addPixelNoise(renderView(scene, left_in_world + rightCameraInLeft()), noise_std, m_rng);
     return {std::move(left), std::move(right)};
 }
 

@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPoint2D.h>
+#include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/sim/TexturePainter.h>
 #include <mrpt_vslam/sim/TexturedScene.h>
 
@@ -35,6 +36,9 @@ struct TCornerLandmark {
 struct TOfficeModel {
     TexturedScene scene;
     std::vector<TCornerLandmark> corners;
+
+    /// The corners as a ground-truth landmarks file (`NAME.landmarks.txt`).
+    core::LandmarkFile cornerLandmarks() const;
 };
 
 /** An office-like indoor area for the multi-robot experiment of paper 003 (Sec. 6: "a typical

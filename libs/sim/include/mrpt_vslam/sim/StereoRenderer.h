@@ -20,6 +20,11 @@ struct TRenderedView {
     std::vector<int> face;        ///< rectangle seen by the pixel's first sub-sample; −1: none
 };
 
+/** The 8-bit image of `view`: each pixel's radiance plus N(0, noise_std²) noise drawn from `rng`
+ *  in row-major order (no draws when noise_std = 0), rounded and saturated. */
+mrpt::img::CImage addPixelNoise(const TRenderedView& view, double noise_std,
+                                mrpt::random::CRandomGenerator& rng);
+
 /** A rectified stereo head (paper 003, Sec. 6: Videre STH-MDCS2) and the renderer of its images.
  *
  *  Both cameras are ideal pinholes with the same intrinsics (fx, fy, cx, cy; no distortion), in
@@ -82,8 +87,6 @@ class StereoRenderer : public mrpt::config::CLoadableOptions {
                             const std::string& section) override;
 
   private:
-    mrpt::img::CImage addNoise(const TRenderedView& view);
-
     mrpt::random::CRandomGenerator m_rng;
 };
 
