@@ -5,9 +5,11 @@
 #      errors.png of each run (vslam-eval);
 #   2. Fig. 4(a): RMSE vs M in {1, 10, 50, 100, 200, 500, 1000, 1500, 2500} (2 robots, B = 8);
 #   3. Fig. 4(b): RMSE vs B in {1, 5, 10, 20} (2 robots, M = 500);
-#   4. descriptor threshold E0 (0.25 vs 0.7) and the paper's R_t pixel sigmas (1, 10, 10) vs ours.
+#   4. descriptor threshold E0 (0.25 vs 0.7) and the paper's R_t pixel sigmas (1, 10, 10) vs ours
+#      on team2;
+#   5. team3 with team2's sigmas (0.5, 3, 3), with and without resample_per_robot.
 # Writes run folders, tables (*.txt) and plots (*.png) under out/reproduce-multirobot/ (or $OUT)
-# and prints markdown tables. Builds first (scripts/setup.sh). Takes about 15 min on one core.
+# and prints markdown tables. Builds first (scripts/setup.sh). Takes about 25 min on one core.
 # Environment: SEEDS (default 1 2 3 4 5), OUT.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -113,13 +115,13 @@ echo "### Variants (team2, seeds $SEEDS): mean RMSE of both robots, merged / sha
 echo
 echo "| variant | mean RMSE [m] | sd [m] | merged / shared (sum) |"
 echo "|---|---|---|---|"
-variant() {
-  local name="$1" rawlog="$2"; shift 2
+variant() {  # variant NAME DIR RAWLOG [options...]
+  local name="$1" dir="$2" rawlog="$3"; shift 3
   : > "$OUT/variant.tmp"
   local merged=0 shared=0
   for seed in $SEEDS; do
     local res mg sh
-    res=$(run "$OUT/$name-seed$seed" "$CONFIGS/office-team-2.ini" "$rawlog" --seed "$seed" "$@")
+    res=$(run "$OUT/$dir-seed$seed" "$CONFIGS/office-team-2.ini" "$rawlog" --seed "$seed" "$@")
     mean_rmse "$res" >> "$OUT/variant.tmp"; echo >> "$OUT/variant.tmp"
     read -r mg sh _ <<< "${res##*|}"
     merged=$((merged + mg)); shared=$((shared + sh))
@@ -128,8 +130,8 @@ variant() {
   echo "| $name | $m | $sd | $merged / $shared |"
   rm -f "$OUT/variant.tmp"
 }
-variant "shipped (E0 = 0.7, sigma 0.5/3/3)" "$DATA/team2.rawlog"
-variant "E0 = 0.25" "$DATA/team2.rawlog" --set "$MAP_OPTS.E0=0.25"
+variant "shipped (E0 = 0.7, sigma 0.5/3/3)" shipped "$DATA/team2.rawlog"
+variant "E0 = 0.25" E0-0.25 "$DATA/team2.rawlog" --set "$MAP_OPTS.E0=0.25"
 # the paper's sigmas need the landmarks extracted again from the stereo images
 if [ ! -f "$OUT/paper-sigma/team2.rawlog" ]; then
   "$BIN/vslam-sim" office-team --robots 2 --seed 1 --quiet --out "$OUT/stereo/team2"
@@ -138,7 +140,29 @@ if [ ! -f "$OUT/paper-sigma/team2.rawlog" ]; then
   "$BIN/stereo-frontend" "$OUT/paper-sigma.ini" "$OUT/stereo/team2.rawlog" --quiet \
     --out "$OUT/paper-sigma/team2"
 fi
-variant "paper sigma 1/10/10" "$OUT/paper-sigma/team2.rawlog"
+variant "paper sigma 1/10/10" paper-sigma-run "$OUT/paper-sigma/team2.rawlog"
+
+# --- 5. team3 with team2's narrower R_t, with and without resample_per_robot ------------------
+if [ ! -f "$OUT/narrow-sigma/team3.rawlog" ]; then
+  "$BIN/vslam-sim" office-team --robots 3 --seed 1 --quiet --out "$OUT/stereo/team3"
+  "$BIN/stereo-frontend" "$CONFIGS/stereo-frontend.ini" "$OUT/stereo/team3.rawlog" --quiet \
+    --out "$OUT/narrow-sigma/team3"
+fi
+echo
+echo "### team3 with sigma 0.5/3/3 (seeds $SEEDS): mean RMSE per robot"
+echo
+echo "| resample_per_robot | R1 [m] | R2 [m] | R3 [m] |"
+echo "|---|---|---|---|"
+for rpr in true false; do
+  : > "$OUT/narrow.tmp"
+  for seed in $SEEDS; do
+    res=$(run "$OUT/team3-narrow-rpr-$rpr-seed$seed" "$CONFIGS/office-team-3.ini" \
+      "$OUT/narrow-sigma/team3.rawlog" --seed "$seed" --set "MultiRobotVSLAM.resample_per_robot=$rpr")
+    echo "${res%%|*}" >> "$OUT/narrow.tmp"
+  done
+  awk -v r="$rpr" '{a += $1; b += $3; c += $5; n++} END {printf "| %s | %.3f | %.3f | %.3f |\n", r, a / n, b / n, c / n}' "$OUT/narrow.tmp"
+  rm -f "$OUT/narrow.tmp"
+done
 
 echo
 echo "Run folders (paths.png, errors.png, metrics.json, run.json), tables and plots in $OUT"
