@@ -64,10 +64,10 @@ void suppressThirdPartyLeaks() {
     ::setenv("LSAN_OPTIONS", ("suppressions=" + file).c_str(), 1);
 }
 
-TRunResult runEval(const std::string& args) {
+TRunResult runApp(const std::string& app, const std::string& args) {
     suppressThirdPartyLeaks();
     const auto errFile = (scratch().path() / "stderr.txt").string();
-    const std::string cmd = std::string("\"") + MRPT_VSLAM_BIN_DIR "/vslam-eval\" " + args +
+    const std::string cmd = std::string("\"") + MRPT_VSLAM_BIN_DIR "/" + app + "\" " + args +
                             " > /dev/null 2> \"" + errFile + "\"";
     const int status = std::system(cmd.c_str());
     TRunResult r;
@@ -78,6 +78,8 @@ TRunResult runEval(const std::string& args) {
     r.stderr_text = ss.str();
     return r;
 }
+
+TRunResult runEval(const std::string& args) { return runApp("vslam-eval", args); }
 
 nlohmann::json readJson(const fs::path& file) {
     std::ifstream in(file);
@@ -202,4 +204,40 @@ TEST(VslamEval, RunFolderWithoutGroundTruthIsAnError) {
     EXPECT_NE(r.exit_code, 0);
     EXPECT_NE(r.stderr_text.find("ground truth"), std::string::npos) << r.stderr_text;
     EXPECT_FALSE(fs::exists(run / "metrics.json"));
+}
+
+// vslam-plot: a table of two series with error bars becomes a PNG; a malformed line is a
+// one-line error naming file and line, and no image is left behind.
+TEST(VslamPlot, PlotsTablesAndRejectsMalformedOnes) {
+    const auto dir = scratch().path() / "plot";
+    fs::create_directories(dir);
+    std::ofstream(dir / "ok.txt") << "# series x y low high\nM=500 1 0.5 0.4 0.6\n"
+                                     "M=500 10 0.3 0.2 0.4\nM=500 100 0.2 0.1 0.3\nB=8 1 0.6 0.5 0.7\n";
+    const auto ok = runApp("vslam-plot", (dir / "ok.txt").string() + " " +
+                                             (dir / "ok.png").string() + " --log-x --y-from-zero");
+    EXPECT_EQ(ok.exit_code, 0) << ok.stderr_text;
+    expectNonEmptyPng(dir / "ok.png");
+
+    std::ofstream(dir / "bad.txt") << "A 1 2\nA 2 two\n";
+    const auto bad =
+        runApp("vslam-plot", (dir / "bad.txt").string() + " " + (dir / "bad.png").string());
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_NE(bad.stderr_text.find("bad.txt:2: 'two' is not a finite number"), std::string::npos)
+        << bad.stderr_text;
+    EXPECT_EQ(std::count(bad.stderr_text.begin(), bad.stderr_text.end(), '\n'), 1);
+    EXPECT_FALSE(fs::exists(dir / "bad.png"));
+
+    std::ofstream(dir / "mixed.txt") << "A 1 2 1 3\nA 2 3\n";
+    const auto mixed =
+        runApp("vslam-plot", (dir / "mixed.txt").string() + " " + (dir / "mixed.png").string());
+    EXPECT_EQ(mixed.exit_code, 1);
+    EXPECT_NE(mixed.stderr_text.find("mixed.txt:2: series 'A' mixes"), std::string::npos)
+        << mixed.stderr_text;
+
+    std::ofstream(dir / "neg.txt") << "A 0 1\nA 1 2\n";
+    const auto neg = runApp("vslam-plot", (dir / "neg.txt").string() + " " +
+                                              (dir / "neg.png").string() + " --log-x");
+    EXPECT_EQ(neg.exit_code, 1);
+    EXPECT_NE(neg.stderr_text.find("--log-x"), std::string::npos) << neg.stderr_text;
+    EXPECT_FALSE(fs::exists(dir / "neg.png"));
 }
