@@ -4,6 +4,7 @@
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
 #include <mrpt_vslam/test/SyntheticTeamWorld.h>
 
+#include <algorithm>
 #include <bitset>
 
 using namespace mrpt_vslam::multirobot;
@@ -70,6 +71,47 @@ TEST(CMultiRobotVisualSLAM, TeamWeightIsTheProductOverRobotsAndMeasurements)
         total_expected += expected;
     }
     EXPECT_TRUE(std::isfinite(total_expected));
+}
+
+// resample_per_robot: with BETA above 1 the particles are resampled after robot 1's
+// measurements, which resets the weights; robot 2 measures nothing in this step, so every
+// weight must be back to 0. Without the option robot 1's weights remain and differ.
+TEST(CMultiRobotVisualSLAM, ResamplingAfterEachRobotResetsWeightsBetweenRobots)
+{
+    for (const bool per_robot : {true, false}) {
+        SyntheticTeamWorld::TParams wp;
+        wp.landmarks = 300;
+        SyntheticTeamWorld world(wp);
+        CMultiRobotVisualSLAM filter(CVisualLandmarksMap(), 50, 5);
+        mrpt::random::getRandomGenerator().randomize(5);
+        filter.options.resample_per_robot = per_robot;
+        filter.reset(world.startPoses(), world.time);
+        auto pf = standardFilter();
+        mrpt::obs::CActionCollection acts;
+        mrpt::obs::CSensoryFrame sf;
+        for (int i = 0; i < 3; i++) {
+            world.step(acts, sf);
+            pf.executeOn(filter, &acts, &sf);
+        }
+        world.step(acts, sf);
+        mrpt::obs::CSensoryFrame only_r1;
+        only_r1.insert(sf.getObservationBySensorLabel("R1_LANDMARKS"));
+        pf.m_options.BETA = 2;  // always resample when asked
+        for (auto& p : filter.m_particles) p.log_w = 0;
+        filter.prediction_and_update(&acts, &only_r1, pf.m_options);  // no final resampling
+        ASSERT_GT(filter.lastStepStats.measurements, 0u);
+        double min_w = 1e300, max_w = -1e300;
+        for (const auto& p : filter.m_particles) {
+            min_w = std::min(min_w, p.log_w);
+            max_w = std::max(max_w, p.log_w);
+        }
+        if (per_robot) {
+            EXPECT_EQ(min_w, 0.0);
+            EXPECT_EQ(max_w, 0.0);
+        } else {
+            EXPECT_GT(max_w - min_w, 1.0) << "robot 1's weights must still differ";
+        }
+    }
 }
 
 TEST(CMultiRobotVisualSLAM, TwoRobotsBeatOdometryAndMergeSharedLandmarks)

@@ -6,6 +6,7 @@
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/random/RandomGenerators.h>
+#include <mrpt_vslam/core/ParticleFilterDataImpl.h>
 #include <mrpt_vslam/multirobot/TeamParticle.h>
 
 #include <string>
@@ -38,7 +39,7 @@ namespace mrpt_vslam::multirobot {
 class CMultiRobotVisualSLAM
     : public mrpt::bayes::CParticleFilterData<TTeamParticle,
                                               mrpt::bayes::particle_storage_mode::POINTER>,
-      public mrpt::bayes::CParticleFilterDataImpl<
+      public core::ParticleFilterDataImpl<
           CMultiRobotVisualSLAM,
           mrpt::bayes::CParticleFilterData<
               TTeamParticle, mrpt::bayes::particle_storage_mode::POINTER>::CParticleList> {

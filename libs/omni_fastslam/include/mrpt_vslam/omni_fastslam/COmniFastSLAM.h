@@ -6,6 +6,7 @@
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPose2D.h>
 #include <mrpt/random/RandomGenerators.h>
+#include <mrpt_vslam/core/ParticleFilterDataImpl.h>
 #include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
 
 #include <memory>
@@ -50,7 +51,7 @@ struct TOmniFastSLAMParticle {
 class COmniFastSLAM
     : public mrpt::bayes::CParticleFilterData<TOmniFastSLAMParticle,
                                               mrpt::bayes::particle_storage_mode::POINTER>,
-      public mrpt::bayes::CParticleFilterDataImpl<
+      public core::ParticleFilterDataImpl<
           COmniFastSLAM,
           mrpt::bayes::CParticleFilterData<
               TOmniFastSLAMParticle, mrpt::bayes::particle_storage_mode::POINTER>::CParticleList> {
