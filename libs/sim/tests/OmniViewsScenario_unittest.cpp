@@ -4,7 +4,6 @@
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationImage.h>
 #include <mrpt/obs/CObservationRobotPose.h>
-#include <mrpt/system/CTicTac.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/core/RawlogReader.h>
 #include <mrpt_vslam/core/TumTrajectory.h>
@@ -121,14 +120,11 @@ TEST(OmniViewsScenario, EveryRayHitsTheWorldAndWallsFillTheImage)
     const TOfficeModel model = s.world.build(s.textures);
     const auto path = s.trajectory.generate(s.trajectory.frames);
     const size_t ceiling = model.scene.rectangles.size() - 1;  // last face (OfficeWorld order)
-    double min_hit = 1, min_vertical = 1, min_ceiling = 1, max_seconds = 0;
-    mrpt::system::CTicTac timer;
+    double min_hit = 1, min_vertical = 1, min_ceiling = 1;
     for (size_t k = 0; k < path.size(); k += 30) {
         const mrpt::poses::CPose3D cam =
             mrpt::poses::CPose3D(mrpt::poses::CPose2D(path[k])) + s.camera_on_robot;
-        timer.Tic();
         const TRenderedView v = s.renderer.renderView(model.scene, cam);
-        max_seconds = std::max(max_seconds, timer.Tac());
         size_t valid = 0, hit = 0, vertical = 0, on_ceiling = 0;
         for (size_t i = 0; i < v.face.size(); i++) {
             const auto ray = s.renderer.camera().unproject(
@@ -150,12 +146,10 @@ TEST(OmniViewsScenario, EveryRayHitsTheWorldAndWallsFillTheImage)
     }
     std::cout << "over the frames: at least " << 100 * min_vertical << " % of the image circle on "
               << "walls and furniture, " << 100 * min_ceiling << " % on the ceiling; "
-              << model.corners.size() << " texture corners; render time up to " << max_seconds
-              << " s per frame\n";
+              << model.corners.size() << " texture corners\n";
     EXPECT_EQ(min_hit, 1.0) << "inside the closed world every ray hits a face";
     EXPECT_GE(min_vertical, 0.4);
     EXPECT_GE(min_ceiling, 0.05);
-    EXPECT_LT(max_seconds, 1.0);
 }
 
 TEST(OmniViewsScenario, RawlogHoldsOdometryImageAndGroundTruthPerFrame)
