@@ -7,7 +7,7 @@
 #   3. Fig. 4(b): RMSE vs B in {1, 5, 10, 20} (2 robots, M = 500);
 #   4. descriptor threshold E0 (0.25 vs 0.7) and the paper's R_t pixel sigmas (1, 10, 10) vs ours
 #      on team2;
-#   5. team3 with team2's sigmas (0.5, 3, 3), with and without resample_per_robot.
+#   5. team3 without resample_per_robot, and with the paper's sigmas.
 # Writes run folders, tables (*.txt) and plots (*.png) under out/reproduce-multirobot/ (or $OUT)
 # and prints markdown tables. Builds first (scripts/setup.sh). Takes about 25 min on one core.
 # Environment: SEEDS (default 1 2 3 4 5), OUT.
@@ -133,36 +133,38 @@ variant() {  # variant NAME DIR RAWLOG [options...]
 variant "shipped (E0 = 0.7, sigma 0.5/3/3)" shipped "$DATA/team2.rawlog"
 variant "E0 = 0.25" E0-0.25 "$DATA/team2.rawlog" --set "$MAP_OPTS.E0=0.25"
 # the paper's sigmas need the landmarks extracted again from the stereo images
-if [ ! -f "$OUT/paper-sigma/team2.rawlog" ]; then
-  "$BIN/vslam-sim" office-team --robots 2 --seed 1 --quiet --out "$OUT/stereo/team2"
-  sed -e 's/^sigma_disparity = .*/sigma_disparity = 1/' -e 's/^sigma_row = .*/sigma_row = 10/' \
-    -e 's/^sigma_col = .*/sigma_col = 10/' "$CONFIGS/stereo-frontend.ini" > "$OUT/paper-sigma.ini"
-  "$BIN/stereo-frontend" "$OUT/paper-sigma.ini" "$OUT/stereo/team2.rawlog" --quiet \
-    --out "$OUT/paper-sigma/team2"
-fi
+paper_sigma_rawlog() {  # paper_sigma_rawlog NAME ROBOTS: simulates and extracts once
+  if [ ! -f "$OUT/paper-sigma/$1.rawlog" ]; then
+    "$BIN/vslam-sim" office-team --robots "$2" --seed 1 --quiet --out "$OUT/stereo/$1"
+    sed -e 's/^sigma_disparity = .*/sigma_disparity = 1/' -e 's/^sigma_row = .*/sigma_row = 10/' \
+      -e 's/^sigma_col = .*/sigma_col = 10/' "$CONFIGS/stereo-frontend.ini" > "$OUT/paper-sigma.ini"
+    "$BIN/stereo-frontend" "$OUT/paper-sigma.ini" "$OUT/stereo/$1.rawlog" --quiet \
+      --out "$OUT/paper-sigma/$1"
+  fi
+}
+paper_sigma_rawlog team2 2
 variant "paper sigma 1/10/10" paper-sigma-run "$OUT/paper-sigma/team2.rawlog"
 
-# --- 5. team3 with team2's narrower R_t, with and without resample_per_robot ------------------
-if [ ! -f "$OUT/narrow-sigma/team3.rawlog" ]; then
-  "$BIN/vslam-sim" office-team --robots 3 --seed 1 --quiet --out "$OUT/stereo/team3"
-  "$BIN/stereo-frontend" "$CONFIGS/stereo-frontend.ini" "$OUT/stereo/team3.rawlog" --quiet \
-    --out "$OUT/narrow-sigma/team3"
-fi
+# --- 5. team3 with the paper's R_t sigmas (1, 10, 10), and without resample_per_robot --------
+paper_sigma_rawlog team3 3
 echo
-echo "### team3 with sigma 0.5/3/3 (seeds $SEEDS): mean RMSE per robot"
+echo "### team3 variants (seeds $SEEDS): mean RMSE per robot"
 echo
-echo "| resample_per_robot | R1 [m] | R2 [m] | R3 [m] |"
+echo "| variant | R1 [m] | R2 [m] | R3 [m] |"
 echo "|---|---|---|---|"
-for rpr in true false; do
-  : > "$OUT/narrow.tmp"
+team3_variant() {  # team3_variant NAME DIR RAWLOG [options...]
+  local name="$1" dir="$2" rawlog="$3"; shift 3
+  : > "$OUT/team3-variant.tmp"
   for seed in $SEEDS; do
-    res=$(run "$OUT/team3-narrow-rpr-$rpr-seed$seed" "$CONFIGS/office-team-3.ini" \
-      "$OUT/narrow-sigma/team3.rawlog" --seed "$seed" --set "MultiRobotVSLAM.resample_per_robot=$rpr")
-    echo "${res%%|*}" >> "$OUT/narrow.tmp"
+    res=$(run "$OUT/$dir-seed$seed" "$CONFIGS/office-team-3.ini" "$rawlog" --seed "$seed" "$@")
+    echo "${res%%|*}" >> "$OUT/team3-variant.tmp"
   done
-  awk -v r="$rpr" '{a += $1; b += $3; c += $5; n++} END {printf "| %s | %.3f | %.3f | %.3f |\n", r, a / n, b / n, c / n}' "$OUT/narrow.tmp"
-  rm -f "$OUT/narrow.tmp"
-done
+  awk -v v="$name" '{a += $1; b += $3; c += $5; n++} END {printf "| %s | %.3f | %.3f | %.3f |\n", v, a / n, b / n, c / n}' "$OUT/team3-variant.tmp"
+  rm -f "$OUT/team3-variant.tmp"
+}
+team3_variant "resample_per_robot = false" team3-no-rpr "$DATA/team3.rawlog" \
+  --set MultiRobotVSLAM.resample_per_robot=false
+team3_variant "paper sigma 1/10/10" team3-paper-sigma "$OUT/paper-sigma/team3.rawlog"
 
 echo
 echo "Run folders (paths.png, errors.png, metrics.json, run.json), tables and plots in $OUT"

@@ -20,7 +20,7 @@ namespace mrpt_vslam::multirobot {
  *  map size, and M particles share every block none of them changed since they split. */
 class LandmarkStore {
 public:
-    static constexpr uint32_t kBlockSize = 8;
+    static constexpr uint32_t kBlockSize = 32;
 
     /// The landmark with this id, or nullptr if this particle has none.
     const TVisualLandmark* find(uint32_t id) const
