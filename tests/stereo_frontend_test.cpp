@@ -9,6 +9,7 @@
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt_vslam/core/RawlogReader.h>
+#include <mrpt_vslam/test/RawlogInfo.h>
 #include <mrpt_vslam/test/RunCommand.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
 
@@ -28,43 +29,9 @@ namespace {
 using TRun = mrpt_vslam::test::TCommandResult;
 using mrpt_vslam::test::runCommand;
 
-int lineCount(const std::string& text)
-{
-    int n = 0;
-    for (char c : text) n += c == '\n';
-    return n;
-}
-
-std::string trim(const std::string& s)
-{
-    const size_t a = s.find_first_not_of(' '), b = s.find_last_not_of(' ');
-    return a == std::string::npos ? "" : s.substr(a, b - a + 1);
-}
-
-/// `rawlog-edit --info` report: "Field name : value" lines, and the per-sensor occurrence counts
-/// of the "Sensor (Label/Occurs/Rate/Durat.) : LABEL / N / ..." lines.
-struct TRawlogInfo {
-    std::map<std::string, std::string> fields;
-    std::map<std::string, int> sensor_counts;
-};
-
-TRawlogInfo parseRawlogInfo(const std::string& text)
-{
-    TRawlogInfo info;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) {
-        const size_t colon = line.find(" : ");
-        if (colon == std::string::npos) continue;
-        const std::string name = trim(line.substr(0, colon)), value = trim(line.substr(colon + 3));
-        if (name.rfind("Sensor (Label", 0) == 0) {
-            const size_t slash = value.find('/');
-            info.sensor_counts[trim(value.substr(0, slash))] = std::stoi(value.substr(slash + 1));
-        } else {
-            info.fields[name] = value;
-        }
-    }
-    return info;
-}
+using mrpt_vslam::test::lineCount;
+using mrpt_vslam::test::parseRawlogInfo;
+using mrpt_vslam::test::TRawlogInfo;
 
 std::string fileBytes(const fs::path& file)
 {

@@ -26,4 +26,12 @@ inline TCommandResult runCommand(const std::string& command, const std::filesyst
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
 }
 
+/// Lines of a command's output (its newline characters).
+inline int lineCount(const std::string& text)
+{
+    int n = 0;
+    for (char c : text) n += c == '\n';
+    return n;
+}
+
 }  // namespace mrpt_vslam::test
