@@ -1,7 +1,6 @@
 #include <mrpt/bayes/CParticleFilter.h>
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
-#include <mrpt/gui/CDisplayWindow3D.h>
 #include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationStereoImages.h>
@@ -13,6 +12,7 @@
 #include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/core/LiveView.h>
 #include <mrpt_vslam/core/OutputDirectory.h>
 #include <mrpt_vslam/core/ProgressReporter.h>
 #include <mrpt_vslam/core/RawlogReader.h>
@@ -27,7 +27,6 @@
 #include <opencv2/core/version.hpp>
 
 #include <bitset>
-#include <cstdlib>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -68,7 +67,7 @@ struct MultiRobotVSLAMApp::Impl {
     std::unique_ptr<CMultiRobotVisualSLAM> filter;
     std::vector<std::optional<core::TumTrajectory>> groundTruth;
     mrpt::obs::CActionRobotMovement2D::TMotionModelOptions motionModel;
-    mrpt::gui::CDisplayWindow3D::Ptr window;  ///< --gui
+    std::unique_ptr<core::LiveView> window;  ///< --gui
 
     size_t steps = 0, measurements = 0, stereoFrames = 0, landmarkObservations = 0;
 
@@ -223,11 +222,7 @@ void MultiRobotVSLAMApp::initialize()
     mrpt::random::getRandomGenerator().randomize(d.seed);
     d.filter->options = d.filterOptions;
     d.pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
-    if (d.args.gui) {
-        if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
-            throw core::UsageError("--gui needs a display (DISPLAY is not set)");
-        d.window = mrpt::gui::CDisplayWindow3D::Create("multirobot-vslam", 1000, 700);
-    }
+    if (d.args.gui) d.window = std::make_unique<core::LiveView>("multirobot-vslam");
 }
 
 void MultiRobotVSLAMApp::Impl::drawBestParticle(mrpt::opengl::COpenGLScene& scene) const
@@ -281,13 +276,7 @@ void MultiRobotVSLAMApp::run()
         }
         d.measurements += d.filter->lastStepStats.measurements;
         progress.update(++d.steps);
-        if (d.window) {
-            auto& scene = d.window->get3DSceneAndLock();
-            scene->clear();
-            d.drawBestParticle(*scene);
-            d.window->unlockAccess3DScene();
-            d.window->forceRepaint();
-        }
+        if (d.window) d.window->show([&](auto& scene) { d.drawBestParticle(scene); });
     }
     progress.finish(d.steps);
     std::string odoLabels;

@@ -1,7 +1,6 @@
 #include <mrpt/bayes/CParticleFilter.h>
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
-#include <mrpt/gui/CDisplayWindow3D.h>
 #include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/maps/TMetricMapInitializer.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -17,6 +16,7 @@
 #include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/core/LiveView.h>
 #include <mrpt_vslam/core/OutputDirectory.h>
 #include <mrpt_vslam/core/PajdlaBaksteinCamera.h>
 #include <mrpt_vslam/core/ProgressReporter.h>
@@ -31,7 +31,6 @@
 #include <mrpt_vslam/omni_fastslam/OmniFastSLAMApp.h>
 #include <opencv2/core/version.hpp>
 
-#include <cstdlib>
 #include <optional>
 #include <stdexcept>
 
@@ -78,7 +77,7 @@ struct OmniFastSLAMApp::Impl {
     /// The scene of the best particle: map with ellipsoids and its path (final.3Dscene, --gui).
     void drawBestParticle(mrpt::opengl::COpenGLScene& scene) const;
 
-    mrpt::gui::CDisplayWindow3D::Ptr window;  ///< --gui
+    std::unique_ptr<core::LiveView> window;  ///< --gui
 };
 
 OmniFastSLAMApp::OmniFastSLAMApp(core::AppArguments args) : m_impl(std::make_unique<Impl>())
@@ -199,11 +198,7 @@ void OmniFastSLAMApp::initialize()
     mrpt::random::getRandomGenerator().randomize(d.seed);
     d.filter->options = d.filterOptions;
     d.pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
-    if (d.args.gui) {
-        if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
-            throw core::UsageError("--gui needs a display (DISPLAY is not set)");
-        d.window = mrpt::gui::CDisplayWindow3D::Create("omni-fastslam", 1000, 700);
-    }
+    if (d.args.gui) d.window = std::make_unique<core::LiveView>("omni-fastslam");
 }
 
 void OmniFastSLAMApp::Impl::drawBestParticle(mrpt::opengl::COpenGLScene& scene) const
@@ -246,13 +241,7 @@ void OmniFastSLAMApp::run()
         odometryPath.push_back(t, to3D(odometry.asTPose()));
         d.measurements += d.filter->lastStepStats.measurements;
         progress.update(++d.frames);
-        if (d.window) {
-            auto& scene = d.window->get3DSceneAndLock();
-            scene->clear();
-            d.drawBestParticle(*scene);
-            d.window->unlockAccess3DScene();
-            d.window->forceRepaint();
-        }
+        if (d.window) d.window->show([&](auto& scene) { d.drawBestParticle(scene); });
     }
     progress.finish(d.frames);
     if (d.frames == 0)

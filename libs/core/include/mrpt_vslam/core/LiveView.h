@@ -1,0 +1,31 @@
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace mrpt::opengl {
+class COpenGLScene;
+}
+
+namespace mrpt_vslam::core {
+
+/** The `--gui` window of a driver app: an MRPT 3D window whose scene is redrawn after each step.
+ *  Usage: `LiveView view("omni-fastslam"); ... view.show([&](auto& scene) { draw(scene); });` */
+class LiveView {
+  public:
+    /// Opens the window. \throw UsageError when there is no display (DISPLAY, WAYLAND_DISPLAY).
+    explicit LiveView(const std::string& title);
+    ~LiveView();
+    LiveView(const LiveView&) = delete;
+    LiveView& operator=(const LiveView&) = delete;
+
+    /// Clears the scene, lets `draw` fill it and repaints.
+    void show(const std::function<void(mrpt::opengl::COpenGLScene&)>& draw);
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> m_impl;
+};
+
+}  // namespace mrpt_vslam::core

@@ -1,0 +1,31 @@
+#include <mrpt/gui/CDisplayWindow3D.h>
+#include <mrpt_vslam/core/LiveView.h>
+#include <mrpt_vslam/core/UsageError.h>
+
+#include <cstdlib>
+
+namespace mrpt_vslam::core {
+
+struct LiveView::Impl {
+    mrpt::gui::CDisplayWindow3D::Ptr window;
+};
+
+LiveView::LiveView(const std::string& title) : m_impl(std::make_unique<Impl>())
+{
+    if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
+        throw UsageError("--gui needs a display (DISPLAY is not set)");
+    m_impl->window = mrpt::gui::CDisplayWindow3D::Create(title, 1000, 700);
+}
+
+LiveView::~LiveView() = default;
+
+void LiveView::show(const std::function<void(mrpt::opengl::COpenGLScene&)>& draw)
+{
+    auto& scene = m_impl->window->get3DSceneAndLock();
+    scene->clear();
+    draw(*scene);
+    m_impl->window->unlockAccess3DScene();
+    m_impl->window->forceRepaint();
+}
+
+}  // namespace mrpt_vslam::core
