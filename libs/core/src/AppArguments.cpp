@@ -168,4 +168,13 @@ std::string AppArguments::groundTruthPrefix(const std::string& rawlog) const
     return rawlog;
 }
 
+void AppArguments::describeInputs(RunReport& report, const std::string& effective_config,
+                                  const std::string& rawlog, uint32_t seed_used) const
+{
+    report.setCommandLine(commandLine);
+    report.setConfig(configFile, effective_config);
+    report.setRawlog(rawlog);
+    report.setSeed(seed_used);
+}
+
 }  // namespace mrpt_vslam::core

@@ -377,10 +377,7 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
 
     cfg.writeEffectiveConfig(out.file("config.ini"));
     core::RunReport report("multirobot-vslam");
-    report.setCommandLine(args.commandLine);
-    report.setConfig(args.configFile, cfg.effectiveText());
-    report.setRawlog(rawlog);
-    report.setSeed(seed);
+    args.describeInputs(report, cfg.effectiveText(), rawlog, seed);
     report.setOpenCvVersion(CV_VERSION);
     report.setCount("robots", static_cast<double>(app.robots.size()));
     report.setCount("steps", static_cast<double>(steps));

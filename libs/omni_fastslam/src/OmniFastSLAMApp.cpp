@@ -283,10 +283,7 @@ void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTi
 
     cfg.writeEffectiveConfig(out.file("config.ini"));
     core::RunReport report("omni-fastslam");
-    report.setCommandLine(args.commandLine);
-    report.setConfig(args.configFile, cfg.effectiveText());
-    report.setRawlog(rawlog);
-    report.setSeed(seed);
+    args.describeInputs(report, cfg.effectiveText(), rawlog, seed);
     report.setOpenCvVersion(CV_VERSION);
     report.setCount("frames", frames);
     report.setCount("frames_with_images", framesWithImages);

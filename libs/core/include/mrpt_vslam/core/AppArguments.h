@@ -1,6 +1,7 @@
 #pragma once
 
 #include <mrpt_vslam/core/CheckedConfigFile.h>
+#include <mrpt_vslam/core/RunReport.h>
 
 #include <cstdint>
 #include <string>
@@ -56,6 +57,11 @@ public:
     /** Prefix `NAME` of the ground-truth files (BRIEF §3): `--ground-truth` if given, else the
      *  rawlog's path without its `.rawlog` extension. */
     std::string groundTruthPrefix(const std::string& rawlog) const;
+
+    /** Records this run's inputs in its report: the command line, the configuration (file and
+     *  effective text, `--set` included), the rawlog read and the seed used. */
+    void describeInputs(RunReport& report, const std::string& effective_config,
+                        const std::string& rawlog, uint32_t seed_used) const;
 };
 
 }  // namespace mrpt_vslam::core
