@@ -107,23 +107,17 @@ size_t ViewMapEKF::addView()
 ViewMapEKF::TUpdateResult ViewMapEKF::update(size_t view, const TViewObservation& z,
                                              const Eigen::Matrix2d& R, double gate)
 {
-    const Eigen::Index l = viewOffset(view);
     if (!(std::isfinite(z.phi) && std::isfinite(z.beta))) {
         throw std::invalid_argument("ViewMapEKF::update: observation is not finite");
     }
     requireCovariance(R, true, "ViewMapEKF::update: R");
     if (!(gate > 0)) throw std::invalid_argument("ViewMapEKF::update: gate must be > 0");
 
-    // §2.3-2.4: H = [H_v 0 … H_l … 0] has six non-zero columns, so P Hᵀ (n × 2) needs only the
-    // robot's and the view's columns of P, and H P Hᵀ only their rows of P Hᵀ.
-    const TPose2D robot = robotPose(), landmark = viewPose(view);
-    const TViewObservation h = predictViewObservation(robot, landmark);
-    const TViewObservationJacobians J = viewObservationJacobians(robot, landmark);
+    const TObservationTerms o = observationTerms(view);
+    const Eigen::MatrixX2d& PHt = o.PHt;
     TUpdateResult result;
-    result.innovation << wrapToPi(z.phi - h.phi), wrapToPi(z.beta - h.beta);
-    const Eigen::MatrixX2d PHt =
-        m_P.leftCols<3>() * J.H_v.transpose() + m_P.middleCols<3>(l) * J.H_l.transpose();
-    const Eigen::Matrix2d S = J.H_v * PHt.topRows<3>() + J.H_l * PHt.middleRows<3>(l) + R;
+    result.innovation << wrapToPi(z.phi - o.h.phi), wrapToPi(z.beta - o.h.beta);
+    const Eigen::Matrix2d S = o.HPHt + R;
     const Eigen::Matrix2d S_inv = S.inverse();
     result.nis = result.innovation.dot(S_inv * result.innovation);
     if (result.nis > gate) return result;
@@ -139,6 +133,41 @@ ViewMapEKF::TUpdateResult ViewMapEKF::update(size_t view, const TViewObservation
     m_P = (0.5 * (m_P + m_P.transpose())).eval();
     result.accepted = true;
     return result;
+}
+
+ViewMapEKF::TObservationTerms ViewMapEKF::observationTerms(size_t view) const
+{
+    // §2.3-2.4: H = [H_v 0 … H_l … 0] has six non-zero columns, so P Hᵀ (n × 2) needs only the
+    // robot's and the view's columns of P, and H P Hᵀ only their rows of P Hᵀ.
+    const Eigen::Index l = viewOffset(view);
+    const TPose2D robot = robotPose(), landmark = viewPose(view);
+    TObservationTerms o{predictViewObservation(robot, landmark),
+                        viewObservationJacobians(robot, landmark), {}, {}};
+    o.PHt = m_P.leftCols<3>() * o.J.H_v.transpose() + m_P.middleCols<3>(l) * o.J.H_l.transpose();
+    o.HPHt = o.J.H_v * o.PHt.topRows<3>() + o.J.H_l * o.PHt.middleRows<3>(l);
+    return o;
+}
+
+ViewMapEKF::TPredictedObservation ViewMapEKF::predictObservation(size_t view) const
+{
+    const TObservationTerms o = observationTerms(view);
+    return {o.h, 0.5 * (o.HPHt + o.HPHt.transpose())};
+}
+
+Eigen::Matrix3d ViewMapEKF::robotCovarianceAfterUpdate(size_t view, const Eigen::Matrix2d& R,
+                                                       const Eigen::Matrix3d& added_P_vv) const
+{
+    requireCovariance(R, true, "ViewMapEKF::robotCovarianceAfterUpdate: R");
+    const Eigen::Index l = viewOffset(view);
+    const auto J = viewObservationJacobians(robotPose(), viewPose(view));
+    const Eigen::Matrix3d P_vv = robotCovariance() + added_P_vv;
+    const Eigen::Matrix3d P_vl = m_P.block<3, 3>(0, l), P_ll = m_P.block<3, 3>(l, l);
+    const Eigen::Matrix<double, 3, 2> PHt_v = P_vv * J.H_v.transpose() + P_vl * J.H_l.transpose();
+    const Eigen::Matrix<double, 3, 2> PHt_l =
+        P_vl.transpose() * J.H_v.transpose() + P_ll * J.H_l.transpose();
+    const Eigen::Matrix2d S = J.H_v * PHt_v + J.H_l * PHt_l + R;
+    const Eigen::Matrix3d P = P_vv - PHt_v * S.inverse() * PHt_v.transpose();
+    return 0.5 * (P + P.transpose());
 }
 
 double ViewMapEKF::robotNEES(const TPose2D& truth) const

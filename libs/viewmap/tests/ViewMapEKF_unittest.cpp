@@ -259,6 +259,45 @@ TEST(ViewMapEKF, UpdateMatchesDenseTextbookEKF)
     EXPECT_LT(max_nis, 1e-12);
 }
 
+TEST(ViewMapEKF, PredictionAndHypotheticalUpdateMatchTheDenseEKF)
+{
+    std::mt19937 rng(8);
+    double max_S = 0, max_P = 0;
+    for (int trial = 0; trial < 20; trial++) {
+        ViewMapEKF ekf = randomFilter(rng, 4);
+        const size_t j = size_t(trial) % 4;
+        const Eigen::Matrix2d R = randomObservationCovariance(rng);
+        const TViewObservation h = predictViewObservation(ekf.robotPose(), ekf.viewPose(j));
+        const TDenseUpdate dense = denseUpdate(ekf, j, h, R);
+
+        const auto predicted = ekf.predictObservation(j);
+        EXPECT_EQ(predicted.z.phi, h.phi);
+        EXPECT_EQ(predicted.z.beta, h.beta);
+        max_S = std::max(max_S, maxAbs(predicted.HPHt + R - dense.S));
+        const Eigen::MatrixXd before = ekf.covariance();
+        const Eigen::Matrix3d P_vv = ekf.robotCovarianceAfterUpdate(j, R);
+        EXPECT_TRUE(bitIdentical(before, ekf.covariance()));  // nothing applied
+        max_P = std::max(max_P, maxAbs(P_vv - dense.P.topLeftCorner(3, 3)));
+
+        // With a motion still to come: a zero-length prediction adds F_u Q F_uᵀ to P_vv only.
+        const Eigen::Matrix3d Q = randomMotionCovariance(rng);
+        const double c = std::cos(ekf.robotPose().phi), s = std::sin(ekf.robotPose().phi);
+        Eigen::Matrix3d F_u;
+        F_u << c, -s, 0, s, c, 0, 0, 0, 1;
+        ViewMapEKF moved = ekf;
+        moved.predict(TPose2D(0, 0, 0), Q);
+        const TDenseUpdate after_motion = denseUpdate(moved, j, h, R);
+        max_P = std::max(max_P, maxAbs(ekf.robotCovarianceAfterUpdate(j, R, F_u * Q * F_u.transpose()) -
+                                       after_motion.P.topLeftCorner(3, 3)));
+    }
+    EXPECT_LT(max_S, 1e-12);
+    EXPECT_LT(max_P, 1e-12);
+    ViewMapEKF ekf = randomFilter(rng, 2);
+    EXPECT_THROW(ekf.predictObservation(2), std::invalid_argument);
+    EXPECT_THROW(ekf.robotCovarianceAfterUpdate(0, Eigen::Matrix2d::Zero()),
+                 std::invalid_argument);
+}
+
 TEST(ViewMapEKF, GatingRejectsOutliersAndKeepsTheFilter)
 {
     std::mt19937 rng(4);

@@ -68,6 +68,29 @@ class ViewMapEKF {
     TUpdateResult update(size_t view, const TViewObservation& z, const Eigen::Matrix2d& R,
                          double gate);
 
+    /// Predicted observation of a view and its covariance without the sensor noise.
+    struct TPredictedObservation {
+        TViewObservation z;                          ///< h(x_v, x_l) (§2.3)
+        Eigen::Matrix2d HPHt = Eigen::Matrix2d::Zero();  ///< H P Hᵀ
+    };
+
+    /** h and H P Hᵀ of view `view` at the current estimate: the centre and the spread of the
+     *  area where its points can appear in the current image (§3.2).
+     *  \throw std::invalid_argument for a bad view index.
+     *  \throw std::domain_error when the estimated robot stands on the view. */
+    TPredictedObservation predictObservation(size_t view) const;
+
+    /** P_vv that update() would leave if it accepted an observation of `view` with noise R,
+     *  without changing the filter: P_vv − (P Hᵀ)_v S⁻¹ (P Hᵀ)_vᵀ, computed from the robot's
+     *  and the view's blocks only. With `added_P_vv`, P_vv is first taken as P_vv + added_P_vv
+     *  (a motion still to come). For the information-based view initialization
+     *  (doc/view-slam.md §4.2).
+     *  \throw as predictObservation(), and std::invalid_argument for an R that is not
+     *  symmetric positive definite. */
+    Eigen::Matrix3d robotCovarianceAfterUpdate(
+        size_t view, const Eigen::Matrix2d& R,
+        const Eigen::Matrix3d& added_P_vv = Eigen::Matrix3d::Zero()) const;
+
     /** NEES of the robot pose against the true pose: eᵀ P_vv⁻¹ e, e = x_v − truth with the
      *  angle wrapped.
      *  \throw std::invalid_argument for a non-finite truth.
@@ -75,6 +98,16 @@ class ViewMapEKF {
     double robotNEES(const mrpt::math::TPose2D& truth) const;
 
   private:
+    /// The terms of an observation of view `view` (§2.3-2.4): h, the two non-zero blocks of H
+    /// and P Hᵀ over `rows` (all n rows, or only the robot's and the view's).
+    struct TObservationTerms {
+        TViewObservation h;
+        TViewObservationJacobians J;
+        Eigen::MatrixX2d PHt;  ///< P Hᵀ, n × 2
+        Eigen::Matrix2d HPHt;  ///< H P Hᵀ
+    };
+    TObservationTerms observationTerms(size_t view) const;
+
     /// Offset of view i's pose in the state; throws std::invalid_argument if i is out of range.
     Eigen::Index viewOffset(size_t i) const;
 
