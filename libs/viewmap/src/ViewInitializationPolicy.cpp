@@ -1,0 +1,162 @@
+#include <mrpt/config/CConfigFileBase.h>
+#include <mrpt_vslam/viewmap/ViewInitializationPolicy.h>
+
+#include <Eigen/LU>
+#include <cmath>
+#include <stdexcept>
+
+namespace mrpt_vslam::viewmap {
+
+namespace {
+void require(bool ok, const char* key, const char* what)
+{
+    if (!ok) throw std::invalid_argument(std::string(key) + " " + what);
+}
+}  // namespace
+
+const char* TViewDecision::reasonName(TReason r)
+{
+    switch (r) {
+        case TReason::None: return "none";
+        case TReason::FirstView: return "first_view";
+        case TReason::NoObservation: return "no_observation";
+        case TReason::FewInliers: return "few_inliers";
+        case TReason::TooFar: return "too_far";
+        case TReason::InformationBound: return "information_bound";
+        case TReason::LowExistence: return "low_existence";
+    }
+    return "?";
+}
+
+void ViewInitializationPolicy::TOptions::validate() const
+{
+    require(min_view_spacing >= 0 && std::isfinite(min_view_spacing), "min_view_spacing",
+            "must be finite and >= 0");
+    require(min_inliers >= 1, "min_inliers", "must be >= 1");
+    require(max_view_distance > min_view_spacing && std::isfinite(max_view_distance),
+            "max_view_distance", "must be finite and > min_view_spacing");
+    require(entropy_bound > 0 && std::isfinite(entropy_bound), "entropy_bound",
+            "must be finite and > 0");
+    require(min_sure_points >= 0 && std::isfinite(min_sure_points), "min_sure_points",
+            "must be finite and >= 0");
+    existence.validate();
+}
+
+void ViewInitializationPolicy::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& cfg, const std::string& section)
+{
+    const std::string kind = cfg.read_string(section, "policy", "information");
+    if (kind == "traditional") policy = TKind::Traditional;
+    else if (kind == "information") policy = TKind::Information;
+    else
+        throw std::invalid_argument("[" + section +
+                                    "] policy must be traditional or information, not '" + kind +
+                                    "'");
+    MRPT_LOAD_CONFIG_VAR(min_view_spacing, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(min_inliers, int, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(max_view_distance, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(entropy_bound, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(min_sure_points, double, cfg, section);
+    existence.loadFromConfigFile(cfg, section);
+    try {
+        validate();
+    } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("[" + section + "] " + e.what());
+    }
+}
+
+void ViewInitializationPolicy::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
+                                                          const std::string& section) const
+{
+    cfg.write(section, "policy", policy == TKind::Traditional ? "traditional" : "information");
+    MRPT_SAVE_CONFIG_VAR(min_view_spacing, cfg, section);
+    MRPT_SAVE_CONFIG_VAR(min_inliers, cfg, section);
+    MRPT_SAVE_CONFIG_VAR(max_view_distance, cfg, section);
+    MRPT_SAVE_CONFIG_VAR(entropy_bound, cfg, section);
+    MRPT_SAVE_CONFIG_VAR(min_sure_points, cfg, section);
+    existence.saveToConfigFile(cfg, section);
+}
+
+std::unique_ptr<ViewInitializationPolicy> ViewInitializationPolicy::create(const TOptions& options)
+{
+    options.validate();
+    if (options.policy == TKind::Traditional)
+        return std::make_unique<TraditionalViewPolicy>(options);
+    return std::make_unique<InformationViewPolicy>(options);
+}
+
+std::optional<TViewDecision> ViewInitializationPolicy::commonRules(
+    const TViewPolicyInputs& in) const
+{
+    TViewDecision d;
+    if (in.ekf->viewCount() == 0) {
+        d.add = true;
+        d.reason = TViewDecision::TReason::FirstView;
+        return d;
+    }
+    if (in.nearest_view_distance < m_options.min_view_spacing) return d;  // too close to add
+    return std::nullopt;
+}
+
+TViewDecision TraditionalViewPolicy::decide(const TViewPolicyInputs& in,
+                                            mrpt::random::CRandomGenerator&)
+{
+    if (auto d = commonRules(in)) return *d;
+    TViewDecision d;
+    size_t best = 0;
+    for (const auto& o : in.observed) best = std::max(best, o.inliers);
+    using R = TViewDecision::TReason;
+    if (in.observed.empty()) d.reason = R::NoObservation;
+    else if (best < size_t(m_options.min_inliers)) d.reason = R::FewInliers;
+    else if (in.nearest_view_distance > m_options.max_view_distance) d.reason = R::TooFar;
+    d.add = d.reason != R::None;
+    return d;
+}
+
+InformationViewPolicy::InformationViewPolicy(const TOptions& options)
+    : ViewInitializationPolicy(options), m_existence(options.existence)
+{
+}
+
+TViewDecision InformationViewPolicy::decide(const TViewPolicyInputs& in,
+                                            mrpt::random::CRandomGenerator& rng)
+{
+    using R = TViewDecision::TReason;
+    // Step 1: the existence model learns from every image, also the ones no rule looks at.
+    const auto content = in.features
+                             ? m_existence.fit(in.features->rays, in.consistent, rng)
+                             : FeatureExistenceModel::TContent();
+    const double n = content.sure_points;
+    const double n_next = n - std::max(0.0, m_previous_sure_points.value_or(n) - n);
+    m_previous_sure_points = n;
+
+    if (auto d = commonRules(in)) {
+        d->sure_points = n;
+        if (d->add) m_previous_sure_points.reset();
+        return *d;
+    }
+    TViewDecision d;
+    d.sure_points = n;
+    if (in.observed.empty()) d.reason = R::NoObservation;
+    else if (n_next < m_options.min_sure_points) d.reason = R::LowExistence;
+    else {
+        // Steps 2-3: the best view's hypothetical update after the next motion.
+        const Eigen::Matrix3d motion = in.P_vv_predicted - in.P_vv_previous;
+        double best = std::numeric_limits<double>::infinity();
+        for (const auto& o : in.observed) {
+            const Eigen::Matrix2d R_next = o.R * (n / n_next);
+            const Eigen::Matrix3d P = in.ekf->robotCovarianceAfterUpdate(o.view, R_next, motion);
+            // Step 4: entropy above that of the view (the 2πe terms cancel).
+            const double excess = 0.5 * std::log(P.determinant() /
+                                                 in.ekf->viewCovariance(o.view).determinant());
+            best = std::min(best, excess);
+        }
+        d.entropy_excess = best;
+        if (!(best <= m_options.entropy_bound)) d.reason = R::InformationBound;
+    }
+    d.add = d.reason != R::None;
+    if (d.add) m_previous_sure_points.reset();
+    return d;
+}
+
+}  // namespace mrpt_vslam::viewmap
