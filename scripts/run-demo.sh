@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds into build/, then runs omni-fastslam on the shipped
-# sports-hall dataset and multirobot-vslam on the shipped 2-robot office-team dataset, and
-# evaluates both against ground truth (metrics.json + PNG plots).
+# sports-hall dataset, multirobot-vslam on the shipped 2-robot office-team dataset and view-slam on
+# the shipped omni-views sequence, and evaluates them against ground truth (metrics.json + PNG
+# plots).
 # Results go to out/demo/ (or $DEMO_OUT).
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -24,7 +25,14 @@ echo
 echo
 "$BIN/vslam-eval" "$OUT/multirobot-vslam" --ground-truth "${TEAM%.rawlog}"
 
+ROOMS="$REPO_DIR/datasets/omni-views/rooms.rawlog"
 echo
-echo "Demo results in $OUT/omni-fastslam and $OUT/multirobot-vslam:"
+"$BIN/view-slam" "$REPO_DIR/share/mrpt-vslam/config/view-slam/omni-views.ini" "$ROOMS" \
+  --out "$OUT/view-slam" --seed 1
+echo
+"$BIN/vslam-eval" "$OUT/view-slam" --ground-truth "${ROOMS%.rawlog}"
+
+echo
+echo "Demo results in $OUT/omni-fastslam, $OUT/multirobot-vslam and $OUT/view-slam:"
 echo "  estimated_path*.tum, map.txt, metrics.json, run.json, paths.png, errors.png, landmark_errors.png"
 echo "  final.3Dscene (open with: SceneViewer3D $OUT/omni-fastslam/final.3Dscene)"

@@ -1,0 +1,42 @@
+#pragma once
+
+#include <mrpt_vslam/core/AppArguments.h>
+#include <mrpt_vslam/core/TumTrajectory.h>
+
+#include <memory>
+#include <string>
+
+namespace mrpt_vslam::viewmap {
+
+/** The `view-slam` driver: reads a rawlog of odometry (actions or CObservationOdometry) with
+ *  omnidirectional images (`OMNICAM`), runs COmniViewSLAM and writes the run folder of BRIEF §4
+ *  plus the step and observation tables of doc/view-slam.md.
+ *
+ *  Steps of run(): load the config, open the rawlog and the ground truth, then per frame:
+ *  filter step → tables → progress; at the end save paths, map, scene, run.json and
+ *  metrics.json. Tests drive this class exactly as the binary does.
+ */
+class ViewSLAMApp {
+  public:
+    explicit ViewSLAMApp(core::AppArguments args);
+    ~ViewSLAMApp();
+
+    /// Loads the config and the inputs; throws core::UsageError for config problems and
+    /// std::runtime_error for data problems, naming the file.
+    void initialize();
+    /// Processes the whole rawlog and writes the outputs.
+    void run();
+
+    /// @name Results (valid after run())
+    /// @{
+    core::TumTrajectory estimatedPath;  ///< EKF robot estimate after each frame
+    core::TumTrajectory odometryPath;   ///< dead reckoning from the same start
+    std::string outDir;
+    /// @}
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> m_impl;
+};
+
+}  // namespace mrpt_vslam::viewmap

@@ -1,0 +1,119 @@
+// Runs the built view-slam binary like a user would on the shipped omni-views sequence: accuracy
+// and consistency against ground truth with both view-initialization policies, outputs,
+// reproducibility and errors.
+#include <gtest/gtest.h>
+#include <mrpt_vslam/test/RunCommand.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+using mrpt_vslam::test::TCommandResult;
+
+namespace {
+
+const std::string kRawlog = MRPT_VSLAM_SOURCE_DIR "/datasets/omni-views/rooms.rawlog";
+const std::string kConfig = MRPT_VSLAM_SOURCE_DIR "/share/mrpt-vslam/config/view-slam/omni-views.ini";
+
+class ViewSLAMApp : public ::testing::Test {
+  protected:
+    static void SetUpTestSuite() { s_scratch = new mrpt_vslam::test::ScratchFolder("viewslam"); }
+    static void TearDownTestSuite() { delete s_scratch; }
+    static TCommandResult run(const std::string& args)
+    {
+        return mrpt_vslam::test::runCommand(std::string(MRPT_VSLAM_BIN_DIR "/view-slam ") + args,
+                                            s_scratch->path() / "command.log");
+    }
+    static std::string out(const std::string& name) { return s_scratch->file(name); }
+    static nlohmann::json json(const std::string& file)
+    {
+        std::ifstream in(file);
+        return nlohmann::json::parse(in);
+    }
+    static std::string bytes(const std::string& file)
+    {
+        std::ifstream in(file, std::ios::binary);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+    static mrpt_vslam::test::ScratchFolder* s_scratch;
+};
+mrpt_vslam::test::ScratchFolder* ViewSLAMApp::s_scratch = nullptr;
+
+}  // namespace
+
+// Both policies on the 40-frame sequence (6 m along the corridor): the estimate beats dead
+// reckoning, the robot NEES stays inside the 95 % bounds on most frames, the views lie near the
+// true poses of their images, and every output of BRIEF §4 is written.
+TEST_F(ViewSLAMApp, ShortSequenceIsAccurateAndConsistentWithBothPolicies)
+{
+    for (const std::string policy : {"traditional", "information"}) {
+        const std::string dir = out(policy);
+        const TCommandResult r = run(kConfig + " " + kRawlog + " --seed 1 -q --out " + dir +
+                                     " --set ViewInitialization.policy=" + policy);
+        ASSERT_EQ(r.exit_code, 0) << r.out;
+        const auto metrics = json(dir + "/metrics.json");
+        const double est = metrics["estimate"]["ate_rmse_m"];
+        const double odo = metrics["odometry"]["ate_rmse_m"];
+        const auto runJson = json(dir + "/run.json");
+        const auto& res = runJson["results"];
+        std::cout << policy << ": ATE " << est << " m (odometry " << odo << "), views "
+                  << runJson["counts"]["views"] << ", NEES in bounds "
+                  << res["nees_in_95_bounds"] << ", view RMSE " << res["view_position_rmse"]
+                  << "\n";
+        EXPECT_LT(est, 0.10) << policy;
+        EXPECT_LT(est, odo) << policy;
+        EXPECT_GE(res["nees_in_95_bounds"].get<double>(), 0.8) << policy;
+        EXPECT_LT(res["view_position_rmse"].get<double>(), 0.10) << policy;
+        EXPECT_GE(runJson["counts"]["views"].get<int>(), 2) << policy;
+        EXPECT_EQ(runJson["seed"], 1);
+        EXPECT_EQ(runJson["counts"]["frames"], 40);
+        for (const char* f : {"estimated_path.tum", "odometry_path.tum", "map.txt",
+                              "map_views.txt", "final_map.gz", "final.3Dscene", "steps.txt",
+                              "observations.txt", "config.ini"})
+            EXPECT_TRUE(fs::exists(dir + "/" + f)) << f;
+        // One line per frame after the two header lines.
+        EXPECT_EQ(mrpt_vslam::test::lineCount(bytes(dir + "/steps.txt")), 42);
+    }
+}
+
+// The same seed gives byte-identical paths and maps.
+TEST_F(ViewSLAMApp, SameSeedSameResult)
+{
+    for (const char* name : {"a", "b"})
+        ASSERT_EQ(run(kConfig + " " + kRawlog + " --seed 4 -q --out " + out(name)).exit_code, 0);
+    EXPECT_EQ(bytes(out("a/estimated_path.tum")), bytes(out("b/estimated_path.tum")));
+    EXPECT_EQ(bytes(out("a/map.txt")), bytes(out("b/map.txt")));
+}
+
+// Bad input: one line naming the file and the problem, non-zero exit, no run folder as if whole.
+TEST_F(ViewSLAMApp, BadInputGivesOneLineErrors)
+{
+    const auto expectError = [&](const std::string& args, int code, const std::string& text) {
+        const TCommandResult r = run(args);
+        EXPECT_EQ(r.exit_code, code) << args << "\n" << r.out;
+        EXPECT_EQ(mrpt_vslam::test::lineCount(r.out), 1) << r.out;
+        EXPECT_NE(r.out.find(text), std::string::npos) << r.out;
+    };
+    expectError(kConfig + " " + kRawlog + " -q --out " + out("e1") + " --set ViewSLAM.typo_key=1",
+                2, "unknown key [ViewSLAM] typo_key");
+    expectError(kConfig + " " + kRawlog + " -q --out " + out("e2") +
+                    " --set ViewInitialization.policy=sometimes",
+                2, "policy must be traditional or information");
+    expectError(kConfig + " " + kRawlog + " -q --out " + out("e3") +
+                    " --set ViewSLAM.gate_probability=1.5",
+                2, "gate_probability");
+    expectError(kConfig + " /nonexistent/x.rawlog -q --out " + out("e4"), 1,
+                "/nonexistent/x.rawlog: cannot open rawlog");
+    // A rawlog without omnidirectional images.
+    expectError(kConfig + " " MRPT_VSLAM_SOURCE_DIR "/datasets/office-team/team2.rawlog -q --out " +
+                    out("e5"),
+                1, "team2.rawlog");
+    for (const char* d : {"e1", "e2", "e3", "e4", "e5"})
+        EXPECT_FALSE(fs::exists(out(d) + "/run.json")) << d;
+}
