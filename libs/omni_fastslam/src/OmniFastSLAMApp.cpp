@@ -25,6 +25,7 @@
 #include <mrpt_vslam/core/RunOutputs.h>
 #include <mrpt_vslam/core/RunReport.h>
 #include <mrpt_vslam/core/RunTimer.h>
+#include <mrpt_vslam/core/SingleRobotStart.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/omni_fastslam/COmniFastSLAM.h>
 #include <mrpt_vslam/omni_fastslam/CeilingLightDetector.h>
@@ -49,12 +50,11 @@ mrpt::math::TPose3D to3D(const mrpt::math::TPose2D& p) { return {p.x, p.y, 0, p.
 struct OmniFastSLAMApp::Impl {
     core::AppArguments args;
     core::CheckedConfigFile cfg;
-    std::string rawlog, groundTruthPrefix;
+    std::string rawlog;
     uint32_t seed = 1;
     TInput input = TInput::Auto;
     std::string imageLabel = "OMNICAM";
-    bool initialPoseFromGroundTruth = true;
-    mrpt::math::TPose2D initialPose;
+    core::SingleRobotStart start;
 
     mrpt::bayes::CParticleFilter pf;
     CCeilingLightsMap mapTemplate;
@@ -63,14 +63,12 @@ struct OmniFastSLAMApp::Impl {
     CeilingLightDetector::TOptions detectorOptions;
     std::unique_ptr<CeilingLightDetector> detector;
     std::unique_ptr<COmniFastSLAM> filter;
-    std::optional<core::TumTrajectory> groundTruth;
     /// Motion model of the actions built for observation-only rawlogs ([MotionModel]).
     mrpt::obs::CActionRobotMovement2D::TMotionModelOptions motionModel;
 
     size_t frames = 0, framesWithImages = 0, measurements = 0;
 
     void loadConfig();
-    void findGroundTruth();
     /// Measurements from the frame's image when images are the input (Sec. III-A).
     void prepareFrame(mrpt::obs::CSensoryFrame& sf);
     void writeOutputs(OmniFastSLAMApp& app, const core::RunTimer& timer);
@@ -101,11 +99,7 @@ void OmniFastSLAMApp::Impl::loadConfig()
     else if (in == "images") input = TInput::Images;
     else throw usage("[OmniFastSLAM] input must be auto, bearings or images, not '" + in + "'");
     imageLabel = cfg.read_string(kAppSection, "image_label", imageLabel);
-    initialPoseFromGroundTruth =
-        cfg.read_bool(kAppSection, "initial_pose_from_ground_truth", initialPoseFromGroundTruth);
-    initialPose.x = cfg.read_double(kAppSection, "initial_x", 0);
-    initialPose.y = cfg.read_double(kAppSection, "initial_y", 0);
-    initialPose.phi = mrpt::DEG2RAD(cfg.read_double(kAppSection, "initial_yaw_deg", 0));
+    start.loadFromConfig(cfg, kAppSection);
 
     try {
         filterOptions.loadFromConfigFile(cfg, kAppSection);
@@ -146,19 +140,6 @@ void OmniFastSLAMApp::Impl::loadConfig()
     cfg.throwIfUnreadKeys();
 }
 
-void OmniFastSLAMApp::Impl::findGroundTruth()
-{
-    groundTruthPrefix = args.groundTruthPrefix(rawlog);
-    const std::string tum = groundTruthPrefix + ".groundtruth.tum";
-    if (mrpt::system::fileExists(tum)) groundTruth = core::TumTrajectory::load(tum);
-    else if (!args.groundTruth.empty())
-        throw std::runtime_error(tum + ": ground truth file not found (--ground-truth)");
-    if (initialPoseFromGroundTruth && groundTruth && !groundTruth->empty()) {
-        const auto& p = groundTruth->poses.front();
-        initialPose = {p.x, p.y, p.yaw};
-    }
-}
-
 void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
 {
     const auto image = sf.getObservationBySensorLabelAs<mrpt::obs::CObservationImage::Ptr>(imageLabel);
@@ -191,7 +172,7 @@ void OmniFastSLAMApp::initialize()
     d.loadConfig();
     if (!mrpt::system::fileExists(d.rawlog))
         throw std::runtime_error(d.rawlog + ": cannot open rawlog");
-    d.findGroundTruth();
+    d.start.resolve(d.args, d.rawlog);
     outDir = d.args.outDir;
     d.filter = std::make_unique<COmniFastSLAM>(d.mapTemplate, d.pf.m_options.sampleSize, d.seed);
     // CParticleFilter's resampling draws from MRPT's global generator.
@@ -221,7 +202,7 @@ void OmniFastSLAMApp::run()
 
     core::ActionFrameSource source(reader, {d.filterOptions.bearings_label, d.imageLabel},
                                    d.motionModel);
-    mrpt::poses::CPose2D odometry(d.initialPose);
+    mrpt::poses::CPose2D odometry(d.start.pose);
     bool started = false;
     mrpt::obs::CActionCollection::Ptr actions;
     mrpt::obs::CSensoryFrame::Ptr frame;
@@ -230,7 +211,7 @@ void OmniFastSLAMApp::run()
         const double t = mrpt::Clock::toDouble(frame->size() ? (*frame->begin())->timestamp
                                                              : actions->begin()->get()->timestamp);
         if (!started) {
-            d.filter->reset(d.initialPose, t);
+            d.filter->reset(d.start.pose, t);
             started = true;
         }
         timer.startStep();
@@ -271,8 +252,9 @@ void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTi
     mrpt::opengl::COpenGLScene scene;
     drawBestParticle(scene);
     scene.insert(core::trajectoryAsLines(app.odometryPath, {0.9f, 0.1f, 0.1f}, "odometry"));
-    if (groundTruth) scene.insert(core::trajectoryAsLines(*groundTruth, {0, 0, 0}, "ground truth"));
-    const std::string landmarksFile = groundTruthPrefix + ".landmarks.txt";
+    if (start.groundTruth)
+        scene.insert(core::trajectoryAsLines(*start.groundTruth, {0, 0, 0}, "ground truth"));
+    const std::string landmarksFile = start.groundTruthPrefix + ".landmarks.txt";
     if (mrpt::system::fileExists(landmarksFile)) {
         std::vector<mrpt::math::TPoint3D> pts;
         for (const auto& lm : core::LandmarkFile::load(landmarksFile).landmarks)
@@ -292,13 +274,13 @@ void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTi
     report.setCount("landmarks", best.map.landmarks().size());
     report.setCount("candidates", best.map.candidates().size());
     report.setTiming(timer);
-    if (groundTruth) report.setGroundTruth(groundTruthPrefix);
+    if (start.groundTruth) report.setGroundTruth(start.groundTruthPrefix);
     report.write(out.file("run.json"));
 
-    if (groundTruth) {
+    if (start.groundTruth) {
         core::TEvalParams eval;
         eval.run_dir = app.outDir;
-        eval.ground_truth = groundTruthPrefix;
+        eval.ground_truth = start.groundTruthPrefix;
         core::evaluateRunFolder(eval);
     }
 

@@ -20,6 +20,7 @@
 #include <mrpt_vslam/core/RunOutputs.h>
 #include <mrpt_vslam/core/RunReport.h>
 #include <mrpt_vslam/core/RunTimer.h>
+#include <mrpt_vslam/core/SingleRobotStart.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/viewmap/COmniViewSLAM.h>
 #include <mrpt_vslam/viewmap/ViewSLAMApp.h>
@@ -58,11 +59,9 @@ struct TSeriesStats {
 struct ViewSLAMApp::Impl {
     core::AppArguments args;
     core::CheckedConfigFile cfg;
-    std::string rawlog, groundTruthPrefix, imageLabel = "OMNICAM";
+    std::string rawlog, imageLabel = "OMNICAM";
     uint32_t seed = 1;
-    bool initialPoseFromGroundTruth = true;
-    mrpt::math::TPose2D initialPose;
-    std::optional<core::TumTrajectory> groundTruth;
+    core::SingleRobotStart start;
     mrpt::obs::CActionRobotMovement2D::TMotionModelOptions motionModel;
     std::unique_ptr<COmniViewSLAM> slam;
     std::unique_ptr<core::LiveView> window;
@@ -72,7 +71,6 @@ struct ViewSLAMApp::Impl {
     size_t neesInBounds = 0;
 
     void loadConfig();
-    void findGroundTruth();
     void draw(mrpt::opengl::COpenGLScene& scene, const core::TumTrajectory& path);
     void writeOutputs(ViewSLAMApp& app, const core::RunTimer& timer);
 };
@@ -93,11 +91,7 @@ void ViewSLAMApp::Impl::loadConfig()
     rawlog = args.resolveRawlog(cfg, kAppSection);
     seed = args.resolveSeed(static_cast<uint32_t>(cfg.read_int(kAppSection, "random_seed", 0)));
     imageLabel = cfg.read_string(kAppSection, "image_label", imageLabel);
-    initialPoseFromGroundTruth =
-        cfg.read_bool(kAppSection, "initial_pose_from_ground_truth", initialPoseFromGroundTruth);
-    initialPose.x = cfg.read_double(kAppSection, "initial_x", 0);
-    initialPose.y = cfg.read_double(kAppSection, "initial_y", 0);
-    initialPose.phi = mrpt::DEG2RAD(cfg.read_double(kAppSection, "initial_yaw_deg", 0));
+    start.loadFromConfig(cfg, kAppSection);
 
     try {
         slam = COmniViewSLAM::fromConfig(cfg, seed);
@@ -110,26 +104,13 @@ void ViewSLAMApp::Impl::loadConfig()
     cfg.throwIfUnreadKeys();
 }
 
-void ViewSLAMApp::Impl::findGroundTruth()
-{
-    groundTruthPrefix = args.groundTruthPrefix(rawlog);
-    const std::string tum = groundTruthPrefix + ".groundtruth.tum";
-    if (mrpt::system::fileExists(tum)) groundTruth = core::TumTrajectory::load(tum);
-    else if (!args.groundTruth.empty())
-        throw std::runtime_error(tum + ": ground truth file not found (--ground-truth)");
-    if (initialPoseFromGroundTruth && groundTruth && !groundTruth->empty()) {
-        const auto& p = groundTruth->poses.front();
-        initialPose = {p.x, p.y, p.yaw};
-    }
-}
-
 void ViewSLAMApp::initialize()
 {
     auto& d = *m_impl;
     d.loadConfig();
     if (!mrpt::system::fileExists(d.rawlog))
         throw std::runtime_error(d.rawlog + ": cannot open rawlog");
-    d.findGroundTruth();
+    d.start.resolve(d.args, d.rawlog);
     outDir = d.args.outDir;
     if (d.args.gui) d.window = std::make_unique<core::LiveView>("view-slam");
 }
@@ -164,7 +145,7 @@ void ViewSLAMApp::run()
            "nis\n";
 
     core::ActionFrameSource source(reader, {d.imageLabel}, d.motionModel);
-    mrpt::poses::CPose2D odometry(d.initialPose);
+    mrpt::poses::CPose2D odometry(d.start.pose);
     bool started = false;
     mrpt::obs::CActionCollection::Ptr actions;
     mrpt::obs::CSensoryFrame::Ptr frame;
@@ -177,7 +158,7 @@ void ViewSLAMApp::run()
         const double t = mrpt::Clock::toDouble(image ? image->timestamp
                                                      : actions->begin()->get()->timestamp);
         if (!started) {
-            d.slam->reset(d.initialPose);
+            d.slam->reset(d.start.pose);
             started = true;
         }
         if (image) d.framesWithImages++;
@@ -207,10 +188,10 @@ void ViewSLAMApp::run()
         const double sqrtTrace = std::sqrt(ekf.robotCovariance().trace());
         d.sqrtTrace.add(sqrtTrace);
         double nees = std::nan("");
-        if (d.groundTruth) {
-            const int k = d.groundTruth->nearestIndex(t, 0.05);
+        if (d.start.groundTruth) {
+            const int k = d.start.groundTruth->nearestIndex(t, 0.05);
             if (k >= 0) {
-                const auto& g = d.groundTruth->poses[size_t(k)];
+                const auto& g = d.start.groundTruth->poses[size_t(k)];
                 nees = ekf.robotNEES({g.x, g.y, g.yaw});
                 d.nees.add(nees);
                 if (nees >= kNeesLow && nees <= kNeesHigh) d.neesInBounds++;
@@ -259,11 +240,11 @@ void ViewSLAMApp::Impl::writeOutputs(ViewSLAMApp& app, const core::RunTimer& tim
 
     // View position errors against the true pose at each view's image (no alignment: the
     // filter starts from the true pose).
-    if (groundTruth) {
+    if (start.groundTruth) {
         for (const auto& v : map.views()) {
-            const int k = groundTruth->nearestIndex(v.timestamp, 0.05);
+            const int k = start.groundTruth->nearestIndex(v.timestamp, 0.05);
             if (k < 0) continue;
-            const auto& g = groundTruth->poses[size_t(k)];
+            const auto& g = start.groundTruth->poses[size_t(k)];
             viewError.add(std::hypot(v.pose.x - g.x, v.pose.y - g.y));
         }
     }
@@ -271,7 +252,8 @@ void ViewSLAMApp::Impl::writeOutputs(ViewSLAMApp& app, const core::RunTimer& tim
     mrpt::opengl::COpenGLScene scene;
     draw(scene, app.estimatedPath);
     scene.insert(core::trajectoryAsLines(app.odometryPath, {0.9f, 0.1f, 0.1f}, "odometry"));
-    if (groundTruth) scene.insert(core::trajectoryAsLines(*groundTruth, {0, 0, 0}, "ground truth"));
+    if (start.groundTruth)
+        scene.insert(core::trajectoryAsLines(*start.groundTruth, {0, 0, 0}, "ground truth"));
     core::saveScene(scene, out.file("final.3Dscene"));
 
     cfg.writeEffectiveConfig(out.file("config.ini"));
@@ -288,8 +270,8 @@ void ViewSLAMApp::Impl::writeOutputs(ViewSLAMApp& app, const core::RunTimer& tim
     report.setResult("mean_sqrt_trace_Pvv", sqrtTrace.mean());
     report.setResult("final_sqrt_trace_Pvv",
                      std::sqrt(slam->ekf().robotCovariance().trace()));
-    if (groundTruth) {
-        report.setGroundTruth(groundTruthPrefix);
+    if (start.groundTruth) {
+        report.setGroundTruth(start.groundTruthPrefix);
         report.setResult("nees_mean", nees.mean());
         report.setResult("nees_in_95_bounds", nees.n ? double(neesInBounds) / double(nees.n)
                                                      : std::nan(""));
@@ -298,10 +280,10 @@ void ViewSLAMApp::Impl::writeOutputs(ViewSLAMApp& app, const core::RunTimer& tim
     }
     report.write(out.file("run.json"));
 
-    if (groundTruth) {
+    if (start.groundTruth) {
         core::TEvalParams eval;
         eval.run_dir = app.outDir;
-        eval.ground_truth = groundTruthPrefix;
+        eval.ground_truth = start.groundTruthPrefix;
         core::evaluateRunFolder(eval);
     }
 }
