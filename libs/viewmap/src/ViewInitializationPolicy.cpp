@@ -37,6 +37,7 @@ void ViewInitializationPolicy::TOptions::validate() const
             "max_view_distance", "must be finite and > min_view_spacing");
     require(entropy_bound > 0 && std::isfinite(entropy_bound), "entropy_bound",
             "must be finite and > 0");
+    require(trend_frames >= 1, "trend_frames", "must be >= 1");
     require(min_sure_points >= 0 && std::isfinite(min_sure_points), "min_sure_points",
             "must be finite and >= 0");
     existence.validate();
@@ -57,6 +58,7 @@ void ViewInitializationPolicy::TOptions::loadFromConfigFile(
     MRPT_LOAD_CONFIG_VAR(max_view_distance, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(entropy_bound, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(min_sure_points, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(trend_frames, int, cfg, section);
     existence.loadFromConfigFile(cfg, section);
     try {
         validate();
@@ -74,6 +76,7 @@ void ViewInitializationPolicy::TOptions::saveToConfigFile(mrpt::config::CConfigF
     MRPT_SAVE_CONFIG_VAR(max_view_distance, cfg, section);
     MRPT_SAVE_CONFIG_VAR(entropy_bound, cfg, section);
     MRPT_SAVE_CONFIG_VAR(min_sure_points, cfg, section);
+    MRPT_SAVE_CONFIG_VAR(trend_frames, cfg, section);
     existence.saveToConfigFile(cfg, section);
 }
 
@@ -127,12 +130,17 @@ TViewDecision InformationViewPolicy::decide(const TViewPolicyInputs& in,
                              ? m_existence.fit(in.features->rays, in.consistent, rng)
                              : FeatureExistenceModel::TContent();
     const double n = content.sure_points;
-    const double n_next = n - std::max(0.0, m_previous_sure_points.value_or(n) - n);
-    m_previous_sure_points = n;
+    // Trend: the mean decline per frame over the last trend_frames frames since the last view.
+    m_recent_sure_points.push_back(n);
+    if (m_recent_sure_points.size() > size_t(m_options.trend_frames) + 1)
+        m_recent_sure_points.pop_front();
+    double n_next = n;
+    if (const size_t k = m_recent_sure_points.size() - 1; k > 0)
+        n_next -= std::max(0.0, (m_recent_sure_points.front() - n) / double(k));
 
     if (auto d = commonRules(in)) {
         d->sure_points = n;
-        if (d->add) m_previous_sure_points.reset();
+        if (d->add) m_recent_sure_points.clear();
         return *d;
     }
     TViewDecision d;
@@ -155,7 +163,7 @@ TViewDecision InformationViewPolicy::decide(const TViewPolicyInputs& in,
         if (!(best <= m_options.entropy_bound)) d.reason = R::InformationBound;
     }
     d.add = d.reason != R::None;
-    if (d.add) m_previous_sure_points.reset();
+    if (d.add) m_recent_sure_points.clear();
     return d;
 }
 

@@ -6,6 +6,7 @@
 #include <mrpt_vslam/viewmap/ViewMapEKF.h>
 
 #include <Eigen/Core>
+#include <deque>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -76,6 +77,7 @@ class ViewInitializationPolicy {
         double max_view_distance = 1.5;     ///< [m] traditional: D_max
         double entropy_bound = 1.0;         ///< [nats] information: δ_H
         double min_sure_points = 20;        ///< information: n_min of the predicted n⁻
+        int trend_frames = 3;               ///< information: frames the trend of n⁻ spans
         FeatureExistenceModel::TOptions existence;  ///< information: the GP (same section)
 
         /// Throws std::invalid_argument naming the key of a bad value.
@@ -114,8 +116,9 @@ class TraditionalViewPolicy : public ViewInitializationPolicy {
 /** Information-based view initialization (paper 004; the criterion is ours, doc/view-slam.md
  *  §4.2). Each step:
  *   1. the GP existence model (FeatureExistenceModel) of the current points gives n⁻_t, the
- *      number of points that surely exist in the map's views; its trend predicts the next
- *      frame's n⁻_{t+1} = n⁻_t − max(0, n⁻_{t−1} − n⁻_t);
+ *      number of points that surely exist in the map's views; its trend, the mean decline per
+ *      frame over the last k = trend_frames frames since the last view, predicts the next
+ *      frame's n⁻_{t+1} = n⁻_t − max(0, (n⁻_{t−k} − n⁻_t) / k);
  *   2. the observation noise of a least-squares fit scales as 1/(number of points), so the best
  *      view observed now would next frame give R̂ = R_t · n⁻_t / n⁻_{t+1};
  *   3. information lost by motion: the next prediction is taken to add what the last one did,
@@ -133,7 +136,7 @@ class InformationViewPolicy : public ViewInitializationPolicy {
 
   private:
     FeatureExistenceModel m_existence;
-    std::optional<double> m_previous_sure_points;
+    std::deque<double> m_recent_sure_points;  ///< n⁻ of the frames since the last view
 };
 
 }  // namespace mrpt_vslam::viewmap
