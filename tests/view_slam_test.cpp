@@ -3,12 +3,11 @@
 // reproducibility and errors.
 #include <gtest/gtest.h>
 #include <mrpt_vslam/test/RunCommand.h>
+#include <mrpt_vslam/test/RunFiles.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -29,18 +28,8 @@ class ViewSLAMApp : public ::testing::Test {
                                             s_scratch->path() / "command.log");
     }
     static std::string out(const std::string& name) { return s_scratch->file(name); }
-    static nlohmann::json json(const std::string& file)
-    {
-        std::ifstream in(file);
-        return nlohmann::json::parse(in);
-    }
-    static std::string bytes(const std::string& file)
-    {
-        std::ifstream in(file, std::ios::binary);
-        std::stringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
+    static nlohmann::json json(const std::string& file) { return mrpt_vslam::test::readJson(file); }
+    static std::string bytes(const std::string& file) { return mrpt_vslam::test::readBytes(file); }
     static mrpt_vslam::test::ScratchFolder* s_scratch;
 };
 mrpt_vslam::test::ScratchFolder* ViewSLAMApp::s_scratch = nullptr;
