@@ -15,6 +15,10 @@
 #include <sstream>
 #include <string>
 
+#include <mrpt_vslam/test/RunFiles.h>
+
+using mrpt_vslam::test::readJson;
+
 using mrpt_vslam::core::LandmarkFile;
 using mrpt_vslam::core::TumTrajectory;
 namespace fs = std::filesystem;
@@ -80,11 +84,6 @@ TRunResult runApp(const std::string& app, const std::string& args) {
 }
 
 TRunResult runEval(const std::string& args) { return runApp("vslam-eval", args); }
-
-nlohmann::json readJson(const fs::path& file) {
-    std::ifstream in(file);
-    return nlohmann::json::parse(in);
-}
 
 void expectNonEmptyPng(const fs::path& file) {
     ASSERT_TRUE(fs::exists(file)) << file;

@@ -18,6 +18,10 @@
 #include <stdexcept>
 #include <string>
 
+#include <mrpt_vslam/test/RunFiles.h>
+
+using mrpt_vslam::test::readBytes;
+
 namespace fs = std::filesystem;
 using namespace mrpt::obs;
 using mrpt_vslam::core::RawlogFormat;
@@ -89,12 +93,6 @@ std::string writeObservations(const std::string& name)
             ar << *odometry(2000.0 + i);
     }
     return file;
-}
-
-std::string readBytes(const std::string& file)
-{
-    std::ifstream in(file, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 std::string writeBytes(const std::string& name, const std::string& bytes)

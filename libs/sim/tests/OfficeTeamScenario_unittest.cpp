@@ -26,6 +26,10 @@
 
 #include "TestConfig.h"
 
+#include <mrpt_vslam/test/RunFiles.h>
+
+using mrpt_vslam::test::readBytes;
+
 namespace fs = std::filesystem;
 using namespace mrpt_vslam::sim;
 
@@ -57,12 +61,6 @@ const TOfficeModel& shippedModel()
 {
     static const TOfficeModel model = shipped().world.build(shipped().textures);
     return model;
-}
-
-std::string readBytes(const fs::path& file)
-{
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 /// Runs the shipped scenario into a fresh directory; returns the output prefix.

@@ -20,6 +20,10 @@
 #include <iterator>
 #include <opencv2/core.hpp>
 
+#include <mrpt_vslam/test/RunFiles.h>
+
+using mrpt_vslam::test::readBytes;
+
 namespace fs = std::filesystem;
 using namespace mrpt_vslam::sim;
 
@@ -39,12 +43,6 @@ const OmniViewsScenario& shipped()
         return s;
     }();
     return scenario;
-}
-
-std::string readBytes(const fs::path& file)
-{
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 /// Runs the shipped scenario (created by name) into a fresh directory; returns the prefix.

@@ -18,16 +18,14 @@
 
 #include "TestConfig.h"
 
+#include <mrpt_vslam/test/RunFiles.h>
+
+using mrpt_vslam::test::readBytes;
+
 namespace fs = std::filesystem;
 using namespace mrpt_vslam::sim;
 
 namespace {
-
-std::string readBytes(const fs::path& file)
-{
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 /// Runs the hall for `frames` frames into a fresh directory; returns the output prefix.
 std::string runHall(const std::string& dir_name, uint64_t seed, int frames, bool images = true)
