@@ -5,8 +5,10 @@
 #include <mrpt_vslam/core/AtomicFile.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/multirobot/CVisualLandmarksMap.h>
+#include <mrpt_vslam/multirobot/Cholesky3.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <bitset>
 #include <cmath>
 #include <sstream>
@@ -75,52 +77,18 @@ TMeasurementCandidates CVisualLandmarksMap::findCandidates(const TLandmarkMeasur
     return c;
 }
 
-namespace {
-/// Closed-form Cholesky factor Z = L Lᵀ of a symmetric positive-definite 3 × 3 matrix (the
-/// generic Eigen path costs more than the whole update at this size).
-struct Cholesky3 {
-    double l00, l10, l11, l20, l21, l22;
-    bool ok;
-    explicit Cholesky3(const Eigen::Matrix3d& Z)
-    {
-        l00 = std::sqrt(Z(0, 0));
-        l10 = Z(1, 0) / l00;
-        l20 = Z(2, 0) / l00;
-        l11 = std::sqrt(Z(1, 1) - l10 * l10);
-        l21 = (Z(2, 1) - l20 * l10) / l11;
-        l22 = std::sqrt(Z(2, 2) - l20 * l20 - l21 * l21);
-        ok = l00 > 0 && l11 > 0 && l22 > 0;  // false for NaN too
-    }
-    /// L⁻¹ v
-    Eigen::Vector3d whiten(const Eigen::Vector3d& v) const
-    {
-        const double w0 = v[0] / l00, w1 = (v[1] - l10 * w0) / l11;
-        return {w0, w1, (v[2] - l20 * w0 - l21 * w1) / l22};
-    }
-    double logDet() const { return 2 * (std::log(l00) + std::log(l11) + std::log(l22)); }
-    /// Z⁻¹ = L⁻ᵀ L⁻¹
-    Eigen::Matrix3d inverse() const
-    {
-        Eigen::Matrix3d Li = Eigen::Matrix3d::Zero();
-        Li(0, 0) = 1 / l00;
-        Li(1, 1) = 1 / l11;
-        Li(2, 2) = 1 / l22;
-        Li(1, 0) = -l10 * Li(0, 0) / l11;
-        Li(2, 1) = -l21 * Li(1, 1) / l22;
-        Li(2, 0) = -(l20 * Li(0, 0) + l21 * Li(1, 0)) / l22;
-        return Li.transpose() * Li;
-    }
-};
-}  // namespace
 
 std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
-    const TMapMeasurement& m, const TMeasurementCandidates& candidates) const
+    const TMapMeasurement& m, const TMeasurementCandidates& candidates,
+    const std::vector<uint32_t>* excluded) const
 {
     // Alg. 1 lines 19-29: the smallest E among the landmarks with D ≤ D0. The candidates
     // (E ≤ E0 already) come in increasing E, so the first one inside the gate is it.
     for (const auto& c : candidates.candidates) {
         const TVisualLandmark* lm = m_store.find(c.id);
-        if (!lm) continue;
+        if (!lm || (excluded && std::find(excluded->begin(), excluded->end(), c.id) !=
+                                    excluded->end()))
+            continue;
         const Cholesky3 L(lm->cov + m.R);  // Eq. 6-8
         if (!L.ok) throw std::invalid_argument("landmark " + std::to_string(c.id) +
                                                ": innovation covariance not positive definite");
@@ -137,8 +105,15 @@ std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
 TFusionResult CVisualLandmarksMap::fuse(const TLandmarkMeasurement& m, const TMapMeasurement& in_map,
                                         TMeasurementCandidates& candidates, unsigned robot)
 {
+    return fuseAs(m, in_map, candidates, robot, associate(in_map, candidates));
+}
+
+TFusionResult CVisualLandmarksMap::fuseAs(const TLandmarkMeasurement& m,
+                                          const TMapMeasurement& in_map,
+                                          TMeasurementCandidates& candidates, unsigned robot,
+                                          const std::optional<TAssociation>& a)
+{
     TFusionResult r;
-    const auto a = associate(in_map, candidates);
     if (!a) {  // Alg. 1 lines 33-36
         if (!candidates.new_id) candidates.new_id = m_pool->add(m.d, in_map.z);
         TVisualLandmark lm;
