@@ -3,6 +3,7 @@
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationVisualLandmarks.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/system/string_utils.h>
@@ -41,6 +42,12 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
         mrpt::system::tokenize(names, " \t,", robots);
     }
     MRPT_LOAD_CONFIG_VAR(landmarks_suffix, string, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(range_bearing_suffix, string, cfg, section);
+    auto& rb = range_bearing_noise;
+    rb.std_range = cfg.read_double(section, "range_bearing_std_range", rb.std_range);
+    rb.std_bearing = mrpt::DEG2RAD(cfg.read_double(section, "range_bearing_std_bearing_deg",
+                                                   mrpt::RAD2DEG(rb.std_bearing)));
+    rb.std_height = cfg.read_double(section, "range_bearing_std_height", rb.std_height);
     MRPT_LOAD_CONFIG_VAR(max_observations_per_robot, uint64_t, cfg, section);
     MRPT_LOAD_CONFIG_VAR(min_motion_std_xy, double, cfg, section);
     min_motion_std_phi = mrpt::DEG2RAD(
@@ -56,6 +63,11 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
         requireKey(std::count(robots.begin(), robots.end(), robots[i]) == 1, section, "robots",
                    "must not repeat a name");
     requireKey(!landmarks_suffix.empty(), section, "landmarks_suffix", "must not be empty");
+    requireKey(!range_bearing_suffix.empty() && range_bearing_suffix != landmarks_suffix, section,
+               "range_bearing_suffix", "must not be empty nor equal landmarks_suffix");
+    requireKey(rb.std_range > 0, section, "range_bearing_std_range", "must be > 0");
+    requireKey(rb.std_bearing > 0, section, "range_bearing_std_bearing_deg", "must be > 0");
+    requireKey(rb.std_height > 0, section, "range_bearing_std_height", "must be > 0");
     requireKey(max_observations_per_robot >= 1, section, "max_observations_per_robot",
                "must be >= 1");
     requireKey(min_motion_std_xy > 0, section, "min_motion_std_xy", "must be > 0");
@@ -71,6 +83,10 @@ void CMultiRobotVisualSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     for (const auto& r : robots) names += (names.empty() ? "" : " ") + r;
     cfg.write(section, "robots", names);
     cfg.write(section, "landmarks_suffix", landmarks_suffix);
+    cfg.write(section, "range_bearing_suffix", range_bearing_suffix);
+    cfg.write(section, "range_bearing_std_range", range_bearing_noise.std_range);
+    cfg.write(section, "range_bearing_std_bearing_deg", mrpt::RAD2DEG(range_bearing_noise.std_bearing));
+    cfg.write(section, "range_bearing_std_height", range_bearing_noise.std_height);
     cfg.write(section, "max_observations_per_robot", max_observations_per_robot);
     cfg.write(section, "min_motion_std_xy", min_motion_std_xy);
     cfg.write(section, "min_motion_std_phi_deg", mrpt::RAD2DEG(min_motion_std_phi));
@@ -162,6 +178,23 @@ CMultiRobotVisualSLAM::TMotionGaussian CMultiRobotVisualSLAM::motionOf(
         throw std::runtime_error(options.robots[k] + ": odometry covariance is not positive definite");
     g.L = llt.matrixL();
     return g;
+}
+
+std::vector<TLandmarkMeasurement> CMultiRobotVisualSLAM::measurementsOf(
+    size_t k, const mrpt::obs::CSensoryFrame& frame) const
+{
+    std::vector<TLandmarkMeasurement> z;
+    if (const auto obs = frame.getObservationBySensorLabelAs<
+            mrpt::obs::CObservationVisualLandmarks::Ptr>(options.robots[k] +
+                                                         options.landmarks_suffix))
+        z = measurementsFromObservation(*obs);
+    if (const auto obs = frame.getObservationBySensorLabelAs<
+            mrpt::obs::CObservationBearingRange::Ptr>(options.robots[k] +
+                                                      options.range_bearing_suffix)) {
+        const auto rb = measurementsFromBearingRange(*obs, options.range_bearing_noise);
+        z.insert(z.end(), rb.begin(), rb.end());
+    }
+    return selectNearest(std::move(z), options.max_observations_per_robot);
 }
 
 Eigen::Vector3d CMultiRobotVisualSLAM::drawGaussian(const Eigen::Matrix3d& L)
@@ -328,15 +361,8 @@ void CMultiRobotVisualSLAM::runStep(
                                            " of a step is not a CActionRobotMovement2D");
         timestamp = std::max(timestamp, mrpt::Clock::toDouble(odo->timestamp));
         const TMotionGaussian motion = motionOf(k, *odo);
-        std::vector<TLandmarkMeasurement> z;
-        if (observation) {
-            const auto obs = observation->getObservationBySensorLabelAs<
-                mrpt::obs::CObservationVisualLandmarks::Ptr>(options.robots[k] +
-                                                             options.landmarks_suffix);
-            if (obs)
-                z = selectNearest(measurementsFromObservation(*obs),
-                                  options.max_observations_per_robot);
-        }
+        const auto z = observation ? measurementsOf(k, *observation)
+                                   : std::vector<TLandmarkMeasurement>();
         if (optimal && !z.empty()) {
             proposeAndFuse(k, motion, z);
         } else {

@@ -83,8 +83,13 @@ std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     const std::vector<uint32_t>* excluded) const
 {
     // Alg. 1 lines 19-29: the smallest E among the landmarks with D ≤ D0. The candidates
-    // (E ≤ E0 already) come in increasing E, so the first one inside the gate is it.
+    // (E ≤ E0 already) come in increasing E, so the first one inside the gate is it; among
+    // equal E (no descriptors, as in range-bearing data: all E = 0) the smallest D.
+    std::optional<TAssociation> best;
+    float best_E = 0;
+    double best_log_det = 0;
     for (const auto& c : candidates.candidates) {
+        if (best && c.E > best_E) break;
         const TVisualLandmark* lm = m_store.find(c.id);
         if (!lm || (excluded && std::find(excluded->begin(), excluded->end(), c.id) !=
                                     excluded->end()))
@@ -92,14 +97,14 @@ std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
         const Cholesky3 L(lm->cov + m.R);  // Eq. 6-8
         if (!L.ok) throw std::invalid_argument("landmark " + std::to_string(c.id) +
                                                ": innovation covariance not positive definite");
-        TAssociation a;
-        a.id = c.id;
-        a.D = L.whiten(m.z - lm->mean).squaredNorm();  // Eq. 15
-        if (!(a.D <= insertionOptions.D0)) continue;   // line 28
-        a.log_likelihood = -0.5 * (3 * std::log(2 * M_PI) + L.logDet() + a.D);  // Eq. 13
-        return a;
+        const double D = L.whiten(m.z - lm->mean).squaredNorm();  // Eq. 15
+        if (!(D <= insertionOptions.D0) || (best && D >= best->D)) continue;  // line 28
+        best = TAssociation{c.id, D, 0};
+        best_E = c.E;
+        best_log_det = L.logDet();
     }
-    return std::nullopt;
+    if (best) best->log_likelihood = -0.5 * (3 * std::log(2 * M_PI) + best_log_det + best->D);  // Eq. 13
+    return best;
 }
 
 TFusionResult CVisualLandmarksMap::fuse(const TLandmarkMeasurement& m, const TMapMeasurement& in_map,
@@ -121,6 +126,7 @@ TFusionResult CVisualLandmarksMap::fuseAs(const TLandmarkMeasurement& m,
         lm.cov = in_map.R;
         lm.times_seen = 1;
         lm.seen_by = 1u << robot;
+        lm.identity = m.track_id;
         m_store.insert(*candidates.new_id, lm);
         r.id = *candidates.new_id;
         r.created = true;
@@ -134,6 +140,8 @@ TFusionResult CVisualLandmarksMap::fuseAs(const TLandmarkMeasurement& m,
     lm.cov = 0.5 * (cov + cov.transpose());
     lm.times_seen++;
     lm.seen_by |= 1u << robot;
+    if (m.track_id >= 0 && lm.identity >= 0 && m.track_id != lm.identity)
+        lm.identity_conflicts++;
     r.id = a->id;
     r.log_w = a->log_likelihood;  // Eq. 13
     return r;

@@ -27,7 +27,8 @@ namespace mrpt_vslam::multirobot {
  *
  *  Input of one step: an action collection with one `CActionRobotMovement2D` per robot, in the
  *  order of options.robots, and a sensory frame with each robot's `<ROBOT>_LANDMARKS`
- *  (`CObservationVisualLandmarks`; a robot may have none). Robot by robot (lines 7-9):
+ *  (`CObservationVisualLandmarks`) or `<ROBOT>_RB` (`CObservationBearingRange`: planar
+ *  range-bearing without descriptors, associated by the gate alone); a robot may have none. Robot by robot (lines 7-9):
  *   1. sample each particle's pose of that robot from the odometry's Gaussian (Sec. 3.1);
  *   2. keep its B nearest measurements (Sec. 6.2) and, for each one, search the shared pool
  *      for candidates once (E ≤ E0 near the point, radius widened by the particles' spread);
@@ -54,6 +55,11 @@ public:
         std::vector<std::string> robots{"R1", "R2"};
         /// Suffix of the landmark observations' labels: `<ROBOT>` + this.
         std::string landmarks_suffix = "_LANDMARKS";
+        /// Suffix of the range-bearing observations' labels (`CObservationBearingRange`).
+        std::string range_bearing_suffix = "_RB";
+        /// Noise of range-bearing measurements (ini: range_bearing_std_range,
+        /// range_bearing_std_bearing_deg, range_bearing_std_height).
+        TRangeBearingNoise range_bearing_noise;
         /// B: measurements integrated per robot and step (paper: 8 online, 20 offline).
         unsigned int max_observations_per_robot = 8;
         /// Added to the odometry covariance (std) so the proposal never degenerates.
@@ -112,6 +118,9 @@ private:
         Eigen::Matrix3d cov, L;
     };
     TMotionGaussian motionOf(size_t k, const mrpt::obs::CActionRobotMovement2D& odometry) const;
+    /// Robot k's B nearest measurements in the frame: `<ROBOT>_LANDMARKS` or `<ROBOT>_RB`.
+    std::vector<TLandmarkMeasurement> measurementsOf(size_t k,
+                                                     const mrpt::obs::CSensoryFrame& frame) const;
     Eigen::Vector3d drawGaussian(const Eigen::Matrix3d& L);
     std::vector<mrpt::math::TPose2D> posesOf(size_t k) const;
     /// One step: every robot moves and measures (lines 7-9); `optimal` selects the proposal.
