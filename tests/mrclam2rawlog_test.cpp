@@ -168,6 +168,13 @@ TEST_F(TinyDataset, WritesTheStepContract)
     EXPECT_NE(r.out.find("5 kept, 1 of robots dropped, 1 of unknown barcodes dropped (1 outside"),
               std::string::npos)
         << r.out;
+    // R2's one reading with Vicon: landmark 7 at (−1, 3) from (1 + 0.3 · 2.125, −1, 0.5).
+    const double dx = -1 - (1 + 0.3 * 2.125), dy = 3 - -1.0;
+    const std::string residuals =
+        fmt("R2: 2 readings in 2 observations, 2 ground-truth poses, residuals vs Vicon range "
+            "%.3f +- 0.000 m, bearing %.2f +- 0.00 deg (1 readings).",
+            4.0 - std::hypot(dx, dy), (-0.5 - (std::atan2(dy, dx) - 0.5)) * 180 / M_PI);
+    EXPECT_NE(r.out.find(residuals), std::string::npos) << residuals << "\n" << r.out;
 
     // The observation sequence, label by label.
     const auto obs = readObservations(out("a.rawlog"));
@@ -388,8 +395,10 @@ struct TExpectedCounts {
     std::set<double> times;
 };
 
-/// [m] Bound on the dead-reckoning position error after 120 s (doc/real-data.md).
-constexpr double kMaxDeadReckoningError = 100;
+/** [m] Bound on the dead-reckoning position error after the first 120 s of dataset 7: measured
+ *  2.55 m (R1), 0.33 m (R2), 0.37 m (R3); the bound leaves 1.5 m for R1 and stays well under the
+ *  errors of a wrong integration (the arena is 15 m x 8 m; doc/real-data.md). */
+constexpr double kMaxDeadReckoningError = 4.0;
 
 TEST(Mrclam2rawlogDataset7, FirstTwoMinutesOfRobots1To3)
 {

@@ -3,6 +3,7 @@
 #include <mrpt/core/Clock.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
+#include <mrpt/math/wrap2pi.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CObservationRobotPose.h>
@@ -10,6 +11,8 @@
 #include <mrpt/poses/CPose3D.h>
 #include <mrpt_vslam/sim/DatasetWriter.h>
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -60,6 +63,29 @@ TDeadReckoningAnchor anchorOf(const TMrclamRobot& robot, double start,
 }
 
 }  // namespace
+
+double TRunningStats::std() const
+{
+    if (n == 0) return 0;
+    const double m = mean();
+    return std::sqrt(std::max(0.0, sum_sq / n - m * m));
+}
+
+void MrclamImporter::addResiduals(size_t k, const std::vector<TBarcodeReading>& readings,
+                                  TRobotCounts& counts) const
+{
+    const ViconTrack vicon(m_dataset.robots[k].ground_truth);
+    for (const TBarcodeReading& r : readings) {
+        const auto landmark = m_dataset.landmarks.find(r.barcode);  // r.barcode: the subject
+        const std::optional<mrpt::math::TPose2D> robot = vicon.poseAt(r.t);
+        if (landmark == m_dataset.landmarks.end() || !robot) continue;
+        // predicted range and bearing of the landmark from the robot's Vicon pose
+        const double dx = landmark->second.x - robot->x, dy = landmark->second.y - robot->y;
+        counts.range_residual.add(r.range - std::hypot(dx, dy));
+        counts.bearing_residual.add(
+            mrpt::math::wrapToPi(r.bearing - (std::atan2(dy, dx) - robot->phi)));
+    }
+}
 
 MrclamImporter::TStepReadings MrclamImporter::selectReadings(TImportSummary& summary) const
 {
@@ -171,6 +197,7 @@ TImportSummary MrclamImporter::run()
                 obs.sensedData.push_back(m);
             }
             writer.writeObservation(obs);
+            addResiduals(k, readings, summary.robots[number]);
             summary.robots[number].measurements += readings.size();
             summary.robots[number].observations++;
         }
@@ -213,8 +240,12 @@ std::string TImportSummary::describe(const std::string& out_rawlog, double secon
         last_step - dataset_start, last_step - first_step, kept, dropped_robot, dropped_unknown,
         outside_window);
     for (const auto& [number, c] : robots)
-        text += mrpt::format(" R%d: %zu readings in %zu observations, %zu ground-truth poses.",
-                             number, c.measurements, c.observations, c.ground_truth_poses);
+        text += mrpt::format(
+            " R%d: %zu readings in %zu observations, %zu ground-truth poses, residuals vs Vicon "
+            "range %.3f +- %.3f m, bearing %.2f +- %.2f deg (%zu readings).",
+            number, c.measurements, c.observations, c.ground_truth_poses, c.range_residual.mean(),
+            c.range_residual.std(), mrpt::RAD2DEG(c.bearing_residual.mean()),
+            mrpt::RAD2DEG(c.bearing_residual.std()), c.range_residual.n);
     return text + mrpt::format(" Import took %.2f s.\n", seconds);
 }
 

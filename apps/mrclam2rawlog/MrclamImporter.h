@@ -10,11 +10,31 @@
 
 namespace mrpt_vslam::mrclam {
 
+/// Mean and standard deviation of a series, accumulated one value at a time.
+struct TRunningStats {
+    size_t n = 0;
+    double sum = 0, sum_sq = 0;
+
+    void add(double v)
+    {
+        n++;
+        sum += v;
+        sum_sq += v * v;
+    }
+    double mean() const { return n ? sum / n : 0; }
+    /// Population standard deviation.
+    double std() const;
+};
+
 /// What one robot contributed to the output.
 struct TRobotCounts {
     size_t measurements = 0;        ///< range-bearing readings written
     size_t observations = 0;        ///< R<n>_RB observations written (steps it observed in)
     size_t ground_truth_poses = 0;  ///< steps with an interpolated Vicon pose
+    /** Reading minus the value predicted from the Vicon poses of the robot (interpolated at the
+     *  reading's time) and of the landmark, over the landmark readings written: range [m] and
+     *  bearing [rad] (wrapped to (−π, π]). */
+    TRunningStats range_residual, bearing_residual;
 };
 
 /// Counts of an import, for the summary and the tests.
@@ -28,7 +48,8 @@ struct TImportSummary {
     double dataset_start = 0;          ///< [s] first timestamp of the chosen robots' files
     std::map<int, TRobotCounts> robots;  ///< per robot number
 
-    /// One paragraph for stdout.
+    /** One paragraph for stdout: steps, time span, readings kept and dropped per reason, per
+     *  robot counts and residuals vs Vicon, and the time taken. */
     std::string describe(const std::string& out_rawlog, double seconds) const;
 };
 
@@ -61,6 +82,9 @@ class MrclamImporter {
     /// Readings kept, by timestamp and then by robot index (into m_dataset.robots).
     using TStepReadings = std::map<double, std::map<size_t, std::vector<TBarcodeReading>>>;
     TStepReadings selectReadings(TImportSummary& summary) const;
+    /// Accumulates the residuals vs Vicon of robot k's landmark readings.
+    void addResiduals(size_t k, const std::vector<TBarcodeReading>& readings,
+                      TRobotCounts& counts) const;
 
     const TMrclamDataset& m_dataset;
     const TMrclamCommandLine& m_options;
