@@ -107,7 +107,8 @@ mrpt::poses::CPose2D arcFromOrigin(double v, double w, double tau)
 /// Expected odometry of the tiny dataset's robot at tau [s] after kT0.
 mrpt::poses::CPose2D tinyOdometry(int robot, double tau)
 {
-    return robot == 1 ? arcFromOrigin(kV1, kW1, tau - kStart1) : arcFromOrigin(kV2, 0, tau - kStart2);
+    return robot == 1 ? arcFromOrigin(kV1, kW1, tau - kStart1)
+                      : arcFromOrigin(kV2, 0, tau - kStart2);
 }
 
 TCommandResult runImporter(const ScratchFolder& scratch, const std::string& args)
@@ -159,8 +160,8 @@ ScratchFolder* TinyDataset::s_scratch = nullptr;
 
 TEST_F(TinyDataset, WritesTheStepContract)
 {
-    const TCommandResult r = runImporter(*s_scratch, dataArgs() + " --out '" +
-                                                         out("a.rawlog") + "' --end 8");
+    const TCommandResult r =
+        runImporter(*s_scratch, dataArgs() + " --out '" + out("a.rawlog") + "' --end 8");
     ASSERT_EQ(r.exit_code, 0) << r.out;
     // Steps: 2.125 (R1: 6, 7; R2: 7), 5.4375 (R1: 8), 6.375 (R2: 6). Dropped: robot 2 at 3 s,
     // barcode 999 at 4 s; outside: 9 s.
@@ -181,10 +182,11 @@ TEST_F(TinyDataset, WritesTheStepContract)
     std::vector<std::string> labels;
     for (const auto& o : obs) labels.push_back(o->sensorLabel);
     const std::vector<std::string> expected{
-        "R1_ODOM", "R2_ODOM",                                              // window start
-        "R1_ODOM", "R2_ODOM", "R1_RB", "R2_RB", "R1_GROUND_TRUTH", "R2_GROUND_TRUTH",  // 2.125
-        "R1_ODOM", "R2_ODOM", "R1_RB", "R1_GROUND_TRUTH", "R2_GROUND_TRUTH",           // 5.4375
-        "R1_ODOM", "R2_ODOM", "R2_RB", "R1_GROUND_TRUTH"};  // 6.375: R2 has no Vicon
+        "R1_ODOM",         "R2_ODOM",  // window start
+        "R1_ODOM",         "R2_ODOM", "R1_RB", "R2_RB",           "R1_GROUND_TRUTH",
+        "R2_GROUND_TRUTH",                                                            // 2.125
+        "R1_ODOM",         "R2_ODOM", "R1_RB", "R1_GROUND_TRUTH", "R2_GROUND_TRUTH",  // 5.4375
+        "R1_ODOM",         "R2_ODOM", "R2_RB", "R1_GROUND_TRUTH"};  // 6.375: R2 has no Vicon
     EXPECT_EQ(labels, expected);
 
     // Every odometry reading is the closed-form arc at its time, within 1e-9.
@@ -213,8 +215,7 @@ TEST_F(TinyDataset, WritesTheStepContract)
     mrpt_vslam::core::ActionFrameSource source(reader, {"R1_RB", "R2_RB"}, {},
                                                {"R1_ODOM", "R2_ODOM"});
     const std::vector<double> step_taus{2.125, 5.4375, 6.375};
-    const std::vector<std::multiset<std::string>> step_rb{
-        {"R1_RB", "R2_RB"}, {"R1_RB"}, {"R2_RB"}};
+    const std::vector<std::multiset<std::string>> step_rb{{"R1_RB", "R2_RB"}, {"R1_RB"}, {"R2_RB"}};
     mrpt::obs::CActionCollection::Ptr acts;
     mrpt::obs::CSensoryFrame::Ptr frame;
     double previous_tau = 0;  // the window starts at the dataset's first timestamp, kT0
@@ -273,17 +274,18 @@ TEST_F(TinyDataset, MapsBarcodesAndHidesIdentities)
         const int id6 = keep_ids ? 6 : -1, id7 = keep_ids ? 7 : -1, id8 = keep_ids ? 8 : -1;
         using R = std::tuple<std::string, int, double, double>;
         const std::map<double, std::vector<R>> want{
-            {2.125, {R{"R1_RB", id6, 1.5f, 0.1f}, R{"R1_RB", id7, 2.5f, -0.2f},
-                     R{"R2_RB", id7, 4.0f, -0.5f}}},
+            {2.125,
+             {R{"R1_RB", id6, 1.5f, 0.1f}, R{"R1_RB", id7, 2.5f, -0.2f},
+              R{"R2_RB", id7, 4.0f, -0.5f}}},
             {5.4375, {R{"R1_RB", id8, 3.25f, 0.3f}}},
             {6.375, {R{"R2_RB", id6, 2.0f, 0.25f}}},
             {9.0, {R{"R1_RB", id6, 1.0f, 0.0f}}}};
         EXPECT_EQ(readings, want) << (keep_ids ? "--keep-ids" : "ids hidden");
     }
     // --keep-robot-measurements keeps robot 2's barcode read at 3 s (subject 2).
-    const TCommandResult r = runImporter(
-        *s_scratch, dataArgs() + " --out '" + out("robots.rawlog") +
-                        "' --keep-ids --keep-robot-measurements --start 2.5 --end 3.5");
+    const TCommandResult r =
+        runImporter(*s_scratch, dataArgs() + " --out '" + out("robots.rawlog") +
+                                    "' --keep-ids --keep-robot-measurements --start 2.5 --end 3.5");
     ASSERT_EQ(r.exit_code, 0) << r.out;
     std::vector<int> ids;
     for (const auto& o : readObservations(out("robots.rawlog")))
@@ -301,7 +303,7 @@ TEST_F(TinyDataset, WritesGroundTruthBesideTheRawlog)
     const TumTrajectory gt1 = TumTrajectory::load(out("gt.groundtruth_R1.tum"));
     const TumTrajectory gt2 = TumTrajectory::load(out("gt.groundtruth_R2.tum"));
     ASSERT_EQ(gt1.size(), 3u);
-    ASSERT_EQ(gt2.size(), 2u);  // no Vicon pose brackets 6.375 s within 0.5 s
+    ASSERT_EQ(gt2.size(), 2u);                  // no Vicon pose brackets 6.375 s within 0.5 s
     EXPECT_EQ(gt1.timestamps[0], kT0 + 2.125);  // the rawlog's stamps, to the microsecond
     EXPECT_EQ(gt1.timestamps[1], kT0 + 5.4375);
     EXPECT_EQ(gt2.timestamps[1], kT0 + 5.4375);
@@ -367,7 +369,8 @@ TEST_F(TinyDataset, FailsOnBadInputWithOneLineAndNoOutput)
 
     const std::vector<TBadCase> cases{
         {"missing folder", "'" + (bad / "nowhere").string() + "'" + o, "nowhere"},
-        {"missing file", "'" + (bad / "missing").string() + "' --robots 1,2" + o, "Robot2_Measurement.dat"},
+        {"missing file", "'" + (bad / "missing").string() + "' --robots 1,2" + o,
+         "Robot2_Measurement.dat"},
         {"malformed line", "'" + (bad / "malformed").string() + "' --robots 1,2" + o,
          "Robot1_Odometry.dat:" + std::to_string(malformed_line) + ":"},
         {"unknown robot", "'" + data() + "'" + o + " --robots 1,6", "unknown robot 6"},
@@ -407,8 +410,9 @@ TEST(Mrclam2rawlogDataset7, FirstTwoMinutesOfRobots1To3)
     ScratchFolder scratch("mrclam2rawlog_dataset7");
     const std::string rawlog = scratch.file("d7.rawlog");
     const double window = 120;
-    const TCommandResult r = runImporter(
-        scratch, "'" + dir + "' --out '" + rawlog + "' --robots 1,2,3 --end " + std::to_string(window));
+    const TCommandResult r =
+        runImporter(scratch, "'" + dir + "' --out '" + rawlog + "' --robots 1,2,3 --end " +
+                                 std::to_string(window));
     ASSERT_EQ(r.exit_code, 0) << r.out;
 
     // The counts straight from the .dat files.
@@ -470,8 +474,8 @@ TEST(Mrclam2rawlogDataset7, FirstTwoMinutesOfRobots1To3)
         ASSERT_FALSE(gt.empty());
         const int k = odo.nearestIndex(gt.timestamps.back(), 1e-6);
         ASSERT_GE(k, 0);
-        const double error = std::hypot(odo.poses[k].x - gt.poses.back().x,
-                                        odo.poses[k].y - gt.poses.back().y);
+        const double error =
+            std::hypot(odo.poses[k].x - gt.poses.back().x, odo.poses[k].y - gt.poses.back().y);
         EXPECT_TRUE(std::isfinite(error));
         EXPECT_LT(error, kMaxDeadReckoningError) << "R" << n << ": " << error << " m";
         std::printf("R%d dead-reckoning position error after %.0f s: %.3f m\n", n, window, error);

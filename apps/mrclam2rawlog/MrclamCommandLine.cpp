@@ -63,8 +63,10 @@ TMrclamCommandLine TMrclamCommandLine::parse(int argc, const char* const* argv)
                                   "Start of the time window [s] after the first timestamp of the "
                                   "chosen robots' files (default 0)",
                                   false, 0, "S", cmd);
-    TCLAP::ValueArg<double> end("", "end", "End of the time window [s], same origin (default: "
-                                "the whole dataset)", false, 0, "S", cmd);
+    TCLAP::ValueArg<double> end("", "end",
+                                "End of the time window [s], same origin (default: "
+                                "the whole dataset)",
+                                false, 0, "S", cmd);
     TCLAP::SwitchArg keep_ids("", "keep-ids",
                               "landmarkID = subject number (default -1: identities hidden)", cmd);
     TCLAP::SwitchArg keep_robots("", "keep-robot-measurements",
@@ -73,9 +75,9 @@ TMrclamCommandLine TMrclamCommandLine::parse(int argc, const char* const* argv)
     TCLAP::ValueArg<double> std_range("", "std-range",
                                       "sensor_std_range of the observations [m] (default 0.20)",
                                       false, 0.20, "M", cmd);
-    TCLAP::ValueArg<double> std_bearing(
-        "", "std-bearing-deg", "sensor_std_yaw of the observations [deg] (default 3.5)", false, 3.5,
-        "D", cmd);
+    TCLAP::ValueArg<double> std_bearing("", "std-bearing-deg",
+                                        "sensor_std_yaw of the observations [deg] (default 3.5)",
+                                        false, 3.5, "D", cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "No summary on stdout", cmd);
 
     TMrclamCommandLine c;
@@ -108,8 +110,7 @@ TMrclamCommandLine TMrclamCommandLine::parse(int argc, const char* const* argv)
     c.start = start.getValue();
     if (end.isSet()) c.end = end.getValue();
     if (!(c.start >= 0)) throw usage_error("--start must be >= 0");
-    if (!(c.start < c.end))
-        throw usage_error("--start must be before --end");
+    if (!(c.start < c.end)) throw usage_error("--start must be before --end");
     c.keep_ids = keep_ids.getValue();
     c.keep_robot_measurements = keep_robots.getValue();
     c.std_range = std_range.getValue();

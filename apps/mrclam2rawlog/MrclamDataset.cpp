@@ -25,8 +25,8 @@ void readTable(const std::string& file, size_t columns, const std::string& layou
         const std::string where = file + ":" + std::to_string(line_number) + ": ";
         const std::vector<double> v = core::parseNumbers(line, where);
         if (v.size() != columns)
-            throw std::runtime_error(where + "expected " + std::to_string(columns) +
-                                     " columns '" + layout + "', got " + std::to_string(v.size()));
+            throw std::runtime_error(where + "expected " + std::to_string(columns) + " columns '" +
+                                     layout + "', got " + std::to_string(v.size()));
         row(v, where);
     }
 }

@@ -49,9 +49,9 @@ struct TMrclamDataset {
     static constexpr int kRobots = 5;        ///< subjects 1..5 are robots
     static constexpr int kLastSubject = 20;  ///< subjects 6..20 are landmarks
 
-    std::vector<TMrclamRobot> robots;                   ///< the robots asked for, in that order
-    std::map<int, int> subject_of_barcode;              ///< Barcodes.dat
-    std::map<int, mrpt::math::TPoint2D> landmarks;      ///< subject -> [m] Vicon position
+    std::vector<TMrclamRobot> robots;               ///< the robots asked for, in that order
+    std::map<int, int> subject_of_barcode;          ///< Barcodes.dat
+    std::map<int, mrpt::math::TPoint2D> landmarks;  ///< subject -> [m] Vicon position
 
     /// Reads `dir`'s Barcodes.dat, Landmark_Groundtruth.dat and the files of `robot_numbers`.
     static TMrclamDataset load(const std::string& dir, const std::vector<int>& robot_numbers);

@@ -71,12 +71,12 @@ double TRunningStats::std() const
     return std::sqrt(std::max(0.0, sum_sq / n - m * m));
 }
 
-void MrclamImporter::addResiduals(size_t k, const std::vector<TBarcodeReading>& readings,
+void MrclamImporter::addResiduals(size_t k, const std::vector<TSubjectReading>& readings,
                                   TRobotCounts& counts) const
 {
     const ViconTrack vicon(m_dataset.robots[k].ground_truth);
-    for (const TBarcodeReading& r : readings) {
-        const auto landmark = m_dataset.landmarks.find(r.barcode);  // r.barcode: the subject
+    for (const TSubjectReading& r : readings) {
+        const auto landmark = m_dataset.landmarks.find(r.subject);
         const std::optional<mrpt::math::TPose2D> robot = vicon.poseAt(r.t);
         if (landmark == m_dataset.landmarks.end() || !robot) continue;
         // predicted range and bearing of the landmark from the robot's Vicon pose
@@ -107,9 +107,7 @@ MrclamImporter::TStepReadings MrclamImporter::selectReadings(TImportSummary& sum
                 summary.dropped_robot++;
                 continue;
             }
-            TBarcodeReading kept = r;
-            kept.barcode = subject->second;  // from here on: the subject
-            steps[r.t][k].push_back(kept);
+            steps[r.t][k].push_back({r.t, subject->second, r.range, r.bearing});
             summary.kept++;
         }
     }
@@ -187,12 +185,12 @@ TImportSummary MrclamImporter::run()
             obs.sensor_std_range = static_cast<float>(m_options.std_range);
             obs.sensor_std_yaw = static_cast<float>(m_options.std_bearing);
             obs.sensor_std_pitch = 0;
-            for (const TBarcodeReading& r : readings) {
+            for (const TSubjectReading& r : readings) {
                 mrpt::obs::CObservationBearingRange::TMeasurement m;
                 m.range = static_cast<float>(r.range);
                 m.yaw = static_cast<float>(r.bearing);
                 m.pitch = 0;
-                m.landmarkID = m_options.keep_ids ? r.barcode : -1;
+                m.landmarkID = m_options.keep_ids ? r.subject : -1;
                 m.covariance.setZero();
                 obs.sensedData.push_back(m);
             }
@@ -225,8 +223,7 @@ TImportSummary MrclamImporter::run()
     }
     std::vector<sim::TTumFile> tum_files = ground_truth;
     tum_files.insert(tum_files.end(), dead_reckoning.begin(), dead_reckoning.end());
-    writer.commit(tum_files, landmarks,
-                  "MRCLAM landmarks (Vicon): id = subject number, z = 0 [m]");
+    writer.commit(tum_files, landmarks, "MRCLAM landmarks (Vicon): id = subject number, z = 0 [m]");
     return summary;
 }
 

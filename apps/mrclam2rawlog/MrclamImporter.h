@@ -39,14 +39,14 @@ struct TRobotCounts {
 
 /// Counts of an import, for the summary and the tests.
 struct TImportSummary {
-    size_t steps = 0;                  ///< distinct measurement timestamps
-    size_t kept = 0;                   ///< readings written
-    size_t dropped_robot = 0;          ///< readings of robots' barcodes, dropped
-    size_t dropped_unknown = 0;        ///< readings of barcodes not in Barcodes.dat, dropped
-    size_t outside_window = 0;         ///< readings before --start or after --end
+    size_t steps = 0;                      ///< distinct measurement timestamps
+    size_t kept = 0;                       ///< readings written
+    size_t dropped_robot = 0;              ///< readings of robots' barcodes, dropped
+    size_t dropped_unknown = 0;            ///< readings of barcodes not in Barcodes.dat, dropped
+    size_t outside_window = 0;             ///< readings before --start or after --end
     double first_step = 0, last_step = 0;  ///< [s] Unix time of the first and last step
-    double dataset_start = 0;          ///< [s] first timestamp of the chosen robots' files
-    std::map<int, TRobotCounts> robots;  ///< per robot number
+    double dataset_start = 0;              ///< [s] first timestamp of the chosen robots' files
+    std::map<int, TRobotCounts> robots;    ///< per robot number
 
     /** One paragraph for stdout: steps, time span, readings kept and dropped per reason, per
      *  robot counts and residuals vs Vicon, and the time taken. */
@@ -68,8 +68,8 @@ struct TImportSummary {
  *  naming the file on a failed write. */
 class MrclamImporter {
   public:
-    static constexpr double kMaxRange = 8.5;        ///< [m] dataset 7: longest reading 8.42 m
-    static constexpr double kFieldOfViewDeg = 70;   ///< [deg] dataset 7: |bearing| ≤ 33.9°
+    static constexpr double kMaxRange = 8.5;       ///< [m] dataset 7: longest reading 8.42 m
+    static constexpr double kFieldOfViewDeg = 70;  ///< [deg] dataset 7: |bearing| ≤ 33.9°
 
     MrclamImporter(const TMrclamDataset& dataset, const TMrclamCommandLine& options)
         : m_dataset(dataset), m_options(options)
@@ -79,11 +79,18 @@ class MrclamImporter {
     TImportSummary run();
 
   private:
+    /// A reading kept, with its barcode resolved to the subject.
+    struct TSubjectReading {
+        double t = 0;        ///< [s] Unix time
+        int subject = 0;     ///< 1..5 robots, 6..20 landmarks
+        double range = 0;    ///< [m]
+        double bearing = 0;  ///< [rad]
+    };
     /// Readings kept, by timestamp and then by robot index (into m_dataset.robots).
-    using TStepReadings = std::map<double, std::map<size_t, std::vector<TBarcodeReading>>>;
+    using TStepReadings = std::map<double, std::map<size_t, std::vector<TSubjectReading>>>;
     TStepReadings selectReadings(TImportSummary& summary) const;
     /// Accumulates the residuals vs Vicon of robot k's landmark readings.
-    void addResiduals(size_t k, const std::vector<TBarcodeReading>& readings,
+    void addResiduals(size_t k, const std::vector<TSubjectReading>& readings,
                       TRobotCounts& counts) const;
 
     const TMrclamDataset& m_dataset;

@@ -12,8 +12,8 @@ SpeedCommandOdometry::SpeedCommandOdometry(const std::vector<TSpeedCommand>& com
 {
 }
 
-mrpt::math::TPose2D SpeedCommandOdometry::arc(const mrpt::math::TPose2D& start, double v,
-                                              double w, double dt)
+mrpt::math::TPose2D SpeedCommandOdometry::arc(const mrpt::math::TPose2D& start, double v, double w,
+                                              double dt)
 {
     mrpt::math::TPose2D p = start;
     const double turn = w * dt;

@@ -26,13 +26,12 @@ class SpeedCommandOdometry {
     /** The pose reached from `start` driving v [m/s], w [rad/s] for dt [s]:
      *  w ≠ 0: x += v/w (sin(θ + w dt) − sin θ), y −= v/w (cos(θ + w dt) − cos θ), θ += w dt;
      *  w = 0: x += v dt cos θ, y += v dt sin θ. The heading is wrapped to (−π, π]. */
-    static mrpt::math::TPose2D arc(const mrpt::math::TPose2D& start, double v, double w,
-                                   double dt);
+    static mrpt::math::TPose2D arc(const mrpt::math::TPose2D& start, double v, double w, double dt);
 
   private:
     const std::vector<TSpeedCommand>& m_commands;
-    size_t m_next = 0;             ///< first command not yet integrated up to its start
-    mrpt::math::TPose2D m_pose;    ///< pose at the start of command m_next − 1
+    size_t m_next = 0;           ///< first command not yet integrated up to its start
+    mrpt::math::TPose2D m_pose;  ///< pose at the start of command m_next − 1
     double m_last_query = 0;
     bool m_queried = false;
 };

@@ -9,8 +9,9 @@ namespace mrpt_vslam::mrclam {
 std::optional<mrpt::math::TPose2D> ViconTrack::poseAt(double t) const
 {
     // first sample after t
-    const auto after = std::upper_bound(m_samples.begin(), m_samples.end(), t,
-                                        [](double time, const TViconPose& s) { return time < s.t; });
+    const auto after =
+        std::upper_bound(m_samples.begin(), m_samples.end(), t,
+                         [](double time, const TViconPose& s) { return time < s.t; });
     if (after == m_samples.begin()) return std::nullopt;
     const TViconPose& a = *(after - 1);
     if (a.t == t) return a.pose;

@@ -10,7 +10,7 @@ namespace {
 
 /** Collects TCLAP's help text and errors instead of printing them. */
 class CapturingOutput : public TCLAP::StdOutput {
-public:
+  public:
     explicit CapturingOutput(std::ostream& help_out) : TCLAP::StdOutput(help_out) {}
 
     void usage(TCLAP::CmdLineInterface& c) override
