@@ -398,10 +398,12 @@ struct TExpectedCounts {
     std::set<double> times;
 };
 
-/** [m] Bound on the dead-reckoning position error after the first 120 s of dataset 7: measured
- *  2.55 m (R1), 0.33 m (R2), 0.37 m (R3); the bound leaves 1.5 m for R1 and stays well under the
- *  errors of a wrong integration (the arena is 15 m x 8 m; doc/real-data.md). */
-constexpr double kMaxDeadReckoningError = 4.0;
+/** [m] Bounds on the dead-reckoning position error of R1, R2, R3 after the first 120 s of
+ *  dataset 7 (paths of 5.9, 6.3 and 4.5 m). Measured: 2.55, 0.33 and 0.37 m (doc/real-data.md).
+ *  They catch gross errors (a wrong time base or unit, dead reckoning not started at the Vicon
+ *  pose: the robots start 2.0 to 4.7 m from the origin); the integration itself is checked
+ *  exactly on the tiny dataset. */
+constexpr double kMaxDeadReckoningError[3] = {4.0, 1.0, 1.0};
 
 TEST(Mrclam2rawlogDataset7, FirstTwoMinutesOfRobots1To3)
 {
@@ -477,7 +479,7 @@ TEST(Mrclam2rawlogDataset7, FirstTwoMinutesOfRobots1To3)
         const double error =
             std::hypot(odo.poses[k].x - gt.poses.back().x, odo.poses[k].y - gt.poses.back().y);
         EXPECT_TRUE(std::isfinite(error));
-        EXPECT_LT(error, kMaxDeadReckoningError) << "R" << n << ": " << error << " m";
+        EXPECT_LT(error, kMaxDeadReckoningError[n - 1]) << "R" << n << ": " << error << " m";
         std::printf("R%d dead-reckoning position error after %.0f s: %.3f m\n", n, window, error);
     }
 }
