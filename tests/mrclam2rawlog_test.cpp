@@ -387,6 +387,16 @@ TEST_F(TinyDataset, FailsOnBadInputWithOneLineAndNoOutput)
         EXPECT_EQ(filesStartingWith(outdir, "x."), std::vector<std::string>{}) << c.name;
     }
     EXPECT_EQ(filesStartingWith(bad / "a_file", "y."), std::vector<std::string>{});
+
+    // A failure at the last file: the TUM files written before it are removed again.
+    fs::create_directories(outdir / "z.landmarks.txt");
+    const TCommandResult r = runImporter(
+        *s_scratch, dataArgs() + " --out '" + (outdir / "z.rawlog").string() + "'");
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_EQ(lineCount(r.out), 1) << r.out;
+    EXPECT_NE(r.out.find("z.landmarks.txt"), std::string::npos) << r.out;
+    EXPECT_EQ(filesStartingWith(outdir, "z."), std::vector<std::string>{"z.landmarks.txt"});
+    EXPECT_TRUE(fs::is_directory(outdir / "z.landmarks.txt"));
 }
 
 // --- the real dataset 7 ---------------------------------------------------------------------
