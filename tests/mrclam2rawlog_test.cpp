@@ -342,6 +342,19 @@ TEST_F(TinyDataset, WritesGroundTruthBesideTheRawlog)
     EXPECT_DOUBLE_EQ(lm.landmarks[1].position.z, 0.0);
 }
 
+TEST_F(TinyDataset, PrintsHelpAndVersion)
+{
+    const TCommandResult help = runImporter(*s_scratch, "--help");
+    EXPECT_EQ(help.exit_code, 0);
+    for (const char* option : {"--out", "--robots", "--start", "--end", "--keep-ids",
+                               "--keep-robot-measurements", "--std-range", "--std-bearing-deg"})
+        EXPECT_NE(help.out.find(option), std::string::npos) << option;
+    const TCommandResult version = runImporter(*s_scratch, "--version");
+    EXPECT_EQ(version.exit_code, 0);
+    EXPECT_EQ(version.out.rfind("mrclam2rawlog ", 0), 0u) << version.out;
+    EXPECT_EQ(lineCount(version.out), 1);
+}
+
 // --- bad input ------------------------------------------------------------------------------
 
 struct TBadCase {
