@@ -403,8 +403,8 @@ TEST_F(TinyDataset, FailsOnBadInputWithOneLineAndNoOutput)
 
     // A failure at the last file: the TUM files written before it are removed again.
     fs::create_directories(outdir / "z.landmarks.txt");
-    const TCommandResult r = runImporter(
-        *s_scratch, dataArgs() + " --out '" + (outdir / "z.rawlog").string() + "'");
+    const TCommandResult r =
+        runImporter(*s_scratch, dataArgs() + " --out '" + (outdir / "z.rawlog").string() + "'");
     EXPECT_NE(r.exit_code, 0);
     EXPECT_EQ(lineCount(r.out), 1) << r.out;
     EXPECT_NE(r.out.find("z.landmarks.txt"), std::string::npos) << r.out;
