@@ -247,6 +247,33 @@ TEST_F(TinyDataset, WritesTheStepContract)
     EXPECT_EQ(step, step_taus.size());
 }
 
+// --command-delay d integrates every command d seconds later: the odometry at t is the
+// undelayed one at t − d.
+TEST_F(TinyDataset, DelaysTheCommands)
+{
+    const double d = 0.25;
+    const TCommandResult r = runImporter(
+        *s_scratch, dataArgs() + " --out '" + out("late.rawlog") + "' --end 8 --command-delay 0.25");
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    int checked = 0;
+    for (const auto& o : readObservations(out("late.rawlog"))) {
+        const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(o);
+        if (!odo) continue;
+        const int robot = odo->sensorLabel == "R1_ODOM" ? 1 : 2;
+        const double tau = mrpt::Clock::toDouble(odo->timestamp) - kT0;
+        const mrpt::poses::CPose2D want = tinyOdometry(robot, tau - d);
+        EXPECT_NEAR(odo->odometry.x(), want.x(), 1e-9) << odo->sensorLabel << " at " << tau;
+        EXPECT_NEAR(odo->odometry.y(), want.y(), 1e-9) << odo->sensorLabel << " at " << tau;
+        EXPECT_NEAR(mrpt::math::wrapToPi(odo->odometry.phi() - want.phi()), 0, 1e-9);
+        checked++;
+    }
+    EXPECT_EQ(checked, 8);
+    const TCommandResult bad = runImporter(
+        *s_scratch, dataArgs() + " --out '" + out("late2.rawlog") + "' --command-delay 9");
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_NE(bad.out.find("--command-delay"), std::string::npos) << bad.out;
+}
+
 TEST_F(TinyDataset, MapsBarcodesAndHidesIdentities)
 {
     for (const bool keep_ids : {false, true}) {

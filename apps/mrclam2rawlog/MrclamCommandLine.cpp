@@ -78,6 +78,11 @@ TMrclamCommandLine TMrclamCommandLine::parse(int argc, const char* const* argv)
     TCLAP::ValueArg<double> std_bearing("", "std-bearing-deg",
                                         "sensor_std_yaw of the observations [deg] (default 3.5)",
                                         false, 3.5, "D", cmd);
+    TCLAP::ValueArg<double> command_delay(
+        "", "command-delay",
+        "Integrate each speed command this much later [s] (default 0; the robots of dataset 7 "
+        "follow their commands about 0.2 s late)",
+        false, 0, "S", cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "No summary on stdout", cmd);
 
     TMrclamCommandLine c;
@@ -119,6 +124,8 @@ TMrclamCommandLine TMrclamCommandLine::parse(int argc, const char* const* argv)
         throw usage_error("--std-range must be > 0");
     if (!(c.std_bearing > 0 && std::isfinite(c.std_bearing)))
         throw usage_error("--std-bearing-deg must be > 0");
+    c.command_delay = command_delay.getValue();
+    if (!(std::abs(c.command_delay) <= 5)) throw usage_error("--command-delay must be within +-5 s");
     c.quiet = quiet.getValue();
     return c;
 }

@@ -113,4 +113,10 @@ double TMrclamDataset::firstTime() const
     return t;
 }
 
+void TMrclamDataset::delayCommands(double seconds)
+{
+    for (TMrclamRobot& r : robots)
+        for (TSpeedCommand& c : r.commands) c.t += seconds;
+}
+
 }  // namespace mrpt_vslam::mrclam

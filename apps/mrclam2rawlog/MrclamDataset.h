@@ -58,6 +58,10 @@ struct TMrclamDataset {
 
     /// The first timestamp of any file of the loaded robots [s].
     double firstTime() const;
+    /** Moves every speed command `seconds` later: the robots carry their commands out about
+     *  0.2 s after their time stamps (doc/real-data.md), so integrating them later follows the
+     *  true motion more closely. */
+    void delayCommands(double seconds);
 };
 
 }  // namespace mrpt_vslam::mrclam

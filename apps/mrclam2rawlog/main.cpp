@@ -20,7 +20,8 @@ int main(int argc, char** argv)
             return 0;
         }
         mrpt::system::CTicTac timer;
-        const auto dataset = mrclam::TMrclamDataset::load(args.dataset_dir, args.robots);
+        auto dataset = mrclam::TMrclamDataset::load(args.dataset_dir, args.robots);
+        dataset.delayCommands(args.command_delay);
         mrclam::MrclamImporter importer(dataset, args);
         const mrclam::TImportSummary summary = importer.run();
         if (!args.quiet) std::cout << summary.describe(args.out_rawlog, timer.Tac());
