@@ -1,0 +1,108 @@
+#!/usr/bin/env bash
+# Real data: UTIAS MRCLAM dataset 7 (doc/real-data.md), identities hidden from the filters.
+#   1. import with mrclam2rawlog, commands delayed 0.2 s (robots 1-3, 1, 2, 3, 1-2 and 1-5; ids
+#      hidden, and robots 1-3
+#      once more with ids kept, to count wrong associations: the filter never reads them);
+#   2. multirobot-vslam (mrclam.ini), robots 1-3 jointly, several seeds: per-robot ATE vs
+#      odometry, landmarks mapped once within 0.5 m, extra landmarks, wrong associations, run time;
+#   3. the same filter on each robot alone, and on 2 and 5 robots;
+#   4. omni-fastslam in planar bearing-only mode on robot 1 (mrclam-bearing-only.ini): ATE vs
+#      odometry and the landmark table.
+# Writes run folders (paths.png, errors.png, metrics.json, run.json), tables and plots under
+# out/reproduce-mrclam/ (or $OUT) and prints markdown tables. Builds first (scripts/setup.sh).
+# Environment: SEEDS (default 1 2 3 4 5), OUT, DATASET (default ../shared/datasets/utias-mrclam/dataset7).
+set -euo pipefail
+REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$REPO_DIR/scripts/setup.sh"
+
+OUT="${OUT:-$REPO_DIR/out/reproduce-mrclam}"
+BIN="$BUILD_DIR/bin"
+DATASET="${DATASET:-$REPO_DIR/../shared/datasets/utias-mrclam/dataset7}"
+CONFIGS="$REPO_DIR/share/mrpt-vslam/config"
+SEEDS="${SEEDS:-1 2 3 4 5}"
+mkdir -p "$OUT/data"
+
+# --- 1. import ----------------------------------------------------------------------------------
+import() {  # import NAME ROBOTS [options...]
+  local name="$1" robots="$2"; shift 2
+  [ -f "$OUT/data/$name.rawlog" ] ||
+    "$BIN/mrclam2rawlog" "$DATASET" --robots "$robots" --command-delay 0.2 \
+      --out "$OUT/data/$name.rawlog" --quiet "$@"
+}
+import r123 1,2,3
+import r123-ids 1,2,3 --keep-ids
+import r1 1
+import r2 2
+import r3 3
+import r12 1,2
+import r12345 1,2,3,4,5
+
+# run DIR RAWLOG ROBOTS [options...]: one multirobot-vslam run and its evaluation; prints
+# "est_1 odo_1 ... | once duplicated extra fused wrong total_s"
+run() {
+  local dir="$1" rawlog="$2" robots="$3"; shift 3
+  "$BIN/multirobot-vslam" "$CONFIGS/multirobot-vslam/mrclam.ini" "$rawlog" --out "$dir" --quiet \
+    --set "MultiRobotVSLAM.robots=$robots" "$@"
+  "$BIN/vslam-eval" "$dir" --ground-truth "${rawlog%.rawlog}" > "$dir/summary.txt"
+  local rmse
+  rmse=$(awk '/^R[0-9]+ (estimate|odometry):/ {printf "%s ", $5}' "$dir/summary.txt")
+  # json NAME: the number after "NAME": in run.json ("-" when absent)
+  json() { grep -o "\"$1\": *[0-9.e+-]*" "$dir/run.json" | head -1 | awk '{print $2}' | grep . || echo -; }
+  local mapped total
+  mapped=$(json true_landmarks_mapped)
+  total=$(json map_landmarks)
+  echo "$rmse| $(json true_landmarks_mapped_once) $(json true_landmarks_duplicated)" \
+    "$((total - mapped)) $(json fused_measurements) $(json fused_with_another_identity)" \
+    "$(json total_s | awk '{printf "%.1f", $1}')"
+}
+
+# --- 2. robots 1-3 jointly ----------------------------------------------------------------------
+echo
+echo "### Robots 1-3 jointly (mrclam.ini), identities hidden"
+echo
+echo "| seed | R1 RMSE [m] | R1 odometry [m] | R2 RMSE [m] | R2 odometry [m] | R3 RMSE [m] | R3 odometry [m] | landmarks mapped once (of 15) | duplicated | extra | fused readings | of another identity | run [s] |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+: > "$OUT/joint.txt"
+for seed in $SEEDS; do
+  res=$(run "$OUT/r123-seed$seed" "$OUT/data/r123-ids.rawlog" "R1 R2 R3" --seed "$seed")
+  # the rawlog with ids gives the same estimate as the one without (ids are diagnostics only)
+  if [ "$seed" = "$(echo "$SEEDS" | awk '{print $1}')" ]; then
+    run "$OUT/r123-hidden-seed$seed" "$OUT/data/r123.rawlog" "R1 R2 R3" --seed "$seed" > /dev/null
+    for r in R1 R2 R3; do
+      cmp -s "$OUT/r123-seed$seed/estimated_path_$r.tum" "$OUT/r123-hidden-seed$seed/estimated_path_$r.tum" ||
+        { echo "ids changed the estimate of $r" >&2; exit 1; }
+    done
+  fi
+  read -r -a v <<< "${res%%|*}"
+  read -r once dup extra fused wrong t <<< "${res##*|}"
+  echo "| $seed | ${v[0]} | ${v[1]} | ${v[2]} | ${v[3]} | ${v[4]} | ${v[5]} | $once | $dup | $extra | $fused | $wrong | $t |"
+  echo "${v[0]} ${v[2]} ${v[4]}" >> "$OUT/joint.txt"
+done
+awk '{a += $1; b += $2; c += $3; n++} END {printf "mean over seeds: R1 %.3f m, R2 %.3f m, R3 %.3f m (team mean %.3f m)\n", a / n, b / n, c / n, (a + b + c) / (3 * n)}' "$OUT/joint.txt"
+
+# --- 3. each robot alone, 2 and 5 robots --------------------------------------------------------
+echo
+echo "### The same filter on other teams (mean over seeds $SEEDS)"
+echo
+echo "| team | robot | RMSE [m] | odometry [m] | landmarks mapped once | extra | run [s] |"
+echo "|---|---|---|---|---|---|---|"
+team() {  # team NAME RAWLOG ROBOTS
+  local name="$1" rawlog="$2" robots="$3"
+  : > "$OUT/team.tmp"
+  for seed in $SEEDS; do
+    res=$(run "$OUT/$name-seed$seed" "$rawlog" "$robots" --seed "$seed")
+    echo "$res" >> "$OUT/team.tmp"
+  done
+  local k=0
+  for r in $robots; do
+    awk -F'|' -v k="$k" -v r="$r" -v t="$name" '{split($1, v, " "); split($2, w, " "); e += v[2 * k + 1]; o += v[2 * k + 2]; once += w[1]; x += w[3]; s += w[6]; n++}
+      END {printf "| %s | %s | %.3f | %.3f | %.1f | %.1f | %.1f |\n", t, r, e / n, o / n, once / n, x / n, s / n}' "$OUT/team.tmp"
+    k=$((k + 1))
+  done
+  rm -f "$OUT/team.tmp"
+}
+team "R1 alone" "$OUT/data/r1.rawlog" "R1"
+team "R2 alone" "$OUT/data/r2.rawlog" "R2"
+team "R3 alone" "$OUT/data/r3.rawlog" "R3"
+team "R1-R2" "$OUT/data/r12.rawlog" "R1 R2"
+team "R1-R5" "$OUT/data/r12345.rawlog" "R1 R2 R3 R4 R5"
