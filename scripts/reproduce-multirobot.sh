@@ -10,7 +10,7 @@
 #   5. team3 without resample_per_robot, with the optimal proposal, and with the paper's sigmas.
 # Writes run folders, tables (*.txt) and plots (*.png) under out/reproduce-multirobot/ (or $OUT)
 # and prints markdown tables. Builds first (scripts/setup.sh). Takes about 25 min on one core.
-# Environment: SEEDS (default 1 2 3 4 5), OUT.
+# Environment: SEEDS (default 1 2 3 4 5), SWEEP_SEEDS for sections 2 and 3 (default 1 to 10), OUT.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 source "$REPO_DIR/scripts/setup.sh"
@@ -20,6 +20,7 @@ BIN="$BUILD_DIR/bin"
 DATA="$REPO_DIR/datasets/office-team"
 CONFIGS="$REPO_DIR/share/mrpt-vslam/config/multirobot-vslam"
 SEEDS="${SEEDS:-1 2 3 4 5}"
+SWEEP_SEEDS="${SWEEP_SEEDS:-1 2 3 4 5 6 7 8 9 10}"
 MAP_OPTS="MappingApplication_visualLandmarksMap_00_insertOpts"
 mkdir -p "$OUT"
 
@@ -77,14 +78,14 @@ team_table team3 "$CONFIGS/office-team-3.ini" "$DATA/team3.rawlog" 3
 sweep() {  # sweep NAME KEY PROPOSAL VALUES...: one series of rmse-vs-NAME.txt
   local name="$1" key="$2" proposal="$3"; shift 3
   echo
-  echo "### RMSE vs $name, $proposal (team2; mean of both robots; mean ± sd over seeds $SEEDS)"
+  echo "### RMSE vs $name, $proposal (team2; mean of both robots; mean ± sd over seeds $SWEEP_SEEDS)"
   echo
   echo "| $name | mean RMSE [m] | sd [m] | step [ms] |"
   echo "|---|---|---|---|"
   for value in "$@"; do
     : > "$OUT/sweep.tmp"
     local ms_sum=0
-    for seed in $SEEDS; do
+    for seed in $SWEEP_SEEDS; do
       local res
       res=$(run "$OUT/$proposal-$name$value-seed$seed" "$CONFIGS/office-team-2.ini" \
         "$DATA/team2.rawlog" --seed "$seed" --set "$key=$value" \
@@ -94,7 +95,7 @@ sweep() {  # sweep NAME KEY PROPOSAL VALUES...: one series of rmse-vs-NAME.txt
     done
     read -r m sd <<< "$(mean_sd "$OUT/sweep.tmp")"
     local ms
-    ms=$(awk -v s="$ms_sum" -v n="$(echo "$SEEDS" | wc -w)" 'BEGIN {printf "%.1f", s / n}')
+    ms=$(awk -v s="$ms_sum" -v n="$(echo "$SWEEP_SEEDS" | wc -w)" 'BEGIN {printf "%.1f", s / n}')
     echo "| $value | $m | $sd | $ms |"
     awk -v p="$proposal" -v x="$value" -v m="$m" -v sd="$sd" 'BEGIN {printf "%s %s %s %.4f %.4f\n", p, x, m, m - sd, m + sd}' >> "$OUT/rmse-vs-$name.txt"
   done
