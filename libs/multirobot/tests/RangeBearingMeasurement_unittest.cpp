@@ -9,6 +9,7 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
+#include <mrpt_vslam/test/SyntheticTeamWorld.h>
 
 #include <Eigen/Cholesky>
 #include <cmath>
@@ -151,16 +152,7 @@ TEST(RangeBearingMeasurement, TeamFilterMapsAPlanarWorldWithHiddenIdentities)
         for (size_t k = 0; k < 2; k++) {
             const mrpt::poses::CPose2D delta(0.1, 0, mrpt::DEG2RAD(2.5));
             truth[k] = truth[k] + delta;
-            mrpt::obs::CActionRobotMovement2D probe;
-            probe.computeFromOdometry(delta, model);
-            mrpt::math::CMatrixDouble33 cov;
-            mrpt::poses::CPose2D mean;
-            probe.poseChange->getCovarianceAndMean(cov, mean);
-            const Eigen::Matrix3d L = cov.asEigen().llt().matrixL();
-            const Eigen::Vector3d e = L * Eigen::Vector3d(rng.drawGaussian1D_normalized(),
-                                                          rng.drawGaussian1D_normalized(),
-                                                          rng.drawGaussian1D_normalized());
-            const mrpt::poses::CPose2D noisy(mean.x() + e[0], mean.y() + e[1], mean.phi() + e[2]);
+            const mrpt::poses::CPose2D noisy = mrpt_vslam::test::noisyOdometry(delta, model, rng);
             odo[k] = odo[k] + noisy;
             mrpt::obs::CActionRobotMovement2D act;
             act.timestamp = mrpt::Clock::fromDouble(t);

@@ -19,6 +19,25 @@
 
 namespace mrpt_vslam::test {
 
+/** An odometry reading of the true increment `delta`: delta plus Gaussian noise of MRPT's
+ *  motion model `model` (the covariance CActionRobotMovement2D gives it). */
+inline mrpt::poses::CPose2D noisyOdometry(
+    const mrpt::poses::CPose2D& delta,
+    const mrpt::obs::CActionRobotMovement2D::TMotionModelOptions& model,
+    mrpt::random::CRandomGenerator& rng)
+{
+    mrpt::obs::CActionRobotMovement2D probe;
+    probe.computeFromOdometry(delta, model);
+    mrpt::math::CMatrixDouble33 cov;
+    mrpt::poses::CPose2D mean;
+    probe.poseChange->getCovarianceAndMean(cov, mean);
+    const Eigen::Matrix3d L = cov.asEigen().llt().matrixL();
+    const Eigen::Vector3d e = L * Eigen::Vector3d(rng.drawGaussian1D_normalized(),
+                                                  rng.drawGaussian1D_normalized(),
+                                                  rng.drawGaussian1D_normalized());
+    return {mean.x() + e[0], mean.y() + e[1], mean.phi() + e[2]};
+}
+
 /** A synthetic world for the multi-robot filter's tests and benchmarks: landmarks with random
  *  unit descriptors on the walls of a room, K robots driving circles in it with a forward
  *  stereo head, noisy odometry (MRPT's Gaussian model), and measurements produced as the
@@ -107,18 +126,7 @@ public:
                                              params.step_length / params.circle_radius);
             const auto before = mrpt::poses::CPose2D(truth[k]);
             truth[k] = (before + delta).asTPose();
-            // odometry reading = true increment + Gaussian noise of the model
-            mrpt::obs::CActionRobotMovement2D probe;
-            probe.computeFromOdometry(delta, model);
-            mrpt::math::CMatrixDouble33 cov;
-            mrpt::poses::CPose2D mean;
-            probe.poseChange->getCovarianceAndMean(cov, mean);
-            const Eigen::Matrix3d L = cov.asEigen().llt().matrixL();
-            const Eigen::Vector3d n(rng.drawGaussian1D_normalized(),
-                                    rng.drawGaussian1D_normalized(),
-                                    rng.drawGaussian1D_normalized());
-            const Eigen::Vector3d e = L * n;
-            const mrpt::poses::CPose2D noisy(mean.x() + e[0], mean.y() + e[1], mean.phi() + e[2]);
+            const mrpt::poses::CPose2D noisy = noisyOdometry(delta, model, rng);
             mrpt::obs::CActionRobotMovement2D act;
             act.timestamp = stamp;
             act.computeFromOdometry(noisy, model);
