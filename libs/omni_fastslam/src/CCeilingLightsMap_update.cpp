@@ -49,14 +49,14 @@ double CCeilingLightsMap::updateLandmarks(const std::vector<TBearingMeasurement>
         Eigen::Matrix2d S;
         BearingMeasurementModel::Matrix23 H_x;
         if (!ekfUpdate(lm, z[l], robot_in_map, nu, S, H_x)) continue;
-        lm.counter++;
+        lm.counter += static_cast<int>(insertionOptions.hit_increment);
         if (horizontalDistance(robot_in_map, lm.mean) < insertionOptions.d_min)
             lm.consecutive_close++;
         else
             lm.consecutive_close = 0;
         // lines 11-17: weight from type I landmarks only; L = H_x R H_xᵀ + Q̃
         if (usesForWeight(lm))
-            log_w += logGaussian(nu, H_x * robot_pose_cov * H_x.transpose() + S);
+            log_w += measurementLogLikelihood(nu, H_x * robot_pose_cov * H_x.transpose() + S);
     }
     return log_w;
 }
@@ -88,12 +88,12 @@ void CCeilingLightsMap::addCandidateObservation(TCandidateLight& cand,
 {
     const auto model = measurementModel();
     // log p(z_i | point, x_i) and the squared Mahalanobis distance of one measurement
-    auto term = [&model](const Eigen::Vector3d& point, const TCandidateObservation& o,
-                         double& mahalanobis2) {
+    auto term = [this, &model](const Eigen::Vector3d& point, const TCandidateObservation& o,
+                               double& mahalanobis2) {
         const Eigen::Vector2d nu = BearingMeasurementModel::innovation(
             o.measurement.z, model.predict(point, o.robot_in_map));
         mahalanobis2 = nu.dot(o.measurement.Q.inverse() * nu);
-        return logGaussian(nu, o.measurement.Q);
+        return measurementLogLikelihood(nu, o.measurement.Q);
     };
 
     if (cand.observations.size() >= insertionOptions.max_candidate_measurements) {
@@ -132,8 +132,9 @@ void CCeilingLightsMap::addCandidateObservation(TCandidateLight& cand,
         x.step_second = obs.step;
         x.angle = rx.angle;
         x.gap = rx.gap;
-        // test (b): in front of both cameras and above them
-        x.in_front = rx.s1 > 0 && rx.s2 > 0 && rx.point.z() > std::max(o1.z(), origin.z());
+        // test (b): in front of both cameras and above them (spherical) or in front of both
+        // bearing lines (planar), within max_cross_point_range
+        x.in_front = crossPointInFront(rx, o1, origin, crossPointLimits());
         for (const auto& o : cand.observations) {
             double m2;
             x.sum_log_prob += term(x.point, o, m2);
@@ -144,13 +145,23 @@ void CCeilingLightsMap::addCandidateObservation(TCandidateLight& cand,
     refreshCrossPointValidity(cand);
 }
 
+TCrossPointLimits CCeilingLightsMap::crossPointLimits() const
+{
+    TCrossPointLimits limits;
+    limits.min_angle = insertionOptions.ang_min;
+    limits.max_range = insertionOptions.max_cross_point_range;
+    limits.planar = sensorOptions.measurement_model == TMeasurementModelKind::Planar;
+    return limits;
+}
+
 void CCeilingLightsMap::refreshCrossPointValidity(TCandidateLight& cand) const
 {
     // test (c): Π_i p(z_i | x) > Π_i P_new,i  ⇔  Σ_i d²_i < n · p_new_mahalanobis2
     const double max_sum_m2 =
         insertionOptions.p_new_mahalanobis2 * static_cast<double>(cand.observations.size());
+    const TCrossPointLimits limits = crossPointLimits();
     for (auto& x : cand.cross_points)
-        x.valid = x.in_front && x.angle > insertionOptions.ang_min &&  // tests (a), (b)
+        x.valid = x.in_front && crossPointHasParallax(x.angle, limits) &&  // tests (a), (b)
                   x.sum_mahalanobis2 < max_sum_m2;
 }
 
@@ -208,11 +219,11 @@ void CCeilingLightsMap::updateCandidates(const std::vector<TBearingMeasurement>&
         const TCandidateObservation obs{z[l], robot_in_map, m_step};
         const int c = assoc.candidate_of_measurement[l];
         if (c < 0) {
-            // a new candidate: its counter starts at 1
+            // a new candidate: its counter starts at one hit (paper: 1)
             TCandidateLight cand;
             cand.id = m_next_candidate_id++;
             addCandidateObservation(cand, obs);
-            cand.counter = 1;
+            cand.counter = static_cast<int>(insertionOptions.hit_increment);
             cand.nz = 1;
             created.push_back(std::move(cand));
             continue;
@@ -222,7 +233,7 @@ void CCeilingLightsMap::updateCandidates(const std::vector<TBearingMeasurement>&
         seen[c] = true;
         auto& cand = m_candidates[c];
         addCandidateObservation(cand, obs);
-        cand.counter++;
+        cand.counter += static_cast<int>(insertionOptions.hit_increment);
         cand.nz++;
         cand.consecutive_misses = 0;
     }
