@@ -134,6 +134,27 @@ Eigen::MatrixXd CCeilingLightsMap::landmarkLogLikelihoods(
     return out;
 }
 
+Eigen::Vector2d CCeilingLightsMap::segmentInnovation(const BearingMeasurementModel& model,
+                                                     const Eigen::Vector3d& origin,
+                                                     const Eigen::Vector3d& dir,
+                                                     double s_lo, double s_hi,
+                                                     const TRayCrossPoint& x,
+                                                     const Eigen::Vector2d& z,
+                                                     const mrpt::math::TPose2D& robot_in_map)
+{
+    // The azimuth along the segment is monotonic: the closest one to z is at an end, or z
+    // itself where the new ray crosses the segment in front of the robot.
+    std::vector<double> depths{s_lo, s_hi};
+    if (!x.parallel && x.s2 > 0) depths.push_back(std::clamp(x.s1, s_lo, s_hi));
+    Eigen::Vector2d best = Eigen::Vector2d::Constant(kInf);
+    for (const double s : depths) {
+        const Eigen::Vector2d nu =
+            BearingMeasurementModel::innovation(z, model.predict(origin + s * dir, robot_in_map));
+        if (std::abs(nu[0]) < std::abs(best[0])) best = nu;
+    }
+    return best;
+}
+
 Eigen::MatrixXd CCeilingLightsMap::candidateLogLikelihoods(
     const std::vector<TBearingMeasurement>& z, const mrpt::math::TPose2D& robot_in_map) const
 {
@@ -172,6 +193,16 @@ Eigen::MatrixXd CCeilingLightsMap::candidateLogLikelihoods(
         for (size_t l = 0; l < z.size(); l++) {
             const Eigen::Vector3d dir = model.rayDirectionInMap(z[l].z, robot_in_map);
             const auto x = computeRayCrossPoint(last_origin, last_dir, origin, dir);
+            if (model.isPlanar()) {
+                // Any two bearing lines cross: the light is on the segment of the last ray that
+                // agrees with all the candidate's measurements, and the azimuth of that segment
+                // closest to z_l is predicted (z_l itself when its ray crosses it).
+                out(l, c) = measurementLogLikelihood(
+                    segmentInnovation(model, last_origin, last_dir, cand.depth_min,
+                                      cand.depth_max, x, z[l].z, robot_in_map),
+                    z[l].Q + last.measurement.Q);
+                continue;
+            }
             const Eigen::Vector2d z_pred =
                 (!x.parallel && x.s1 > 0)
                     ? model.predict(last_origin + x.s1 * last_dir, robot_in_map)

@@ -69,6 +69,7 @@ void CCeilingLightsMap::TInsertionOptions::loadFromConfigFile(
     MRPT_LOAD_CONFIG_VAR(max_candidate_measurements, uint64_t, cfg, section);
     MRPT_LOAD_CONFIG_VAR(refine_initialization, bool, cfg, section);
     MRPT_LOAD_CONFIG_VAR(max_cross_point_range, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(min_cross_point_range, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(hit_increment, uint64_t, cfg, section);
 
     requireKey(nz_min >= 2, section, "nz_min", "must be >= 2 (two rays make a cross-point)");
@@ -81,6 +82,9 @@ void CCeilingLightsMap::TInsertionOptions::loadFromConfigFile(
     requireKey(max_candidate_measurements >= nz_min, section, "max_candidate_measurements",
                "must be >= nz_min");
     requireKey(max_cross_point_range >= 0, section, "max_cross_point_range", "must be >= 0");
+    requireKey(min_cross_point_range >= 0 &&
+                   (max_cross_point_range == 0 || min_cross_point_range < max_cross_point_range),
+               section, "min_cross_point_range", "must be >= 0 and < max_cross_point_range");
     requireKey(hit_increment >= 1, section, "hit_increment", "must be >= 1");
 }
 
@@ -101,6 +105,7 @@ void CCeilingLightsMap::TInsertionOptions::dumpToTextStream(std::ostream& out) c
     LOADABLEOPTS_DUMP_VAR(max_candidate_measurements, int);
     LOADABLEOPTS_DUMP_VAR(refine_initialization, bool);
     LOADABLEOPTS_DUMP_VAR(max_cross_point_range, double);
+    LOADABLEOPTS_DUMP_VAR(min_cross_point_range, double);
     LOADABLEOPTS_DUMP_VAR(hit_increment, int);
 }
 

@@ -10,6 +10,9 @@
 namespace mrpt_vslam::omni_fastslam {
 
 namespace {
+/// Far end of a planar candidate's ray when max_cross_point_range is 0 (no limit) [m]
+constexpr double kUnlimitedDepth = 1e3;
+
 /// XY distance between a robot pose and a point [m].
 double horizontalDistance(const mrpt::math::TPose2D& robot, const Eigen::Vector3d& p)
 {
@@ -143,6 +146,50 @@ void CCeilingLightsMap::addCandidateObservation(TCandidateLight& cand,
         cand.cross_points.push_back(x);
     }
     refreshCrossPointValidity(cand);
+    if (model.isPlanar()) updateDepthInterval(cand);
+}
+
+void CCeilingLightsMap::updateDepthInterval(TCandidateLight& cand) const
+{
+    // Samples of the last ray between the range limits; a depth agrees when every earlier
+    // measurement is within the P_new gate of its projection.
+    constexpr int kSamples = 64;
+    const auto model = measurementModel();
+    const auto& last = cand.observations.back();
+    const Eigen::Vector3d origin = model.rayOriginInMap(last.robot_in_map);
+    const Eigen::Vector3d dir = model.rayDirectionInMap(last.measurement.z, last.robot_in_map);
+    const double s_lo = std::max(insertionOptions.min_cross_point_range, 0.05);
+    const double s_hi = insertionOptions.max_cross_point_range > 0
+                            ? insertionOptions.max_cross_point_range
+                            : kUnlimitedDepth;
+    cand.depth_min = s_hi;
+    cand.depth_max = s_lo;
+    bool any = false;
+    for (int i = 0; i < kSamples; i++) {
+        // geometric spacing: the azimuths change fastest near the robot
+        const double s = s_lo * std::pow(s_hi / s_lo, i / (kSamples - 1.0));
+        const Eigen::Vector3d point = origin + s * dir;
+        bool agrees = true;
+        for (size_t k = 0; agrees && k + 1 < cand.observations.size(); k++) {
+            const auto& o = cand.observations[k];
+            const Eigen::Vector2d nu = BearingMeasurementModel::innovation(
+                o.measurement.z, model.predict(point, o.robot_in_map));
+            agrees = nu.dot(o.measurement.Q.inverse() * nu) < insertionOptions.p_new_mahalanobis2;
+        }
+        if (!agrees) continue;
+        any = true;
+        cand.depth_min = std::min(cand.depth_min, s);
+        cand.depth_max = std::max(cand.depth_max, s);
+    }
+    if (any || cand.observations.size() < 2) return;
+    // No single point explains the measurements (two landmarks were mixed, as happens when
+    // they are seen in nearly the same direction): the candidate starts over from its newest
+    // measurement.
+    cand.observations.erase(cand.observations.begin(), cand.observations.end() - 1);
+    cand.cross_points.clear();
+    cand.nz = 1;
+    cand.depth_min = s_lo;
+    cand.depth_max = s_hi;
 }
 
 TCrossPointLimits CCeilingLightsMap::crossPointLimits() const
@@ -150,6 +197,7 @@ TCrossPointLimits CCeilingLightsMap::crossPointLimits() const
     TCrossPointLimits limits;
     limits.min_angle = insertionOptions.ang_min;
     limits.max_range = insertionOptions.max_cross_point_range;
+    limits.min_range = insertionOptions.min_cross_point_range;
     limits.planar = sensorOptions.measurement_model == TMeasurementModelKind::Planar;
     return limits;
 }

@@ -26,6 +26,17 @@ BearingMeasurementModel planarModel(double x = 0, double y = 0, double yaw = 0)
                                    TMeasurementModelKind::Planar);
 }
 
+TCrossPointLimits limitsOf(double min_angle, double max_range, bool planar,
+                           double min_range = 0)
+{
+    TCrossPointLimits limits;
+    limits.min_angle = min_angle;
+    limits.max_range = max_range;
+    limits.planar = planar;
+    limits.min_range = min_range;
+    return limits;
+}
+
 /// φ wrapped to (−π, π]
 double wrap(double a)
 {
@@ -192,7 +203,7 @@ TEST(PlanarCrossPoint, ExactCrossingMatchesClosedForm)
     EXPECT_LT((y.point - landmark).norm(), 1e-12);
     EXPECT_NEAR(y.s1, 5, 1e-12);
     EXPECT_NEAR(y.s2, std::hypot(3, 4), 1e-12);
-    const TCrossPointLimits limits{5 * kDeg, 6.0, true};
+    const TCrossPointLimits limits = limitsOf(5 * kDeg, 6.0, true);
     EXPECT_TRUE(mrpt_vslam::omni_fastslam::crossPointHasParallax(y.angle, limits));
     EXPECT_TRUE(mrpt_vslam::omni_fastslam::crossPointInFront(y, model.rayOriginInMap(a),
                                                              model.rayOriginInMap(b), limits));
@@ -212,7 +223,7 @@ TEST(PlanarCrossPoint, ParallelRaysAreFlagged)
 TEST(PlanarCrossPoint, CrossingBehindARayIsRejected)
 {
     const auto model = planarModel();
-    const TCrossPointLimits limits{5 * kDeg, 0, true};
+    const TCrossPointLimits limits = limitsOf(5 * kDeg, 0, true);
     // ray 1 along +x from the origin; ray 2 from (−2, 2) heading down-left: they cross at
     // x < 0, behind ray 1 (and in front of ray 2)
     const TPose2D r1(0, 0, 0), r2(-2, 2, 0);
@@ -235,7 +246,7 @@ TEST(PlanarCrossPoint, CrossingBehindARayIsRejected)
 TEST(PlanarCrossPoint, LowParallaxAndFarCrossingsAreRejected)
 {
     const auto model = planarModel();
-    const TCrossPointLimits limits{5 * kDeg, 6.0, true};
+    const TCrossPointLimits limits = limitsOf(5 * kDeg, 6.0, true);
     const Vector3d landmark(5, 0, 0);
     // 0.3 m of baseline across the line of sight at 5 m: parallax atan(0.3/5) = 3.4° < 5°
     const auto low = cross(rayTo(model, TPose2D(0, 0, 0), landmark),
@@ -256,7 +267,7 @@ TEST(PlanarCrossPoint, LowParallaxAndFarCrossingsAreRejected)
     EXPECT_GT(head_on.angle, M_PI - 5 * kDeg);
     EXPECT_FALSE(mrpt_vslam::omni_fastslam::crossPointHasParallax(head_on.angle, limits));
     EXPECT_TRUE(mrpt_vslam::omni_fastslam::crossPointHasParallax(
-        head_on.angle, TCrossPointLimits{5 * kDeg, 6.0, false}));
+        head_on.angle, limitsOf(5 * kDeg, 6.0, false)));
     // a good parallax but 8 m away from the first robot: beyond max_range = 6 m
     const Vector3d far(8, 0, 0);
     const TPose2D a(0, 0, 0), b(5, -3, 0);
@@ -267,5 +278,10 @@ TEST(PlanarCrossPoint, LowParallaxAndFarCrossingsAreRejected)
     EXPECT_FALSE(mrpt_vslam::omni_fastslam::crossPointInFront(x, model.rayOriginInMap(a),
                                                               model.rayOriginInMap(b), limits));
     EXPECT_TRUE(mrpt_vslam::omni_fastslam::crossPointInFront(
-        x, model.rayOriginInMap(a), model.rayOriginInMap(b), TCrossPointLimits{5 * kDeg, 0, true}));
+        x, model.rayOriginInMap(a), model.rayOriginInMap(b), limitsOf(5 * kDeg, 0, true)));
+    // and a crossing nearer than min_range = 4.5 m to the second robot (4.24 m) is not valid
+    EXPECT_FALSE(mrpt_vslam::omni_fastslam::crossPointInFront(
+        x, model.rayOriginInMap(a), model.rayOriginInMap(b), limitsOf(5 * kDeg, 0, true, 4.5)));
+    EXPECT_TRUE(mrpt_vslam::omni_fastslam::crossPointInFront(
+        x, model.rayOriginInMap(a), model.rayOriginInMap(b), limitsOf(5 * kDeg, 0, true, 4.0)));
 }

@@ -92,6 +92,9 @@ public:
         /// Cross-points farther than this along either ray are not valid [m] (0 = no limit);
         /// the planar mode's maximum range of a bearing-line crossing.
         double max_cross_point_range = 0;
+        /// Cross-points nearer than this along either ray are not valid [m] (0 = no limit);
+        /// planar: also the near end of the segment a candidate's last ray predicts.
+        double min_cross_point_range = 0;
         /// Counter increment i_j of a landmark or candidate per associated measurement (a new
         /// candidate starts at it); misses still cost 1 (landmarks) or the candidate decrement.
         /// Paper: 1. With a detection probability p < 1/2 inside the perceptual range the
@@ -256,6 +259,18 @@ private:
     bool usesForWeight(const TLightLandmark& lm) const;
     void addCandidateObservation(TCandidateLight& cand, const TCandidateObservation& obs) const;
     void refreshCrossPointValidity(TCandidateLight& cand) const;
+    /** Planar candidate likelihood: innovation of z against the segment [s_lo, s_hi] [m] of a
+     *  candidate's last ray (origin, unit dir); x is the crossing of that ray with the ray of
+     *  z. */
+    static Eigen::Vector2d segmentInnovation(const BearingMeasurementModel& model,
+                                             const Eigen::Vector3d& origin,
+                                             const Eigen::Vector3d& dir, double s_lo, double s_hi,
+                                             const TRayCrossPoint& x, const Eigen::Vector2d& z,
+                                             const mrpt::math::TPose2D& robot_in_map);
+    /** Planar: the depths along the candidate's last ray, between min_ and
+     *  max_cross_point_range, where every earlier measurement is within the P_new gate. When
+     *  there is none, the candidate keeps only its newest measurement. */
+    void updateDepthInterval(TCandidateLight& cand) const;
     /// Limits of the cross-point tests (a), (b) from the options and the measurement model.
     TCrossPointLimits crossPointLimits() const;
     bool tryPromote(const TCandidateLight& cand);

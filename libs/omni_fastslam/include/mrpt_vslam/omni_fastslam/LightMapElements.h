@@ -75,6 +75,9 @@ struct TCandidateLight {
     int counter = 0;             ///< i_j: +1 per measurement, −I_not per miss
     int consecutive_misses = 0;  ///< I_not of the paper: iterations in a row without measurement
     uint32_t nz = 0;             ///< NZ_j: measurements associated along time (incl. dropped)
+    /// Planar model: depths [m] along the last measurement's ray where the light agrees with
+    /// all kept measurements (doc/omni-fastslam.md §12).
+    double depth_min = 0, depth_max = 0;
 };
 
 /** Result of the hierarchical data association (Sec. III-C). */
