@@ -5,9 +5,9 @@
 #      errors.png of each run (vslam-eval);
 #   2. Fig. 4(a): RMSE vs M in {1, 10, 50, 100, 200, 500, 1000, 1500, 2500} (2 robots, B = 8);
 #   3. Fig. 4(b): RMSE vs B in {1, 5, 10, 20} (2 robots, M = 500);
-#   4. descriptor threshold E0 (0.25 vs 0.7) and the paper's R_t pixel sigmas (1, 10, 10) vs ours
-#      on team2;
-#   5. team3 without resample_per_robot, and with the paper's sigmas.
+#   4. the paper's proposal (pfStandardProposal) vs the shipped pfOptimalProposal, descriptor
+#      threshold E0 (0.25 vs 0.7) and the paper's R_t pixel sigmas (1, 10, 10) vs ours on team2;
+#   5. team3 without resample_per_robot, with the optimal proposal, and with the paper's sigmas.
 # Writes run folders, tables (*.txt) and plots (*.png) under out/reproduce-multirobot/ (or $OUT)
 # and prints markdown tables. Builds first (scripts/setup.sh). Takes about 25 min on one core.
 # Environment: SEEDS (default 1 2 3 4 5), OUT.
@@ -73,22 +73,22 @@ team_table() {
 team_table team2 "$CONFIGS/office-team-2.ini" "$DATA/team2.rawlog" 2
 team_table team3 "$CONFIGS/office-team-3.ini" "$DATA/team3.rawlog" 3
 
-# --- 2./3. Fig. 4: RMSE (mean of both robots) vs M and vs B ------------------------------------
-sweep() {
-  local name="$1" key="$2"; shift 2
+# --- 2./3. Fig. 4: RMSE (mean of both robots) vs M and vs B, both proposals --------------------
+sweep() {  # sweep NAME KEY PROPOSAL VALUES...: one series of rmse-vs-NAME.txt
+  local name="$1" key="$2" proposal="$3"; shift 3
   echo
-  echo "### RMSE vs $name (team2; mean of both robots; mean ± sd over seeds $SEEDS)"
+  echo "### RMSE vs $name, $proposal (team2; mean of both robots; mean ± sd over seeds $SEEDS)"
   echo
   echo "| $name | mean RMSE [m] | sd [m] | step [ms] |"
   echo "|---|---|---|---|"
-  : > "$OUT/rmse-vs-$name.txt"
   for value in "$@"; do
     : > "$OUT/sweep.tmp"
     local ms_sum=0
     for seed in $SEEDS; do
       local res
-      res=$(run "$OUT/$name$value-seed$seed" "$CONFIGS/office-team-2.ini" "$DATA/team2.rawlog" \
-        --seed "$seed" --set "$key=$value")
+      res=$(run "$OUT/$proposal-$name$value-seed$seed" "$CONFIGS/office-team-2.ini" \
+        "$DATA/team2.rawlog" --seed "$seed" --set "$key=$value" \
+        --set "ParticleFilter.PF_algorithm=$proposal")
       mean_rmse "$res" >> "$OUT/sweep.tmp"; echo >> "$OUT/sweep.tmp"
       ms_sum=$(awk -v a="$ms_sum" -v b="${res##* }" 'BEGIN {print a + b}')
     done
@@ -96,15 +96,19 @@ sweep() {
     local ms
     ms=$(awk -v s="$ms_sum" -v n="$(echo "$SEEDS" | wc -w)" 'BEGIN {printf "%.1f", s / n}')
     echo "| $value | $m | $sd | $ms |"
-    awk -v x="$value" -v m="$m" -v sd="$sd" 'BEGIN {printf "team2 %s %s %.4f %.4f\n", x, m, m - sd, m + sd}' >> "$OUT/rmse-vs-$name.txt"
+    awk -v p="$proposal" -v x="$value" -v m="$m" -v sd="$sd" 'BEGIN {printf "%s %s %s %.4f %.4f\n", p, x, m, m - sd, m + sd}' >> "$OUT/rmse-vs-$name.txt"
   done
   rm -f "$OUT/sweep.tmp"
 }
-sweep M ParticleFilter.sampleSize 1 10 50 100 200 500 1000 1500 2500
+: > "$OUT/rmse-vs-M.txt"
+: > "$OUT/rmse-vs-B.txt"
+for proposal in pfOptimalProposal pfStandardProposal; do
+  sweep M ParticleFilter.sampleSize "$proposal" 1 10 50 100 200 500 1000 1500 2500
+  sweep B MultiRobotVSLAM.max_observations_per_robot "$proposal" 1 5 10 20
+done
 "$BIN/vslam-plot" "$OUT/rmse-vs-M.txt" "$OUT/rmse-vs-M.png" --log-x --y-from-zero \
   --title "RMSE vs number of particles M (B = 8, mean ± sd over seeds)" \
   --x-label "M" --y-label "position RMSE [m]"
-sweep B MultiRobotVSLAM.max_observations_per_robot 1 5 10 20
 "$BIN/vslam-plot" "$OUT/rmse-vs-B.txt" "$OUT/rmse-vs-B.png" --y-from-zero \
   --title "RMSE vs observations per robot and step B (M = 500, mean ± sd over seeds)" \
   --x-label "B" --y-label "position RMSE [m]"
@@ -130,7 +134,9 @@ variant() {  # variant NAME DIR RAWLOG [options...]
   echo "| $name | $m | $sd | $merged / $shared |"
   rm -f "$OUT/variant.tmp"
 }
-variant "shipped (E0 = 0.7, sigma 0.5/3/3)" shipped "$DATA/team2.rawlog"
+variant "shipped (pfOptimalProposal, E0 = 0.7, sigma 0.5/3/3)" shipped "$DATA/team2.rawlog"
+variant "pfStandardProposal (the paper's)" standard "$DATA/team2.rawlog" \
+  --set ParticleFilter.PF_algorithm=pfStandardProposal
 variant "E0 = 0.25" E0-0.25 "$DATA/team2.rawlog" --set "$MAP_OPTS.E0=0.25"
 # the paper's sigmas need the landmarks extracted again from the stereo images
 paper_sigma_rawlog() {  # paper_sigma_rawlog NAME ROBOTS: simulates and extracts once
@@ -164,6 +170,8 @@ team3_variant() {  # team3_variant NAME DIR RAWLOG [options...]
 }
 team3_variant "resample_per_robot = false" team3-no-rpr "$DATA/team3.rawlog" \
   --set MultiRobotVSLAM.resample_per_robot=false
+team3_variant "pfOptimalProposal" team3-optimal "$DATA/team3.rawlog" \
+  --set ParticleFilter.PF_algorithm=pfOptimalProposal
 team3_variant "paper sigma 1/10/10" team3-paper-sigma "$OUT/paper-sigma/team3.rawlog"
 
 echo

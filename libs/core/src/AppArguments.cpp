@@ -2,6 +2,7 @@
 #include <mrpt/system/filesystem.h>
 #include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/AppArguments.h>
+#include <mrpt_vslam/core/TclapParse.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/core/Version.h>
 
@@ -10,44 +11,6 @@
 
 namespace mrpt_vslam::core {
 namespace {
-
-/** Collects TCLAP's help text and errors instead of printing them. */
-class CapturingOutput : public TCLAP::StdOutput {
-public:
-    explicit CapturingOutput(std::ostream& help_out) : TCLAP::StdOutput(help_out) {}
-
-    void usage(TCLAP::CmdLineInterface& c) override
-    {
-        helpShown = true;
-        TCLAP::StdOutput::usage(c);
-    }
-    void version(TCLAP::CmdLineInterface&) override { versionShown = true; }
-    void failure(TCLAP::CmdLineInterface&, TCLAP::ArgException& e) override
-    {
-        error = e.argId().empty() || e.argId() == " " ? e.error() : e.error() + ": " + e.argId();
-    }
-
-    bool helpShown = false;
-    bool versionShown = false;
-    std::string error;
-};
-
-/** TCLAP takes any word it cannot match, even "--qiet", as a positional; catch those first. */
-void rejectUnknownOptions(const std::vector<const char*>& args, TCLAP::CmdLine& cmd)
-{
-    for (size_t i = 1; i < args.size(); ++i) {
-        const std::string word = args[i];
-        if (word.size() < 2 || word[0] != '-') continue;
-        if (word == "--") return;  // TCLAP: ignore the rest
-        const TCLAP::Arg* known = nullptr;
-        for (const TCLAP::Arg* arg : cmd.getArgList())
-            if ((!arg->getFlag().empty() && word == "-" + arg->getFlag()) ||
-                word == "--" + arg->getName())
-                known = arg;
-        if (known == nullptr) throw UsageError("unknown option " + word);
-        if (known->isValueRequired()) ++i;
-    }
-}
 
 uint32_t parseSeed(const std::string& text)
 {
@@ -69,12 +32,7 @@ AppArguments AppArguments::parse(int argc, const char* const* argv, const std::s
     // refuses the required CONFIG of any later parser; each parse starts afresh.
     TCLAP::OptionalUnlabeledTracker<>::alreadyOptional() = false;
 
-    std::ostringstream help;
-    CapturingOutput output(help);
     TCLAP::CmdLine cmd(description, ' ', projectVersion());
-    // setOutput() does not free the default output object and the destructor then skips it.
-    delete cmd.getOutput();
-    cmd.setOutput(&output);
 
     TCLAP::UnlabeledValueArg<std::string> config("CONFIG", "Configuration file (.ini).", true, "",
                                                  "CONFIG.ini", cmd);
@@ -100,23 +58,16 @@ AppArguments AppArguments::parse(int argc, const char* const* argv, const std::s
         return UsageError(appName + ": " + why + " (see " + appName + " --help)");
     };
 
-    std::vector<const char*> args(argv, argv + argc);
-    try {
-        rejectUnknownOptions(args, cmd);
-    } catch (const UsageError& e) {
-        throw usage_error(e.what());
+    std::string help;
+    const TclapOutcome outcome = parseTclap(cmd, argc, argv, appName, help);
+    if (outcome == TclapOutcome::ShowHelp) {
+        a.request = Request::ShowHelp;
+        a.message = help;
+        return a;
     }
-    const bool ok = cmd.parse(argc, args.data());
-    if (!ok) {
-        if (output.helpShown) {
-            a.request = Request::ShowHelp;
-            a.message = help.str();
-        } else if (output.versionShown) {
-            a.request = Request::ShowVersion;
-            a.message = appName + " " + projectVersion() + " (MRPT " + mrptVersion() + ")\n";
-        } else {
-            throw usage_error(output.error);
-        }
+    if (outcome == TclapOutcome::ShowVersion) {
+        a.request = Request::ShowVersion;
+        a.message = appName + " " + projectVersion() + " (MRPT " + mrptVersion() + ")\n";
         return a;
     }
     try {

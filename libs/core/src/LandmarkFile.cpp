@@ -1,5 +1,6 @@
 #include <mrpt_vslam/core/AtomicFile.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/core/TextColumns.h>
 
 #include <cmath>
 #include <fstream>
@@ -10,27 +11,6 @@
 
 namespace mrpt_vslam::core {
 namespace {
-
-/// Splits a line into numbers; throws with `where` on a token that is not a finite number.
-std::vector<double> parseNumbers(const std::string& line, const std::string& where) {
-    std::istringstream ss(line);
-    std::vector<double> values;
-    std::string token;
-    while (ss >> token) {
-        size_t used = 0;
-        double v = 0;
-        try {
-            v = std::stod(token, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (used != token.size())
-            throw std::runtime_error(where + "'" + token + "' is not a number");
-        if (!std::isfinite(v)) throw std::runtime_error(where + "non-finite value");
-        values.push_back(v);
-    }
-    return values;
-}
 
 /// Whether a comment line names a `yaw` column (view maps).
 bool commentNamesYaw(const std::string& line) {

@@ -3,10 +3,12 @@
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationVisualLandmarks.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
+#include <mrpt_vslam/multirobot/Cholesky3.h>
 
 #include <Eigen/Cholesky>
 #include <algorithm>
@@ -40,6 +42,12 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
         mrpt::system::tokenize(names, " \t,", robots);
     }
     MRPT_LOAD_CONFIG_VAR(landmarks_suffix, string, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(range_bearing_suffix, string, cfg, section);
+    auto& rb = range_bearing_noise;
+    rb.std_range = cfg.read_double(section, "range_bearing_std_range", rb.std_range);
+    rb.std_bearing = mrpt::DEG2RAD(cfg.read_double(section, "range_bearing_std_bearing_deg",
+                                                   mrpt::RAD2DEG(rb.std_bearing)));
+    rb.std_height = cfg.read_double(section, "range_bearing_std_height", rb.std_height);
     MRPT_LOAD_CONFIG_VAR(max_observations_per_robot, uint64_t, cfg, section);
     MRPT_LOAD_CONFIG_VAR(min_motion_std_xy, double, cfg, section);
     min_motion_std_phi = mrpt::DEG2RAD(
@@ -55,6 +63,11 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
         requireKey(std::count(robots.begin(), robots.end(), robots[i]) == 1, section, "robots",
                    "must not repeat a name");
     requireKey(!landmarks_suffix.empty(), section, "landmarks_suffix", "must not be empty");
+    requireKey(!range_bearing_suffix.empty() && range_bearing_suffix != landmarks_suffix, section,
+               "range_bearing_suffix", "must not be empty nor equal landmarks_suffix");
+    requireKey(rb.std_range > 0, section, "range_bearing_std_range", "must be > 0");
+    requireKey(rb.std_bearing > 0, section, "range_bearing_std_bearing_deg", "must be > 0");
+    requireKey(rb.std_height > 0, section, "range_bearing_std_height", "must be > 0");
     requireKey(max_observations_per_robot >= 1, section, "max_observations_per_robot",
                "must be >= 1");
     requireKey(min_motion_std_xy > 0, section, "min_motion_std_xy", "must be > 0");
@@ -70,6 +83,10 @@ void CMultiRobotVisualSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     for (const auto& r : robots) names += (names.empty() ? "" : " ") + r;
     cfg.write(section, "robots", names);
     cfg.write(section, "landmarks_suffix", landmarks_suffix);
+    cfg.write(section, "range_bearing_suffix", range_bearing_suffix);
+    cfg.write(section, "range_bearing_std_range", range_bearing_noise.std_range);
+    cfg.write(section, "range_bearing_std_bearing_deg", mrpt::RAD2DEG(range_bearing_noise.std_bearing));
+    cfg.write(section, "range_bearing_std_height", range_bearing_noise.std_height);
     cfg.write(section, "max_observations_per_robot", max_observations_per_robot);
     cfg.write(section, "min_motion_std_xy", min_motion_std_xy);
     cfg.write(section, "min_motion_std_phi_deg", mrpt::RAD2DEG(min_motion_std_phi));
@@ -140,62 +157,109 @@ std::vector<std::pair<double, TPose2D>> CMultiRobotVisualSLAM::pathOf(const TTea
     return path;
 }
 
-void CMultiRobotVisualSLAM::sampleMotion(size_t k, const mrpt::obs::CActionRobotMovement2D& odometry)
+CMultiRobotVisualSLAM::TMotionGaussian CMultiRobotVisualSLAM::motionOf(
+    size_t k, const mrpt::obs::CActionRobotMovement2D& odometry) const
 {
     mrpt::math::CMatrixDouble33 cov;
     mrpt::poses::CPose2D mean;
     odometry.poseChange->getCovarianceAndMean(cov, mean);
-    Eigen::Matrix3d C = cov.asEigen();
-    C.diagonal() += Eigen::Vector3d(options.min_motion_std_xy * options.min_motion_std_xy,
-                                    options.min_motion_std_xy * options.min_motion_std_xy,
-                                    options.min_motion_std_phi * options.min_motion_std_phi);
-    if (!C.allFinite() || !std::isfinite(mean.x()) || !std::isfinite(mean.y()) ||
-        !std::isfinite(mean.phi()))
+    TMotionGaussian g;
+    g.mean = TPose2D(mean.x(), mean.y(), mean.phi());
+    g.cov = cov.asEigen();
+    g.cov.diagonal() += Eigen::Vector3d(options.min_motion_std_xy * options.min_motion_std_xy,
+                                        options.min_motion_std_xy * options.min_motion_std_xy,
+                                        options.min_motion_std_phi * options.min_motion_std_phi);
+    if (!g.cov.allFinite() || !std::isfinite(g.mean.x) || !std::isfinite(g.mean.y) ||
+        !std::isfinite(g.mean.phi))
         throw std::runtime_error(options.robots[k] +
                                  ": odometry with a non-finite increment or covariance");
-    const Eigen::LLT<Eigen::Matrix3d> llt(C);
+    const Eigen::LLT<Eigen::Matrix3d> llt(g.cov);
     if (llt.info() != Eigen::Success)
         throw std::runtime_error(options.robots[k] + ": odometry covariance is not positive definite");
-    const Eigen::Matrix3d L = llt.matrixL();
+    g.L = llt.matrixL();
+    return g;
+}
+
+std::vector<TLandmarkMeasurement> CMultiRobotVisualSLAM::measurementsOf(
+    size_t k, const mrpt::obs::CSensoryFrame& frame) const
+{
+    std::vector<TLandmarkMeasurement> z;
+    if (const auto obs = frame.getObservationBySensorLabelAs<
+            mrpt::obs::CObservationVisualLandmarks::Ptr>(options.robots[k] +
+                                                         options.landmarks_suffix))
+        z = measurementsFromObservation(*obs);
+    if (const auto obs = frame.getObservationBySensorLabelAs<
+            mrpt::obs::CObservationBearingRange::Ptr>(options.robots[k] +
+                                                      options.range_bearing_suffix)) {
+        const auto rb = measurementsFromBearingRange(*obs, options.range_bearing_noise);
+        z.insert(z.end(), rb.begin(), rb.end());
+    }
+    return selectNearest(std::move(z), options.max_observations_per_robot);
+}
+
+Eigen::Vector3d CMultiRobotVisualSLAM::drawGaussian(const Eigen::Matrix3d& L)
+{
+    Eigen::Vector3d n;
+    for (int i = 0; i < 3; i++) n[i] = m_rng.drawGaussian1D_normalized();
+    return L * n;
+}
+
+void CMultiRobotVisualSLAM::sampleMotion(size_t k, const TMotionGaussian& motion)
+{
     for (auto& p : m_particles) {  // Alg. 1 line 18, p(x_t | x_{t-1}, u_t) per robot
-        Eigen::Vector3d n;
-        for (int i = 0; i < 3; i++) n[i] = m_rng.drawGaussian1D_normalized();
-        const Eigen::Vector3d dx = L * n;
-        p.d->poses[k] = compose(p.d->poses[k],
-                                TPose2D(mean.x() + dx[0], mean.y() + dx[1], mean.phi() + dx[2]));
+        const Eigen::Vector3d dx = drawGaussian(motion.L);
+        p.d->poses[k] = compose(p.d->poses[k], TPose2D(motion.mean.x + dx[0],
+                                                       motion.mean.y + dx[1],
+                                                       motion.mean.phi + dx[2]));
     }
 }
 
-void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandmarkMeasurement>& z)
+std::vector<TMeasurementCandidates> CMultiRobotVisualSLAM::searchCandidates(
+    const std::vector<TPose2D>& poses, double extra_xy, double extra_phi,
+    const std::vector<TLandmarkMeasurement>& z)
 {
-    if (z.empty()) return;
-    // the particles' spread around their mean pose of robot k: widens the candidate search
+    // the particles' spread around their mean pose widens the search
     double sx = 0, sy = 0, ss = 0, sc = 0;
-    for (const auto& p : m_particles) {
-        sx += p.d->poses[k].x;
-        sy += p.d->poses[k].y;
-        ss += std::sin(p.d->poses[k].phi);
-        sc += std::cos(p.d->poses[k].phi);
+    for (const auto& x : poses) {
+        sx += x.x;
+        sy += x.y;
+        ss += std::sin(x.phi);
+        sc += std::cos(x.phi);
     }
-    const double n = static_cast<double>(m_particles.size());
+    const double n = static_cast<double>(poses.size());
     const TPose2D mean_pose(sx / n, sy / n, std::atan2(ss, sc));
     double max_xy = 0, max_phi = 0;
-    for (const auto& p : m_particles) {
-        max_xy = std::max(max_xy, std::hypot(p.d->poses[k].x - mean_pose.x,
-                                             p.d->poses[k].y - mean_pose.y));
-        max_phi = std::max(max_phi,
-                           std::abs(mrpt::math::wrapToPi(p.d->poses[k].phi - mean_pose.phi)));
+    for (const auto& x : poses) {
+        max_xy = std::max(max_xy, std::hypot(x.x - mean_pose.x, x.y - mean_pose.y));
+        max_phi = std::max(max_phi, std::abs(mrpt::math::wrapToPi(x.phi - mean_pose.phi)));
     }
+    max_xy += extra_xy;
+    max_phi = std::min(max_phi + extra_phi, M_PI);
 
     // Alg. 1 lines 19-26 once per measurement: the shared pool's candidates (E ≤ E0, near the
     // point). Landmarks created from this frame are not candidates for its other points.
     std::vector<TMeasurementCandidates> candidates(z.size());
     for (size_t j = 0; j < z.size(); j++) {
         const double range_xy = std::hypot(z[j].z.x(), z[j].z.y());
-        candidates[j] = m_template.findCandidates(
-            z[j], toMapFrame(z[j], mean_pose), max_xy + std::min(max_phi, M_PI) * range_xy);
+        candidates[j] = m_template.findCandidates(z[j], toMapFrame(z[j], mean_pose),
+                                                  max_xy + max_phi * range_xy);
         lastStepStats.candidates += candidates[j].candidates.size();
     }
+    lastStepStats.measurements += z.size();
+    return candidates;
+}
+
+std::vector<TPose2D> CMultiRobotVisualSLAM::posesOf(size_t k) const
+{
+    std::vector<TPose2D> poses;
+    poses.reserve(m_particles.size());
+    for (const auto& p : m_particles) poses.push_back(p.d->poses[k]);
+    return poses;
+}
+
+void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandmarkMeasurement>& z)
+{
+    auto candidates = searchCandidates(posesOf(k), 0, 0, z);
     // Alg. 1 lines 18-46, particle by particle so that its landmarks stay in the cache
     for (auto& p : m_particles) {
         const TPlanarTransform pose(p.d->poses[k]);
@@ -207,12 +271,81 @@ void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandma
             (r.created ? lastStepStats.created : lastStepStats.associated)++;
         }
     }
-    lastStepStats.measurements += z.size();
 }
 
-void CMultiRobotVisualSLAM::prediction_and_update_pfStandardProposal(
+void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const TMotionGaussian& motion,
+                                           const std::vector<TLandmarkMeasurement>& z)
+{
+    // x̂ = x_{t-1} ⊕ u for every particle; the search also covers 3σ of the motion noise
+    std::vector<TPose2D> predicted = posesOf(k);
+    for (auto& x : predicted) x = compose(x, motion.mean);
+    auto candidates =
+        searchCandidates(predicted, 3 * std::sqrt(motion.cov(0, 0) + motion.cov(1, 1)),
+                         3 * std::sqrt(motion.cov(2, 2)), z);
+
+    std::vector<std::optional<CVisualLandmarksMap::TAssociation>> assoc(z.size());
+    std::vector<uint32_t> taken;
+    for (size_t i = 0; i < m_particles.size(); i++) {
+        auto& p = *m_particles[i].d;
+        // prior N(x̂, J C Jᵀ), J the rotation of the increment into the map frame
+        const double c = std::cos(p.poses[k].phi), s = std::sin(p.poses[k].phi);
+        Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
+        J.topLeftCorner<2, 2>() << c, -s, s, c;
+        Eigen::Matrix3d Sigma = J * motion.cov * J.transpose();
+        Eigen::Vector3d mu(predicted[i].x, predicted[i].y, predicted[i].phi);
+
+        // Gaussian proposal p(x_t | x_{t-1}, u_t, z_t) by sequential EKF updates of the pose,
+        // each measurement associated with the pose uncertainty so far in its gate; the
+        // product of the marginals N(v; 0, Σ_l + R_w + H Σ Hᵀ) is the weight
+        // p(z_t | x_{t-1}, u_t, map) (FastSLAM 2.0, ours for paper 003)
+        double log_w = 0;
+        taken.clear();
+        for (size_t j = 0; j < z.size(); j++) {
+            const TMapMeasurement w = toMapFrame(z[j], TPose2D(mu[0], mu[1], mu[2]));
+            // H = ∂z_w/∂(x, y, θ): identity in x, y, and ∂R(θ)z/∂θ
+            const double hx = -(w.z.y() - mu[1]), hy = w.z.x() - mu[0];
+            Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+            H(0, 0) = H(1, 1) = 1;
+            H(0, 2) = hx;
+            H(1, 2) = hy;
+            const Eigen::Matrix3d HS = H * Sigma;
+            const TMapMeasurement gated{w.z, w.R + HS * H.transpose()};
+            assoc[j] = p.map.associate(gated, candidates[j], &taken);
+            if (!assoc[j]) {
+                log_w += std::log(p.map.insertionOptions.p0);  // line 36
+                continue;
+            }
+            taken.push_back(assoc[j]->id);
+            log_w += assoc[j]->log_likelihood;
+            const TVisualLandmark& lm = *p.map.landmark(assoc[j]->id);
+            const Eigen::Matrix3d K = HS.transpose() * Cholesky3(lm.cov + gated.R).inverse();
+            mu -= K * (w.z - lm.mean);
+            mu[2] = mrpt::math::wrapToPi(mu[2]);
+            const Eigen::Matrix3d updated = Sigma - K * HS;
+            Sigma = 0.5 * (updated + updated.transpose());
+        }
+        const Cholesky3 L(Sigma);
+        if (!L.ok)
+            throw std::runtime_error(options.robots[k] +
+                                     ": proposal covariance is not positive definite");
+        const Eigen::Vector3d x = mu + drawGaussian(L.factor());
+        p.poses[k] = TPose2D(x[0], x[1], mrpt::math::wrapToPi(x[2]));
+
+        // the landmarks updated from the sampled pose, with the associations made above
+        const TPlanarTransform pose(p.poses[k]);
+        for (size_t j = 0; j < z.size(); j++) {
+            const TFusionResult r = p.map.fuseAs(z[j], toMapFrame(z[j], pose), candidates[j],
+                                                 static_cast<unsigned>(k), assoc[j]);
+            (r.created ? lastStepStats.created : lastStepStats.associated)++;
+        }
+        m_particles[i].log_w += log_w;  // line 11: the product over the team
+        p.accumulated_log_w += log_w;
+    }
+}
+
+void CMultiRobotVisualSLAM::runStep(
     const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
-    const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options)
+    const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options, bool optimal)
 {
     lastStepStats = TStepStats();
     const size_t K = robotCount();
@@ -227,21 +360,35 @@ void CMultiRobotVisualSLAM::prediction_and_update_pfStandardProposal(
         if (!odo) throw std::runtime_error("action " + std::to_string(k) +
                                            " of a step is not a CActionRobotMovement2D");
         timestamp = std::max(timestamp, mrpt::Clock::toDouble(odo->timestamp));
-        sampleMotion(k, *odo);
-        if (!observation) continue;
-        const auto obs = observation->getObservationBySensorLabelAs<
-            mrpt::obs::CObservationVisualLandmarks::Ptr>(options.robots[k] +
-                                                         options.landmarks_suffix);
-        if (obs)
-            fuseMeasurements(
-                k, selectNearest(measurementsFromObservation(*obs),
-                                 options.max_observations_per_robot));
+        const TMotionGaussian motion = motionOf(k, *odo);
+        const auto z = observation ? measurementsOf(k, *observation)
+                                   : std::vector<TLandmarkMeasurement>();
+        if (optimal && !z.empty()) {
+            proposeAndFuse(k, motion, z);
+        } else {
+            sampleMotion(k, motion);
+            if (!z.empty()) fuseMeasurements(k, z);
+        }
         // after the last robot the framework resamples (Alg. 1 line 13)
         if (options.resample_per_robot && k + 1 < K && ESS() < pf_options.BETA)
             performResampling(pf_options);
     }
     for (auto& p : m_particles)
         p.d->path = std::make_shared<const TTeamPathNode>(timestamp, p.d->poses, p.d->path);
+}
+
+void CMultiRobotVisualSLAM::prediction_and_update_pfStandardProposal(
+    const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
+    const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options)
+{
+    runStep(action, observation, pf_options, false);
+}
+
+void CMultiRobotVisualSLAM::prediction_and_update_pfOptimalProposal(
+    const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
+    const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options)
+{
+    runStep(action, observation, pf_options, true);
 }
 
 }  // namespace mrpt_vslam::multirobot

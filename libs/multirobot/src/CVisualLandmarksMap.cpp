@@ -5,8 +5,10 @@
 #include <mrpt_vslam/core/AtomicFile.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/multirobot/CVisualLandmarksMap.h>
+#include <mrpt_vslam/multirobot/Cholesky3.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <bitset>
 #include <cmath>
 #include <sstream>
@@ -75,70 +77,48 @@ TMeasurementCandidates CVisualLandmarksMap::findCandidates(const TLandmarkMeasur
     return c;
 }
 
-namespace {
-/// Closed-form Cholesky factor Z = L Lᵀ of a symmetric positive-definite 3 × 3 matrix (the
-/// generic Eigen path costs more than the whole update at this size).
-struct Cholesky3 {
-    double l00, l10, l11, l20, l21, l22;
-    bool ok;
-    explicit Cholesky3(const Eigen::Matrix3d& Z)
-    {
-        l00 = std::sqrt(Z(0, 0));
-        l10 = Z(1, 0) / l00;
-        l20 = Z(2, 0) / l00;
-        l11 = std::sqrt(Z(1, 1) - l10 * l10);
-        l21 = (Z(2, 1) - l20 * l10) / l11;
-        l22 = std::sqrt(Z(2, 2) - l20 * l20 - l21 * l21);
-        ok = l00 > 0 && l11 > 0 && l22 > 0;  // false for NaN too
-    }
-    /// L⁻¹ v
-    Eigen::Vector3d whiten(const Eigen::Vector3d& v) const
-    {
-        const double w0 = v[0] / l00, w1 = (v[1] - l10 * w0) / l11;
-        return {w0, w1, (v[2] - l20 * w0 - l21 * w1) / l22};
-    }
-    double logDet() const { return 2 * (std::log(l00) + std::log(l11) + std::log(l22)); }
-    /// Z⁻¹ = L⁻ᵀ L⁻¹
-    Eigen::Matrix3d inverse() const
-    {
-        Eigen::Matrix3d Li = Eigen::Matrix3d::Zero();
-        Li(0, 0) = 1 / l00;
-        Li(1, 1) = 1 / l11;
-        Li(2, 2) = 1 / l22;
-        Li(1, 0) = -l10 * Li(0, 0) / l11;
-        Li(2, 1) = -l21 * Li(1, 1) / l22;
-        Li(2, 0) = -(l20 * Li(0, 0) + l21 * Li(1, 0)) / l22;
-        return Li.transpose() * Li;
-    }
-};
-}  // namespace
 
 std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
-    const TMapMeasurement& m, const TMeasurementCandidates& candidates) const
+    const TMapMeasurement& m, const TMeasurementCandidates& candidates,
+    const std::vector<uint32_t>* excluded) const
 {
     // Alg. 1 lines 19-29: the smallest E among the landmarks with D ≤ D0. The candidates
-    // (E ≤ E0 already) come in increasing E, so the first one inside the gate is it.
+    // (E ≤ E0 already) come in increasing E, so the first one inside the gate is it; among
+    // equal E (no descriptors, as in range-bearing data: all E = 0) the smallest D.
+    std::optional<TAssociation> best;
+    float best_E = 0;
+    double best_log_det = 0;
     for (const auto& c : candidates.candidates) {
+        if (best && c.E > best_E) break;
         const TVisualLandmark* lm = m_store.find(c.id);
-        if (!lm) continue;
+        if (!lm || (excluded && std::find(excluded->begin(), excluded->end(), c.id) !=
+                                    excluded->end()))
+            continue;
         const Cholesky3 L(lm->cov + m.R);  // Eq. 6-8
         if (!L.ok) throw std::invalid_argument("landmark " + std::to_string(c.id) +
                                                ": innovation covariance not positive definite");
-        TAssociation a;
-        a.id = c.id;
-        a.D = L.whiten(m.z - lm->mean).squaredNorm();  // Eq. 15
-        if (!(a.D <= insertionOptions.D0)) continue;   // line 28
-        a.log_likelihood = -0.5 * (3 * std::log(2 * M_PI) + L.logDet() + a.D);  // Eq. 13
-        return a;
+        const double D = L.whiten(m.z - lm->mean).squaredNorm();  // Eq. 15
+        if (!(D <= insertionOptions.D0) || (best && D >= best->D)) continue;  // line 28
+        best = TAssociation{c.id, D, 0};
+        best_E = c.E;
+        best_log_det = L.logDet();
     }
-    return std::nullopt;
+    if (best) best->log_likelihood = -0.5 * (3 * std::log(2 * M_PI) + best_log_det + best->D);  // Eq. 13
+    return best;
 }
 
 TFusionResult CVisualLandmarksMap::fuse(const TLandmarkMeasurement& m, const TMapMeasurement& in_map,
                                         TMeasurementCandidates& candidates, unsigned robot)
 {
+    return fuseAs(m, in_map, candidates, robot, associate(in_map, candidates));
+}
+
+TFusionResult CVisualLandmarksMap::fuseAs(const TLandmarkMeasurement& m,
+                                          const TMapMeasurement& in_map,
+                                          TMeasurementCandidates& candidates, unsigned robot,
+                                          const std::optional<TAssociation>& a)
+{
     TFusionResult r;
-    const auto a = associate(in_map, candidates);
     if (!a) {  // Alg. 1 lines 33-36
         if (!candidates.new_id) candidates.new_id = m_pool->add(m.d, in_map.z);
         TVisualLandmark lm;
@@ -146,6 +126,7 @@ TFusionResult CVisualLandmarksMap::fuse(const TLandmarkMeasurement& m, const TMa
         lm.cov = in_map.R;
         lm.times_seen = 1;
         lm.seen_by = 1u << robot;
+        lm.identity = m.track_id;
         m_store.insert(*candidates.new_id, lm);
         r.id = *candidates.new_id;
         r.created = true;
@@ -159,6 +140,8 @@ TFusionResult CVisualLandmarksMap::fuse(const TLandmarkMeasurement& m, const TMa
     lm.cov = 0.5 * (cov + cov.transpose());
     lm.times_seen++;
     lm.seen_by |= 1u << robot;
+    if (m.track_id >= 0 && lm.identity >= 0 && m.track_id != lm.identity)
+        lm.identity_conflicts++;
     r.id = a->id;
     r.log_w = a->log_likelihood;  // Eq. 13
     return r;

@@ -3,7 +3,7 @@
 
 namespace mrpt_vslam::multirobot {
 
-uint8_t CVisualLandmarksMap::serializeGetVersion() const { return 0; }
+uint8_t CVisualLandmarksMap::serializeGetVersion() const { return 1; }
 
 void CVisualLandmarksMap::serializeTo(mrpt::serialization::CArchive& out) const
 {
@@ -19,7 +19,7 @@ void CVisualLandmarksMap::serializeTo(mrpt::serialization::CArchive& out) const
         for (int i = 0; i < 3; i++) out << lm.mean[i];
         for (int r = 0; r < 3; r++)
             for (int c = r; c < 3; c++) out << lm.cov(r, c);
-        out << lm.times_seen << lm.seen_by;
+        out << lm.times_seen << lm.seen_by << lm.identity << lm.identity_conflicts;
         for (const float v : m_pool->descriptor(id)) out << v;
         for (int i = 0; i < 3; i++) out << m_pool->creationPosition(id)[i];
     });
@@ -27,7 +27,7 @@ void CVisualLandmarksMap::serializeTo(mrpt::serialization::CArchive& out) const
 
 void CVisualLandmarksMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
 {
-    if (version != 0) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+    if (version > 1) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
     in >> genericMapParams;
     auto& io = insertionOptions;
     in >> io.D0 >> io.E0 >> io.p0 >> io.search_radius >> io.grid_cell_size;
@@ -51,6 +51,7 @@ void CVisualLandmarksMap::serializeFrom(mrpt::serialization::CArchive& in, uint8
                 lm.cov(c, r) = lm.cov(r, c);
             }
         in >> lm.times_seen >> lm.seen_by;
+        if (version >= 1) in >> lm.identity >> lm.identity_conflicts;  // version 1
         for (float& v : d) in >> v;
         for (int i = 0; i < 3; i++) in >> created[i];
         m_pool->addWithId(id, d, created);

@@ -4,6 +4,7 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace mrpt_vslam::multirobot {
@@ -37,6 +38,40 @@ std::vector<TLandmarkMeasurement> measurementsFromObservation(
                   m.d.begin());
         m.depth = p.z();
         m.track_id = lm.ID;
+        out.push_back(m);
+    }
+    return out;
+}
+
+std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
+    const mrpt::obs::CObservationBearingRange& obs, const TRangeBearingNoise& noise)
+{
+    const Eigen::Matrix3d rot = obs.sensorLocationOnRobot.getRotationMatrix().asEigen();
+    const Eigen::Vector3d t(obs.sensorLocationOnRobot.x(), obs.sensorLocationOnRobot.y(),
+                            obs.sensorLocationOnRobot.z());
+    std::vector<TLandmarkMeasurement> out;
+    out.reserve(obs.sensedData.size());
+    for (const auto& s : obs.sensedData) {
+        const auto fail = [&](const std::string& what) {
+            throw std::runtime_error(obs.sensorLabel + ": measurement of landmark " +
+                                     std::to_string(s.landmarkID) + " " + what);
+        };
+        if (!std::isfinite(s.range) || !(s.range > 0)) fail("has a non-finite or non-positive range");
+        if (!std::isfinite(s.yaw)) fail("has a non-finite bearing");
+        if (s.pitch != 0) fail("has a non-zero pitch (the range-bearing model is planar)");
+        const double r = s.range, c = std::cos(s.yaw), sn = std::sin(s.yaw);
+        Eigen::Matrix<double, 3, 2> J;  // ∂(x, y, z)/∂(r, b)
+        J << c, -r * sn, sn, r * c, 0, 0;
+        Eigen::Matrix3d C = J * Eigen::Vector2d(noise.std_range, noise.std_bearing)
+                                    .cwiseAbs2()
+                                    .asDiagonal() *
+                            J.transpose();
+        C(2, 2) = noise.std_height * noise.std_height;
+        TLandmarkMeasurement m;
+        m.z = rot * Eigen::Vector3d(r * c, r * sn, 0) + t;
+        m.R = rot * C * rot.transpose();
+        m.depth = r;
+        m.track_id = s.landmarkID;
         out.push_back(m);
     }
     return out;

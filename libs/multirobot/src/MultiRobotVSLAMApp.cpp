@@ -27,6 +27,7 @@
 #include <opencv2/core/version.hpp>
 
 #include <bitset>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -77,6 +78,11 @@ struct MultiRobotVSLAMApp::Impl {
     void prepareFrame(mrpt::obs::CSensoryFrame& sf);
     void drawBestParticle(mrpt::opengl::COpenGLScene& scene) const;
     void writeOutputs(MultiRobotVSLAMApp& app, const core::RunTimer& timer);
+    /** Where measurements carry identities (range-bearing data imported with kept ids): of the
+     *  measurements fused into the best particle's landmarks, how many had another identity
+     *  than the one that created the landmark, and how many identities have several
+     *  landmarks; as JSON, empty without identities. */
+    std::string identityAssociationJson() const;
     /// Merged vs duplicated landmarks against the true ones (doc/multirobot.md), as JSON.
     std::string landmarkMergingJson(const core::LandmarkFile& truth) const;
 };
@@ -129,8 +135,10 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
     if (pf.m_options.sampleSize < 1) throw usage("[ParticleFilter] sampleSize must be >= 1");
     if (pf.m_options.adaptiveSampleSize)
         throw usage("[ParticleFilter] adaptiveSampleSize is not supported (use 0)");
-    if (pf.m_options.PF_algorithm != mrpt::bayes::CParticleFilter::pfStandardProposal)
-        throw usage("[ParticleFilter] PF_algorithm must be pfStandardProposal (paper 003, Sec. 3.1)");
+    if (pf.m_options.PF_algorithm != mrpt::bayes::CParticleFilter::pfStandardProposal &&
+        pf.m_options.PF_algorithm != mrpt::bayes::CParticleFilter::pfOptimalProposal)
+        throw usage("[ParticleFilter] PF_algorithm must be pfStandardProposal (paper 003, Sec. 3.1) "
+                    "or pfOptimalProposal (FastSLAM 2.0 proposal per robot)");
 
     // Every particle's map comes from the .ini through MRPT's map registry.
     mrpt::maps::TSetOfMetricMapInitializers inits;
@@ -184,7 +192,9 @@ void MultiRobotVSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
         const std::string landmarksLabel = robots[k] + filterOptions.landmarks_suffix;
         const auto stereo = sf.getObservationBySensorLabelAs<mrpt::obs::CObservationStereoImages::Ptr>(
             robots[k] + "_STEREO");
-        const bool hasLandmarks = static_cast<bool>(sf.getObservationBySensorLabel(landmarksLabel));
+        const bool hasLandmarks =
+            sf.getObservationBySensorLabel(landmarksLabel) ||
+            sf.getObservationBySensorLabel(robots[k] + filterOptions.range_bearing_suffix);
         if (stereo) stereoFrames++;
         if (input == TInput::Landmarks || (input == TInput::Auto && hasLandmarks) || !stereo) {
             landmarkObservations += hasLandmarks ? 1 : 0;
@@ -250,6 +260,7 @@ void MultiRobotVSLAMApp::run()
     std::vector<std::string> odometryLabels;
     for (const auto& r : robots) {
         stepLabels.insert(r + d.filterOptions.landmarks_suffix);
+        stepLabels.insert(r + d.filterOptions.range_bearing_suffix);
         stepLabels.insert(r + "_STEREO");
         odometryLabels.push_back(r + "_ODOM");
     }
@@ -284,6 +295,7 @@ void MultiRobotVSLAMApp::run()
     if (d.steps == 0)
         throw std::runtime_error(d.rawlog + ": no team steps (observation-only rawlog with " +
                                  odoLabels + " and <ROBOT>" + d.filterOptions.landmarks_suffix +
+                                 ", <ROBOT>" + d.filterOptions.range_bearing_suffix +
                                  " or <ROBOT>_STEREO); the rawlog has: " +
                                  reader.summary().describe());
     if (d.measurements == 0)
@@ -343,6 +355,29 @@ std::string MultiRobotVSLAMApp::Impl::landmarkMergingJson(const core::LandmarkFi
     return j.str();
 }
 
+std::string MultiRobotVSLAMApp::Impl::identityAssociationJson() const
+{
+    size_t fused = 0, conflicts = 0, landmarks = 0;
+    std::map<int64_t, size_t> landmarksOf;
+    filter->bestParticle().map.landmarks().forEach([&](uint32_t, const TVisualLandmark& lm) {
+        if (lm.identity < 0) return;
+        landmarks++;
+        landmarksOf[lm.identity]++;
+        fused += lm.times_seen - 1;
+        conflicts += lm.identity_conflicts;
+    });
+    if (landmarks == 0) return "";
+    size_t duplicatedIdentities = 0;
+    for (const auto& [id, n] : landmarksOf) duplicatedIdentities += n > 1 ? 1 : 0;
+    std::ostringstream j;
+    j << "{\"landmarks_with_identity\": " << landmarks
+      << ", \"identities\": " << landmarksOf.size()
+      << ", \"identities_with_several_landmarks\": " << duplicatedIdentities
+      << ", \"fused_measurements\": " << fused
+      << ", \"fused_with_another_identity\": " << conflicts << "}";
+    return j.str();
+}
+
 void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core::RunTimer& timer)
 {
     core::OutputDirectory out(app.outDir);
@@ -388,6 +423,8 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
     report.setCount("landmarks", static_cast<double>(best.map.size()));
     report.setTiming(timer);
     if (trueLandmarks) report.setResultJson("landmark_merging", landmarkMergingJson(*trueLandmarks));
+    if (const auto a = identityAssociationJson(); !a.empty())
+        report.setResultJson("association_by_identity", a);
     bool anyGroundTruth = false;
     for (const auto& g : groundTruth) anyGroundTruth = anyGroundTruth || g.has_value();
     if (anyGroundTruth) report.setGroundTruth(groundTruthPrefix);

@@ -101,14 +101,25 @@ void DatasetWriter::commit(const std::vector<TTumFile>& trajectories,
                            const core::LandmarkFile& landmarks,
                            const std::string& landmarks_comment)
 {
-    for (const TTumFile& t : trajectories)
-        t.poses.save(m_prefix + "." + t.name + ".tum", t.header_comment);
-    landmarks.save(m_prefix + ".landmarks.txt", landmarks_comment);
+    // All or nothing: a failure removes the text files this commit already put in place.
+    std::vector<std::string> written;
+    try {
+        for (const TTumFile& t : trajectories) {
+            const std::string file = m_prefix + "." + t.name + ".tum";
+            t.poses.save(file, t.header_comment);
+            written.push_back(file);
+        }
+        landmarks.save(m_prefix + ".landmarks.txt", landmarks_comment);
+        written.push_back(m_prefix + ".landmarks.txt");
 
-    m_rawlog_out->close();
-    if (m_rawlog_out->fileOpenCorrectly())
-        throw std::runtime_error(m_rawlog_tmp + ": cannot close file");
-    core::AtomicFile::commitRename(m_rawlog_tmp, m_rawlog);
+        m_rawlog_out->close();
+        if (m_rawlog_out->fileOpenCorrectly())
+            throw std::runtime_error(m_rawlog_tmp + ": cannot close file");
+        core::AtomicFile::commitRename(m_rawlog_tmp, m_rawlog);
+    } catch (...) {
+        for (const std::string& file : written) std::remove(file.c_str());
+        throw;
+    }
     m_committed = true;
 }
 

@@ -17,12 +17,18 @@ namespace mrpt_vslam::multirobot {
 
 /** The Rao-Blackwellized particle filter of Gil et al. (paper 003, Alg. 1; doc/multirobot.md)
  *  over the joint paths of K robots and one shared map of 3D visual landmarks, on MRPT's
- *  particle-filter framework: drive it with `mrpt::bayes::CParticleFilter::executeOn()` and
- *  `pfStandardProposal`; resampling happens there when N_eff < BETA (Alg. 1 line 13).
+ *  particle-filter framework: drive it with `mrpt::bayes::CParticleFilter::executeOn()`;
+ *  resampling happens there when N_eff < BETA (Alg. 1 line 13). `pfStandardProposal` is the
+ *  paper's filter (below); `pfOptimalProposal` (ours) replaces steps 1 and 3 of a robot with
+ *  measurements by a FastSLAM 2.0 proposal: a Gaussian in its pose from the odometry prior and
+ *  sequential EKF updates with the associated landmarks, the pose drawn from it, the weight
+ *  p(z | x_{t-1}, u, map) (the product of the marginals of its measurements), then the
+ *  landmark updates from the drawn pose.
  *
  *  Input of one step: an action collection with one `CActionRobotMovement2D` per robot, in the
  *  order of options.robots, and a sensory frame with each robot's `<ROBOT>_LANDMARKS`
- *  (`CObservationVisualLandmarks`; a robot may have none). Robot by robot (lines 7-9):
+ *  (`CObservationVisualLandmarks`) or `<ROBOT>_RB` (`CObservationBearingRange`: planar
+ *  range-bearing without descriptors, associated by the gate alone); a robot may have none. Robot by robot (lines 7-9):
  *   1. sample each particle's pose of that robot from the odometry's Gaussian (Sec. 3.1);
  *   2. keep its B nearest measurements (Sec. 6.2) and, for each one, search the shared pool
  *      for candidates once (E ≤ E0 near the point, radius widened by the particles' spread);
@@ -49,6 +55,11 @@ public:
         std::vector<std::string> robots{"R1", "R2"};
         /// Suffix of the landmark observations' labels: `<ROBOT>` + this.
         std::string landmarks_suffix = "_LANDMARKS";
+        /// Suffix of the range-bearing observations' labels (`CObservationBearingRange`).
+        std::string range_bearing_suffix = "_RB";
+        /// Noise of range-bearing measurements (ini: range_bearing_std_range,
+        /// range_bearing_std_bearing_deg, range_bearing_std_height).
+        TRangeBearingNoise range_bearing_noise;
         /// B: measurements integrated per robot and step (paper: 8 online, 20 offline).
         unsigned int max_observations_per_robot = 8;
         /// Added to the odometry covariance (std) so the proposal never degenerates.
@@ -96,12 +107,40 @@ protected:
     void prediction_and_update_pfStandardProposal(
         const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
         const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options) override;
+    void prediction_and_update_pfOptimalProposal(
+        const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
+        const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options) override;
 
 private:
-    /// Sec. 3.1 for robot k: sample its pose in every particle; returns the step timestamp.
-    void sampleMotion(size_t k, const mrpt::obs::CActionRobotMovement2D& odometry);
-    /// Steps 2-3 for robot k with its measurements.
+    /// One robot's odometry increment as a Gaussian (with the floor), L its Cholesky factor.
+    struct TMotionGaussian {
+        mrpt::math::TPose2D mean;
+        Eigen::Matrix3d cov, L;
+    };
+    TMotionGaussian motionOf(size_t k, const mrpt::obs::CActionRobotMovement2D& odometry) const;
+    /// Robot k's B nearest measurements in the frame: `<ROBOT>_LANDMARKS` or `<ROBOT>_RB`.
+    std::vector<TLandmarkMeasurement> measurementsOf(size_t k,
+                                                     const mrpt::obs::CSensoryFrame& frame) const;
+    Eigen::Vector3d drawGaussian(const Eigen::Matrix3d& L);
+    std::vector<mrpt::math::TPose2D> posesOf(size_t k) const;
+    /// One step: every robot moves and measures (lines 7-9); `optimal` selects the proposal.
+    void runStep(const mrpt::obs::CActionCollection* action,
+                 const mrpt::obs::CSensoryFrame* observation,
+                 const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options,
+                 bool optimal);
+    /// Sec. 3.1 for robot k: sample its pose in every particle from the motion model.
+    void sampleMotion(size_t k, const TMotionGaussian& motion);
+    /** The pool's candidates for each measurement, searched once for all particles around
+     *  the mean of `poses`, widened by their spread plus extra_xy [m] and extra_phi [rad]. */
+    std::vector<TMeasurementCandidates> searchCandidates(
+        const std::vector<mrpt::math::TPose2D>& poses, double extra_xy, double extra_phi,
+        const std::vector<TLandmarkMeasurement>& z);
+    /// Steps 2-3 for robot k with its measurements, after sampleMotion().
     void fuseMeasurements(size_t k, const std::vector<TLandmarkMeasurement>& z);
+    /// pfOptimalProposal for robot k: Gaussian proposal from the motion and the measurements,
+    /// weight p(z | x_{t-1}, u, map), then the landmark updates from the sampled pose.
+    void proposeAndFuse(size_t k, const TMotionGaussian& motion,
+                        const std::vector<TLandmarkMeasurement>& z);
 
     CVisualLandmarksMap m_template;  ///< empty; shares the particles' descriptor pool
     mrpt::random::CRandomGenerator m_rng;

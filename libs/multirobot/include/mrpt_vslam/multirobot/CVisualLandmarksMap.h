@@ -114,13 +114,24 @@ public:
         uint32_t id = 0;
         double D = 0, log_likelihood = 0;
     };
-    /// The landmark the measurement is associated with (steps 2-3), or nullopt for "new".
+    /** The landmark the measurement is associated with (steps 2-3), or nullopt for "new".
+     *  Landmarks listed in `excluded` (e.g. already taken by another point of the same
+     *  frame) are passed over. */
     std::optional<TAssociation> associate(const TMapMeasurement& m,
-                                          const TMeasurementCandidates& candidates) const;
+                                          const TMeasurementCandidates& candidates,
+                                          const std::vector<uint32_t>* excluded = nullptr) const;
+    /// The landmark with this id (nullptr if this map does not hold it).
+    const TVisualLandmark* landmark(uint32_t id) const { return m_store.find(id); }
     /** Steps 3-4 for one measurement: association, EKF update or creation, weight.
      *  \param robot index of the robot that measured it (seen_by bit, < 32) */
     TFusionResult fuse(const TLandmarkMeasurement& m, const TMapMeasurement& in_map,
                        TMeasurementCandidates& candidates, unsigned robot);
+    /** Step 4 with the association already made (`a`, or nullopt for a new landmark): the
+     *  EKF update of landmark a->id, or its creation; the result's log_w is a->log_likelihood
+     *  or log p0. */
+    TFusionResult fuseAs(const TLandmarkMeasurement& m, const TMapMeasurement& in_map,
+                         TMeasurementCandidates& candidates, unsigned robot,
+                         const std::optional<TAssociation>& a);
     /// @}
 
     /// @name CMetricMap interface

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <mrpt/math/TPose2D.h>
+#include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationVisualLandmarks.h>
 #include <mrpt_vslam/core/USurfDescriptor.h>
 
@@ -19,8 +20,10 @@ struct TLandmarkMeasurement {
     Eigen::Vector3d z = Eigen::Vector3d::Zero();  ///< point in the robot frame [m]
     Eigen::Matrix3d R = Eigen::Matrix3d::Zero();  ///< its covariance R_t in the robot frame [m²]
     core::USurfDescriptor::TDescriptor d{};       ///< U-SURF descriptor d_t
-    double depth = 0;      ///< distance along the optical axis [m]: B-selection key
-    int64_t track_id = -1;  ///< front-end track (diagnostics only; never used to associate)
+    double depth = 0;      ///< distance along the optical axis or range [m]: B-selection key
+    /// Front-end track, or the landmark's identity in range-bearing data that keeps it (−1:
+    /// hidden). Diagnostics only (association errors); never used to associate.
+    int64_t track_id = -1;
 };
 
 /** The same measurement in the map frame for one particle's robot pose x:
@@ -36,6 +39,23 @@ struct TMapMeasurement {
  *  non-finite point or covariance. */
 std::vector<TLandmarkMeasurement> measurementsFromObservation(
     const mrpt::obs::CObservationVisualLandmarks& obs);
+
+/** Noise of a range-bearing measurement of a landmark in the robot's plane (`<ROBOT>_RB`, e.g.
+ *  UTIAS MRCLAM): σ of range and bearing, and of the landmark's height, measured as 0. */
+struct TRangeBearingNoise {
+    double std_range = 0.1;     ///< [m]
+    double std_bearing = 0.05;  ///< [rad]
+    double std_height = 0.01;   ///< [m]
+};
+
+/** The measurements of a `CObservationBearingRange` (range, yaw = bearing, pitch = 0) in the
+ *  robot frame: the point (r cos b, r sin b, 0) in the sensor frame, its covariance
+ *  J diag(σ_r², σ_b²) Jᵀ (J = ∂(x, y)/∂(r, b)) and σ_h² in height, both moved by the sensor's
+ *  pose on the robot; no descriptor (all zeros: association by the gate alone); track_id =
+ *  landmarkID. \throw std::runtime_error naming the label for a non-finite or non-positive
+ *  range, a non-finite bearing or a non-zero pitch. */
+std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
+    const mrpt::obs::CObservationBearingRange& obs, const TRangeBearingNoise& noise);
 
 /** The (at most) B measurements with the smallest depth, the most precise for a stereo pair,
  *  in that order (ties: lower track id); all of them if B = 0 or fewer. */

@@ -61,7 +61,7 @@ class DatasetWriter {
     /// Appends one observation to the rawlog (observation-only format).
     void writeObservation(const mrpt::obs::CObservation& observation);
     /// Writes the TUM files (`NAME.<name>.tum`) and the landmarks, then renames the rawlog into
-    /// place.
+    /// place. On a failure it removes the files it had written and throws, naming the file.
     void commit(const std::vector<TTumFile>& trajectories, const core::LandmarkFile& landmarks,
                 const std::string& landmarks_comment = {});
 

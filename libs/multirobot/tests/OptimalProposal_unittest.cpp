@@ -1,0 +1,197 @@
+// pfOptimalProposal of CMultiRobotVisualSLAM against brute force: for one measurement of one
+// mapped landmark, the particles' weight must be the evidence p(z | x_{t-1}, u, map) and their
+// sampled poses the posterior p(x_t | x_{t-1}, u, z, map), both computed here by importance
+// sampling from the motion prior with the exact (nonlinear) measurement model.
+#include <gtest/gtest.h>
+#include <mrpt/bayes/CParticleFilter.h>
+#include <mrpt/core/bits_math.h>
+#include <mrpt/maps/CLandmarksMap.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/random/RandomGenerators.h>
+#include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <cmath>
+
+using namespace mrpt_vslam::multirobot;
+
+namespace {
+struct TOneMeasurementCase {
+    Eigen::Vector3d landmark{2.0, 0.6, 1.0};
+    Eigen::Matrix3d landmark_cov = Eigen::Vector3d(0.02, 0.03, 0.02).cwiseAbs2().asDiagonal();
+    Eigen::Vector3d z{2.05, 0.55, 1.0};  // robot frame: true pose ≈ (−0.03, 0.04, 1.5°)
+    Eigen::Matrix3d R = Eigen::Vector3d(0.03, 0.02, 0.02).cwiseAbs2().asDiagonal();
+    mrpt::math::TPose2D odometry{0.0, 0.0, 0.0};  // no motion: the prior is the noise alone
+    double std_xy = 0.06, std_phi = mrpt::DEG2RAD(3.0);
+
+    mrpt_vslam::core::USurfDescriptor::TDescriptor descriptor() const
+    {
+        mrpt_vslam::core::USurfDescriptor::TDescriptor d{};
+        d[0] = 1;
+        return d;
+    }
+
+    mrpt::obs::CActionRobotMovement2D action() const
+    {
+        mrpt::obs::CActionRobotMovement2D::TMotionModelOptions model;
+        model.modelSelection = mrpt::obs::CActionRobotMovement2D::mmGaussian;
+        model.gaussianModel.a1 = model.gaussianModel.a2 = 0;
+        model.gaussianModel.a3 = model.gaussianModel.a4 = 0;
+        model.gaussianModel.minStdXY = static_cast<float>(std_xy);
+        model.gaussianModel.minStdPHI = static_cast<float>(std_phi);
+        mrpt::obs::CActionRobotMovement2D act;
+        act.computeFromOdometry(mrpt::poses::CPose2D(odometry), model);
+        return act;
+    }
+
+    mrpt::obs::CObservationVisualLandmarks::Ptr observation() const
+    {
+        auto obs = mrpt::obs::CObservationVisualLandmarks::Create();
+        obs->sensorLabel = "R1_LANDMARKS";
+        mrpt::maps::CLandmark lm;
+        lm.pose_mean = mrpt::math::TPoint3D(z.x(), z.y(), z.z());
+        lm.pose_cov_11 = static_cast<float>(R(0, 0));
+        lm.pose_cov_22 = static_cast<float>(R(1, 1));
+        lm.pose_cov_33 = static_cast<float>(R(2, 2));
+        lm.pose_cov_12 = lm.pose_cov_13 = lm.pose_cov_23 = 0;
+        mrpt::vision::CFeature f;
+        f.x2[0] = f.x2[1] = f.y2[0] = f.y2[1] = 0;
+        const auto d = descriptor();
+        f.descriptors.SURF = std::vector<float>(d.begin(), d.end());
+        lm.features.push_back(f);
+        obs->landmarks.landmarks.push_back(lm);
+        return obs;
+    }
+
+    /// log N(v; 0, C) of the map-frame point seen from x (the exact model, no linearization)
+    double logLikelihood(const Eigen::Vector3d& x) const
+    {
+        Eigen::Matrix3d rot = Eigen::Matrix3d::Identity();
+        rot.topLeftCorner<2, 2>() << std::cos(x[2]), -std::sin(x[2]), std::sin(x[2]),
+            std::cos(x[2]);
+        const Eigen::Vector3d v = rot * z + Eigen::Vector3d(x[0], x[1], 0) - landmark;
+        const Eigen::Matrix3d C = landmark_cov + rot * R * rot.transpose();
+        return -0.5 * (3 * std::log(2 * M_PI) + std::log(C.determinant()) +
+                       v.dot(C.llt().solve(v)));
+    }
+};
+
+/// Runs one step of the filter (M particles at the origin, all holding the landmark).
+CMultiRobotVisualSLAM runOneStep(const TOneMeasurementCase& c,
+                                 mrpt::bayes::CParticleFilter::TParticleFilterAlgorithm algorithm,
+                                 size_t M, Eigen::Matrix3d& prior_cov)
+{
+    CMultiRobotVisualSLAM filter(CVisualLandmarksMap(), M, 17);
+    filter.options.robots = {"R1"};
+    filter.reset({mrpt::math::TPose2D(0, 0, 0)}, 0);
+    CVisualLandmarksMap map(filter.m_particles[0].d->map.sharedDescriptorPool());
+    map.insertionOptions = filter.m_particles[0].d->map.insertionOptions;
+    map.insertionOptions.D0 = 1e9;  // the case is about the proposal, not the gate
+    TVisualLandmark lm;
+    lm.mean = c.landmark;
+    lm.cov = c.landmark_cov;
+    map.addLandmark(lm, c.descriptor());
+    for (auto& p : filter.m_particles) p.d->map = map;
+
+    mrpt::obs::CActionCollection acts;
+    acts.insert(c.action());
+    mrpt::obs::CSensoryFrame sf;
+    sf.insert(c.observation());
+    mrpt::bayes::CParticleFilter::TParticleFilterOptions opts;
+    opts.PF_algorithm = algorithm;
+    filter.prediction_and_update(&acts, &sf, opts);  // no resampling
+
+    mrpt::math::CMatrixDouble33 cov;
+    mrpt::poses::CPose2D mean;
+    c.action().poseChange->getCovarianceAndMean(cov, mean);
+    prior_cov = cov.asEigen();
+    prior_cov.diagonal() +=
+        Eigen::Vector3d(filter.options.min_motion_std_xy, filter.options.min_motion_std_xy,
+                        filter.options.min_motion_std_phi)
+            .cwiseAbs2();
+    return filter;
+}
+
+struct TBruteForce {
+    double log_evidence;
+    Eigen::Vector3d mean;
+    Eigen::Matrix3d cov;
+};
+
+TBruteForce importanceSampling(const TOneMeasurementCase& c, const Eigen::Matrix3d& prior_cov)
+{
+    mrpt::random::CRandomGenerator rng(99);
+    const Eigen::Matrix3d L = prior_cov.llt().matrixL();
+    const int N = 400000;
+    double sum_w = 0;
+    Eigen::Vector3d sum_x = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d sum_xx = Eigen::Matrix3d::Zero();
+    for (int i = 0; i < N; i++) {
+        Eigen::Vector3d n;
+        for (int k = 0; k < 3; k++) n[k] = rng.drawGaussian1D_normalized();
+        const Eigen::Vector3d x = L * n;  // the prior's mean is the origin
+        const double w = std::exp(c.logLikelihood(x));
+        sum_w += w;
+        sum_x += w * x;
+        sum_xx += w * x * x.transpose();
+    }
+    TBruteForce b;
+    b.log_evidence = std::log(sum_w / N);
+    b.mean = sum_x / sum_w;
+    b.cov = sum_xx / sum_w - b.mean * b.mean.transpose();
+    return b;
+}
+}  // namespace
+
+TEST(OptimalProposal, WeightIsTheEvidenceAndSamplesFollowThePosterior)
+{
+    const TOneMeasurementCase c;
+    const size_t M = 20000;
+    Eigen::Matrix3d prior_cov;
+    const auto filter =
+        runOneStep(c, mrpt::bayes::CParticleFilter::pfOptimalProposal, M, prior_cov);
+    const auto exact = importanceSampling(c, prior_cov);
+    ASSERT_EQ(filter.lastStepStats.associated, M);
+
+    // every particle had the same prior, so the same weight: the evidence
+    for (const auto& p : filter.m_particles) EXPECT_NEAR(p.log_w, exact.log_evidence, 0.02);
+
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& p : filter.m_particles)
+        mean += Eigen::Vector3d(p.d->poses[0].x, p.d->poses[0].y, p.d->poses[0].phi);
+    mean /= static_cast<double>(M);
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const auto& p : filter.m_particles) {
+        const Eigen::Vector3d d =
+            Eigen::Vector3d(p.d->poses[0].x, p.d->poses[0].y, p.d->poses[0].phi) - mean;
+        cov += d * d.transpose();
+    }
+    cov /= static_cast<double>(M - 1);
+    // the measurement moves the pose by several prior σ in x, y, and shrinks the spread
+    EXPECT_GT(std::abs(exact.mean.x()), 0.02);
+    EXPECT_LT(exact.cov.trace(), 0.5 * prior_cov.trace());
+    for (int i = 0; i < 3; i++) {
+        EXPECT_NEAR(mean[i], exact.mean[i], 0.05 * std::sqrt(prior_cov(i, i))) << "component " << i;
+        for (int j = 0; j < 3; j++)
+            EXPECT_NEAR(cov(i, j), exact.cov(i, j),
+                        0.06 * std::sqrt(exact.cov(i, i) * exact.cov(j, j)))
+                << "covariance " << i << "," << j;
+    }
+}
+
+// The standard proposal's weights are the likelihood at the sampled pose: their mean over the
+// particles estimates the same evidence.
+TEST(OptimalProposal, StandardProposalWeightsAverageToTheSameEvidence)
+{
+    const TOneMeasurementCase c;
+    const size_t M = 20000;
+    Eigen::Matrix3d prior_cov;
+    const auto filter =
+        runOneStep(c, mrpt::bayes::CParticleFilter::pfStandardProposal, M, prior_cov);
+    const auto exact = importanceSampling(c, prior_cov);
+    double sum = 0;
+    for (const auto& p : filter.m_particles) sum += std::exp(p.log_w);
+    EXPECT_NEAR(std::log(sum / static_cast<double>(M)), exact.log_evidence, 0.05);
+}
