@@ -288,3 +288,99 @@ TEST(OmniFastSLAMPlanar, NeverReadsTheLandmarkNumbers)
     EXPECT_EQ(shown.landmarks.size(), hidden.landmarks.size());
     EXPECT_EQ(hidden.labelled, 0u);
 }
+
+namespace {
+core::AppArguments appArguments(const std::vector<std::string>& extra)
+{
+    std::vector<const char*> argv{"omni-fastslam"};
+    for (const auto& a : extra) argv.push_back(a.c_str());
+    return core::AppArguments::parse(static_cast<int>(argv.size()), argv.data(), "omni-fastslam",
+                                     "");
+}
+
+/** The sequence as an MRCLAM-like observation-only rawlog of two robots: R1 (the sequence,
+ *  R1_ODOM every frame, R1_RB in the frames with measurements) and R2 (odometry and bearings
+ *  50 ms later, driving elsewhere), per-robot ground truth and the landmarks with their ids. */
+std::string writeTeamRawlog(const TPlanarSequence& seq, const std::string& prefix)
+{
+    sim::DatasetWriter writer(prefix, false, {});
+    core::TumTrajectory gt1, gt2;
+    for (size_t k = 0; k < seq.truth.size(); k++) {
+        const double t = seq.timestamps[k];
+        mrpt::obs::CObservationOdometry odo1;
+        odo1.sensorLabel = "R1_ODOM";
+        odo1.timestamp = mrpt::Clock::fromDouble(t);
+        odo1.odometry = seq.odometry[k];
+        writer.writeObservation(odo1);
+        if (!seq.bearings[k].sensedData.empty()) writer.writeObservation(seq.bearings[k]);
+        const auto& p = seq.truth[k];
+        gt1.push_back(t, {p.x, p.y, 0, p.phi, 0, 0});
+
+        // R2 turns on the spot at the centre and reads "landmarks" straight ahead
+        const TPose2D r2(7.5, 4, 0.3 * static_cast<double>(k));
+        mrpt::obs::CObservationOdometry odo2;
+        odo2.sensorLabel = "R2_ODOM";
+        odo2.timestamp = mrpt::Clock::fromDouble(t + 0.05);
+        odo2.odometry = mrpt::poses::CPose2D(r2);
+        writer.writeObservation(odo2);
+        mrpt::obs::CObservationBearingRange rb2;
+        rb2.sensorLabel = "R2_RB";
+        rb2.timestamp = odo2.timestamp;
+        rb2.sensedData.resize(1);
+        rb2.sensedData[0].yaw = 0.1f;
+        rb2.sensedData[0].range = 2;
+        rb2.sensedData[0].landmarkID = 3;
+        writer.writeObservation(rb2);
+        gt2.push_back(t + 0.05, {r2.x, r2.y, 0, r2.phi, 0, 0});
+    }
+    core::LandmarkFile landmarks;
+    for (size_t i = 0; i < seq.landmarks.size(); i++) {
+        core::TLandmark lm;
+        lm.id = static_cast<int>(i + 1);
+        lm.position = {seq.landmarks[i].x(), seq.landmarks[i].y(), 0};
+        landmarks.landmarks.push_back(lm);
+    }
+    writer.commit({{"groundtruth_R1", gt1, "R1"}, {"groundtruth_R2", gt2, "R2"}}, landmarks);
+    return prefix + ".rawlog";
+}
+}  // namespace
+
+// The omni-fastslam app on one robot of a two-robot rawlog, with the shipped MRCLAM config.
+TEST(OmniFastSLAMPlanar, AppRunsOneRobotOfATeamRawlog)
+{
+    const test::ScratchFolder scratch("omni_fastslam_planar_app");
+    const auto seq = makeSequence(4);
+    const auto rawlog = writeTeamRawlog(seq, scratch.file("team"));
+    const auto out = scratch.file("out");
+    omni_fastslam::OmniFastSLAMApp app(appArguments({kConfig, rawlog, "--out", out, "--quiet"}));
+    app.initialize();
+    app.run();
+
+    // one step per R1 frame with measurements; R2 ignored
+    const auto frames = static_cast<size_t>(std::count_if(
+        seq.bearings.begin(), seq.bearings.end(), [](const auto& b) { return !b.sensedData.empty(); }));
+    EXPECT_EQ(app.estimatedPath.size(), frames);
+    for (const char* f : {"estimated_path_R1.tum", "odometry_path_R1.tum", "map.txt",
+                          "final_map.gz", "final.3Dscene", "run.json", "metrics.json"})
+        EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
+    EXPECT_FALSE(std::filesystem::exists(out + "/estimated_path.tum"));
+    // started at R1's first true pose, and its dead reckoning is R1's odometry alone
+    const auto odo = core::TumTrajectory::load(out + "/odometry_path_R1.tum");
+    ASSERT_FALSE(odo.empty());
+    size_t k_last = seq.bearings.size() - 1;
+    while (seq.bearings[k_last].sensedData.empty()) k_last--;
+    const auto last = (mrpt::poses::CPose2D(seq.truth.front()) +
+                       (seq.odometry[k_last] - seq.odometry.front()));
+    EXPECT_NEAR(odo.poses.back().x, last.x(), 1e-3);
+    EXPECT_NEAR(odo.poses.back().y, last.y(), 1e-3);
+
+    const auto metrics = test::readJson(out + "/metrics.json");
+    ASSERT_TRUE(metrics.contains("robots") && metrics["robots"].contains("R1"));
+    EXPECT_GT(metrics["robots"]["R1"]["estimate"]["matched_poses"].get<int>(), 0);
+    EXPECT_TRUE(metrics["robots"]["R1"]["estimate"]["ate_rmse_m"].is_number());
+    EXPECT_EQ(metrics["landmarks"]["true_landmarks"].get<int>(), 15);
+    EXPECT_EQ(metrics["landmarks"]["table"].size(), 15u);
+    const auto run = test::readJson(out + "/run.json");
+    EXPECT_GT(run["results"]["labelled_associations"].get<double>(), 0);
+    EXPECT_TRUE(run["results"]["wrong_associations"].is_number());
+}
