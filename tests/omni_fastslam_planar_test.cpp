@@ -383,4 +383,5 @@ TEST(OmniFastSLAMPlanar, AppRunsOneRobotOfATeamRawlog)
     const auto run = test::readJson(out + "/run.json");
     EXPECT_GT(run["results"]["labelled_associations"].get<double>(), 0);
     EXPECT_TRUE(run["results"]["wrong_associations"].is_number());
+    EXPECT_TRUE(run["results"]["associations_by_landmark"].is_object());
 }

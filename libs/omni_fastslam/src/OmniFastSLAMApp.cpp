@@ -287,6 +287,19 @@ void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTi
         // evaluation only: the rawlog gave landmark numbers (landmarkID), the filter ignored them
         report.setResult("labelled_associations", best.associations.labelled());
         report.setResult("wrong_associations", best.associations.wrong());
+        // per map landmark id: the landmark numbers of the measurements associated to it
+        std::string table = "{";
+        for (const auto& [landmark, ids] : best.associations.counts) {
+            table += (table.size() > 1 ? ", \"" : "\"") + std::to_string(landmark) + "\": {";
+            bool first = true;
+            for (const auto& [id, count] : ids) {
+                table += (first ? "\"" : ", \"") + std::to_string(id) + "\": " +
+                         std::to_string(count);
+                first = false;
+            }
+            table += "}";
+        }
+        report.setResultJson("associations_by_landmark", table + "}");
     }
     if (start.groundTruth) report.setGroundTruth(start.groundTruthPrefix);
     report.write(out.file("run.json"));

@@ -37,12 +37,8 @@ TCrossPointLimits limitsOf(double min_angle, double max_range, bool planar,
     return limits;
 }
 
-/// φ wrapped to (−π, π]
-double wrap(double a)
-{
-    a = std::remainder(a, 2 * M_PI);
-    return a <= -M_PI ? a + 2 * M_PI : a;
-}
+/// φ wrapped to (−π, π], as the model wraps innovations
+double wrap(double a) { return BearingMeasurementModel::innovation({a, 0}, {0, 0})[0]; }
 
 /// The Jacobian of the wrapped azimuth w.r.t. the robot pose (wrt_pose) or the landmark (x, y, z),
 /// by mrpt::math::estimateJacobian around the nominal prediction.
