@@ -187,7 +187,7 @@ void CCeilingLightsMap::updateDepthInterval(TCandidateLight& cand) const
     // measurement.
     cand.observations.erase(cand.observations.begin(), cand.observations.end() - 1);
     cand.cross_points.clear();
-    cand.nz = 1;
+    cand.nz = 0;  // the caller counts the newest measurement
     cand.depth_min = s_lo;
     cand.depth_max = s_hi;
 }
