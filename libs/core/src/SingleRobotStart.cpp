@@ -16,10 +16,12 @@ void SingleRobotStart::loadFromConfig(const mrpt::config::CConfigFileBase& cfg,
     pose.phi = mrpt::DEG2RAD(cfg.read_double(section, "initial_yaw_deg", 0));
 }
 
-void SingleRobotStart::resolve(const AppArguments& args, const std::string& rawlog)
+void SingleRobotStart::resolve(const AppArguments& args, const std::string& rawlog,
+                               const std::string& robot)
 {
     groundTruthPrefix = args.groundTruthPrefix(rawlog);
-    const std::string tum = groundTruthPrefix + ".groundtruth.tum";
+    const std::string tum =
+        groundTruthPrefix + (robot.empty() ? ".groundtruth.tum" : ".groundtruth_" + robot + ".tum");
     if (mrpt::system::fileExists(tum)) groundTruth = TumTrajectory::load(tum);
     else if (!args.groundTruth.empty())
         throw std::runtime_error(tum + ": ground truth file not found (--ground-truth)");

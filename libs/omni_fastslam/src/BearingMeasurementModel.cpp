@@ -24,14 +24,19 @@ double wrapAngle(double a)
 }
 }  // namespace
 
-BearingMeasurementModel::BearingMeasurementModel(const mrpt::poses::CPose3D& sensor_in_robot)
-    : m_sensor_in_robot(sensor_in_robot)
+BearingMeasurementModel::BearingMeasurementModel(const mrpt::poses::CPose3D& sensor_in_robot,
+                                                 TMeasurementModelKind kind)
+    : m_kind(kind)
 {
+    setSensorInRobot(sensor_in_robot);
 }
 
 void BearingMeasurementModel::setSensorInRobot(const mrpt::poses::CPose3D& sensor_in_robot)
 {
-    m_sensor_in_robot = sensor_in_robot;
+    // Planar: only the sensor's (x, y, yaw) on the robot count; it looks horizontally.
+    m_sensor_in_robot = isPlanar() ? mrpt::poses::CPose3D(sensor_in_robot.x(), sensor_in_robot.y(),
+                                                          0, sensor_in_robot.yaw(), 0, 0)
+                                   : sensor_in_robot;
 }
 
 mrpt::poses::CPose3D BearingMeasurementModel::cameraInMap(
@@ -45,6 +50,7 @@ mrpt::poses::CPose3D BearingMeasurementModel::cameraInMap(
 BearingMeasurementModel::Vector2 BearingMeasurementModel::predict(
     const Vector3& landmark_in_map, const mrpt::math::TPose2D& robot_in_map) const
 {
+    if (isPlanar()) return predictPlanar(landmark_in_map, robot_in_map).z;
     const Eigen::Matrix3d Rz = rotationZ(robot_in_map.phi);
     const Eigen::Matrix3d& Rs = m_sensor_in_robot.getRotationMatrix().asEigen();
     const Vector3 t_s = m_sensor_in_robot.m_coords.asEigen();
@@ -57,6 +63,7 @@ BearingMeasurementModel::Vector2 BearingMeasurementModel::predict(
 BearingMeasurementModel::TPrediction BearingMeasurementModel::predictWithJacobians(
     const Vector3& landmark_in_map, const mrpt::math::TPose2D& robot_in_map) const
 {
+    if (isPlanar()) return predictPlanar(landmark_in_map, robot_in_map);
     TPrediction out;
     const Eigen::Matrix3d Rz = rotationZ(robot_in_map.phi);
     const Eigen::Matrix3d RsT = m_sensor_in_robot.getRotationMatrix().asEigen().transpose();
@@ -91,6 +98,34 @@ BearingMeasurementModel::TPrediction BearingMeasurementModel::predictWithJacobia
     return out;
 }
 
+BearingMeasurementModel::TPrediction BearingMeasurementModel::predictPlanar(
+    const Vector3& landmark_in_map, const mrpt::math::TPose2D& robot_in_map) const
+{
+    TPrediction out;
+    const double c = std::cos(robot_in_map.phi), s = std::sin(robot_in_map.phi);
+    const double tx = m_sensor_in_robot.x(), ty = m_sensor_in_robot.y();
+    // Eq. P1: t_c = (x, y) + R(yaw) t_s, ψ = yaw + yaw_s
+    const Eigen::Vector2d t_c(robot_in_map.x + c * tx - s * ty, robot_in_map.y + s * tx + c * ty);
+    const double psi = robot_in_map.phi + m_sensor_in_robot.yaw();
+    const Eigen::Vector2d delta = landmark_in_map.head<2>() - t_c;
+    const double r2 = delta.squaredNorm();
+    // the landmark in the sensor frame (horizontal)
+    out.point_in_camera = Vector3(std::cos(psi) * delta.x() + std::sin(psi) * delta.y(),
+                                  -std::sin(psi) * delta.x() + std::cos(psi) * delta.y(), 0);
+    // Eq. P2: φ = atan2(Δ_y, Δ_x) − ψ
+    out.z = {r2 < kMinAxisDistance2 ? 0.0 : wrapAngle(std::atan2(delta.y(), delta.x()) - psi),
+             kPlanarTheta};
+    if (r2 < kMinAxisDistance2) return out;
+
+    // Eq. P3: ∂φ/∂m = (−Δ_y, Δ_x)/|Δ|²; t_c moves with (x, y) and turns with yaw
+    const Eigen::Vector2d dphi_dm(-delta.y() / r2, delta.x() / r2);
+    const Eigen::Vector2d dtc_dyaw(-s * tx - c * ty, c * tx - s * ty);
+    out.H_m.row(0) << dphi_dm.x(), dphi_dm.y(), 0;
+    out.H_x.row(0) << -dphi_dm.x(), -dphi_dm.y(), -dphi_dm.dot(dtc_dyaw) - 1;
+    out.valid = true;
+    return out;
+}
+
 BearingMeasurementModel::Vector3 BearingMeasurementModel::rayOriginInMap(
     const mrpt::math::TPose2D& robot_in_map) const
 {
@@ -100,6 +135,11 @@ BearingMeasurementModel::Vector3 BearingMeasurementModel::rayOriginInMap(
 BearingMeasurementModel::Vector3 BearingMeasurementModel::rayDirectionInMap(
     const Vector2& z, const mrpt::math::TPose2D& robot_in_map) const
 {
+    if (isPlanar()) {
+        // the bearing line of azimuth φ in the plane: direction ψ + φ
+        const double a = robot_in_map.phi + m_sensor_in_robot.yaw() + z[0];
+        return {std::cos(a), std::sin(a), 0};
+    }
     const Eigen::Matrix3d R_camera =
         rotationZ(robot_in_map.phi) * m_sensor_in_robot.getRotationMatrix().asEigen();
     return R_camera * directionOfAngles(z);

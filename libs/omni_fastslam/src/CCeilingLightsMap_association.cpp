@@ -32,9 +32,27 @@ std::vector<TBearingMeasurement> CCeilingLightsMap::measurementsFromObservation(
     }
     std::vector<TBearingMeasurement> out;
     out.reserve(obs.sensedData.size());
+    if (sensorOptions.measurement_model == TMeasurementModelKind::Planar) {
+        // azimuth only: range and pitch are ignored; θ is the constant of the planar model and
+        // its variance a placeholder (its innovation is always 0, see measurementLogLikelihood)
+        double var_phi = sensorOptions.sigma_phi * sensorOptions.sigma_phi;
+        if (!obs.validCovariances && obs.sensor_std_yaw > 0)
+            var_phi = static_cast<double>(obs.sensor_std_yaw) * obs.sensor_std_yaw;
+        for (const auto& s : obs.sensedData) {
+            if (!std::isfinite(s.yaw)) continue;
+            TBearingMeasurement m;
+            m.z = BearingMeasurementModel::anglesOfYawPitch(s.yaw, 0);
+            const double v = obs.validCovariances ? s.covariance(1, 1) : var_phi;
+            m.Q = Eigen::Vector2d(std::isfinite(v) && v > 0 ? v : var_phi, 1.0).asDiagonal();
+            m.hidden_id = s.landmarkID;
+            out.push_back(m);
+        }
+        return out;
+    }
     for (const auto& s : obs.sensedData) {
         if (!std::isfinite(s.yaw) || !std::isfinite(s.pitch)) continue;
         TBearingMeasurement m;
+        m.hidden_id = s.landmarkID;
         // θ = π/2 + pitch has unit derivative, so the (yaw, pitch) block is Q of (φ, θ)
         m.z = BearingMeasurementModel::anglesOfYawPitch(s.yaw, s.pitch);
         m.Q = Q_sensor;
@@ -56,8 +74,21 @@ double CCeilingLightsMap::logGaussian(const Eigen::Vector2d& innovation, const E
            0.5 * innovation.dot(S.inverse() * innovation);
 }
 
+double CCeilingLightsMap::measurementLogLikelihood(const Eigen::Vector2d& innovation,
+                                                   const Eigen::Matrix2d& S) const
+{
+    if (sensorOptions.measurement_model == TMeasurementModelKind::Spherical)
+        return logGaussian(innovation, S);
+    // planar (Eq. P4): log N(ν_φ; 0, S_φφ) = −½ log(2π S_φφ) − ½ ν_φ² / S_φφ
+    const double s = S(0, 0);
+    if (!(s > 0)) return -kInf;
+    return -0.5 * std::log(2 * M_PI * s) - 0.5 * innovation[0] * innovation[0] / s;
+}
+
 double CCeilingLightsMap::logPNew(const TBearingMeasurement& m) const
 {
+    if (sensorOptions.measurement_model == TMeasurementModelKind::Planar)
+        return -0.5 * std::log(2 * M_PI * m.Q(0, 0)) - 0.5 * insertionOptions.p_new_mahalanobis2;
     // P_new = (1/2π) |Q|^{-1/2} exp(−p_new_mahalanobis2 / 2)   (Sec. IV)
     return -std::log(2 * M_PI) - 0.5 * std::log(m.Q.determinant()) -
            0.5 * insertionOptions.p_new_mahalanobis2;
@@ -67,11 +98,17 @@ bool CCeilingLightsMap::isInPerceptualRange(const Eigen::Vector3d& point_in_map,
                                             const mrpt::math::TPose2D& robot_in_map) const
 {
     const auto model = measurementModel();
-    const Eigen::Vector2d z = model.predict(point_in_map, robot_in_map);
-    if (z[1] > sensorOptions.max_theta) return false;
+    if (!couldBeObserved(model.predict(point_in_map, robot_in_map))) return false;
     if (sensorOptions.max_horizontal_distance <= 0) return true;
     const Eigen::Vector3d camera = model.rayOriginInMap(robot_in_map);
     return (point_in_map - camera).head<2>().norm() <= sensorOptions.max_horizontal_distance;
+}
+
+bool CCeilingLightsMap::couldBeObserved(const Eigen::Vector2d& z_predicted, double margin) const
+{
+    if (std::abs(z_predicted[0]) > sensorOptions.max_abs_azimuth + margin) return false;
+    return sensorOptions.measurement_model == TMeasurementModelKind::Planar ||
+           z_predicted[1] <= sensorOptions.max_theta + margin;
 }
 
 Eigen::MatrixXd CCeilingLightsMap::landmarkLogLikelihoods(
@@ -90,10 +127,32 @@ Eigen::MatrixXd CCeilingLightsMap::landmarkLogLikelihoods(
             }
             // Alg. 2 line 6: Q_{j,l} = Q_l + H_m Σ_j H_mᵀ
             const Eigen::Matrix2d S = z[l].Q + HSH;
-            out(l, j) = logGaussian(BearingMeasurementModel::innovation(z[l].z, pred.z), S);
+            out(l, j) =
+                measurementLogLikelihood(BearingMeasurementModel::innovation(z[l].z, pred.z), S);
         }
     }
     return out;
+}
+
+Eigen::Vector2d CCeilingLightsMap::segmentInnovation(const BearingMeasurementModel& model,
+                                                     const Eigen::Vector3d& origin,
+                                                     const Eigen::Vector3d& dir,
+                                                     double s_lo, double s_hi,
+                                                     const TRayCrossPoint& x,
+                                                     const Eigen::Vector2d& z,
+                                                     const mrpt::math::TPose2D& robot_in_map)
+{
+    // The azimuth along the segment is monotonic: the closest one to z is at an end, or z
+    // itself where the new ray crosses the segment in front of the robot.
+    std::vector<double> depths{s_lo, s_hi};
+    if (!x.parallel && x.s2 > 0) depths.push_back(std::clamp(x.s1, s_lo, s_hi));
+    Eigen::Vector2d best = Eigen::Vector2d::Constant(kInf);
+    for (const double s : depths) {
+        const Eigen::Vector2d nu =
+            BearingMeasurementModel::innovation(z, model.predict(origin + s * dir, robot_in_map));
+        if (std::abs(nu[0]) < std::abs(best[0])) best = nu;
+    }
+    return best;
 }
 
 Eigen::MatrixXd CCeilingLightsMap::candidateLogLikelihoods(
@@ -119,7 +178,7 @@ Eigen::MatrixXd CCeilingLightsMap::candidateLogLikelihoods(
             // A candidate with a valid cross-point predicts like a landmark with covariance Σ0
             const auto pred = model.predictWithJacobians(best->point, robot_in_map);
             for (size_t l = 0; l < z.size(); l++)
-                out(l, c) = pred.valid ? logGaussian(
+                out(l, c) = pred.valid ? measurementLogLikelihood(
                                              BearingMeasurementModel::innovation(z[l].z, pred.z),
                                              z[l].Q + pred.H_m * sigma0 * pred.H_m.transpose())
                                        : -kInf;
@@ -134,12 +193,23 @@ Eigen::MatrixXd CCeilingLightsMap::candidateLogLikelihoods(
         for (size_t l = 0; l < z.size(); l++) {
             const Eigen::Vector3d dir = model.rayDirectionInMap(z[l].z, robot_in_map);
             const auto x = computeRayCrossPoint(last_origin, last_dir, origin, dir);
+            if (model.isPlanar()) {
+                // Any two bearing lines cross: the light is on the segment of the last ray that
+                // agrees with all the candidate's measurements, and the azimuth of that segment
+                // closest to z_l is predicted (z_l itself when its ray crosses it).
+                out(l, c) = measurementLogLikelihood(
+                    segmentInnovation(model, last_origin, last_dir, cand.depth_min,
+                                      cand.depth_max, x, z[l].z, robot_in_map),
+                    z[l].Q + last.measurement.Q);
+                continue;
+            }
             const Eigen::Vector2d z_pred =
                 (!x.parallel && x.s1 > 0)
                     ? model.predict(last_origin + x.s1 * last_dir, robot_in_map)
                     : BearingMeasurementModel::anglesOfDirection(R_camera_T * last_dir);
-            out(l, c) = logGaussian(BearingMeasurementModel::innovation(z[l].z, z_pred),
-                                    z[l].Q + last.measurement.Q);
+            out(l, c) =
+                measurementLogLikelihood(BearingMeasurementModel::innovation(z[l].z, z_pred),
+                                         z[l].Q + last.measurement.Q);
         }
     }
     return out;

@@ -19,6 +19,8 @@ void requireKey(bool ok, const std::string& section, const char* key, const char
 void CCeilingLightsMap::TSensorOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                                            const std::string& section)
 {
+    measurement_model =
+        cfg.read_enum<TMeasurementModelKind>(section, "measurement_model", measurement_model);
     const std::string pose = cfg.read_string(section, "sensor_in_robot", "");
     if (!pose.empty()) sensor_in_robot.fromString(pose);
     sigma_phi = mrpt::DEG2RAD(cfg.read_double(section, "sigma_phi_deg", mrpt::RAD2DEG(sigma_phi)));
@@ -26,21 +28,28 @@ void CCeilingLightsMap::TSensorOptions::loadFromConfigFile(const mrpt::config::C
         mrpt::DEG2RAD(cfg.read_double(section, "sigma_theta_deg", mrpt::RAD2DEG(sigma_theta)));
     max_theta = mrpt::DEG2RAD(cfg.read_double(section, "max_theta_deg", mrpt::RAD2DEG(max_theta)));
     MRPT_LOAD_CONFIG_VAR(max_horizontal_distance, double, cfg, section);
+    max_abs_azimuth = mrpt::DEG2RAD(
+        cfg.read_double(section, "max_abs_azimuth_deg", mrpt::RAD2DEG(max_abs_azimuth)));
 
     requireKey(sigma_phi > 0, section, "sigma_phi_deg", "must be > 0");
     requireKey(sigma_theta > 0, section, "sigma_theta_deg", "must be > 0");
     requireKey(max_theta > 0 && max_theta <= M_PI, section, "max_theta_deg", "must be in (0, 180]");
     requireKey(max_horizontal_distance >= 0, section, "max_horizontal_distance", "must be >= 0");
+    requireKey(max_abs_azimuth > 0 && max_abs_azimuth <= M_PI, section, "max_abs_azimuth_deg",
+               "must be in (0, 180]");
 }
 
 void CCeilingLightsMap::TSensorOptions::dumpToTextStream(std::ostream& out) const
 {
     out << "\n----------- [CCeilingLightsMap::TSensorOptions] ------------ \n\n";
+    dumpVar_string(out, "measurement_model",
+                   mrpt::typemeta::TEnumType<TMeasurementModelKind>::value2name(measurement_model));
     dumpVar_string(out, "sensor_in_robot", sensor_in_robot.asString());
     dumpVar_double(out, "sigma_phi_deg", mrpt::RAD2DEG(sigma_phi));
     dumpVar_double(out, "sigma_theta_deg", mrpt::RAD2DEG(sigma_theta));
     dumpVar_double(out, "max_theta_deg", mrpt::RAD2DEG(max_theta));
     LOADABLEOPTS_DUMP_VAR(max_horizontal_distance, double);
+    dumpVar_double(out, "max_abs_azimuth_deg", mrpt::RAD2DEG(max_abs_azimuth));
 }
 
 void CCeilingLightsMap::TInsertionOptions::loadFromConfigFile(
@@ -59,6 +68,9 @@ void CCeilingLightsMap::TInsertionOptions::loadFromConfigFile(
     MRPT_LOAD_CONFIG_VAR(candidate_miss_decrement, uint64_t, cfg, section);
     MRPT_LOAD_CONFIG_VAR(max_candidate_measurements, uint64_t, cfg, section);
     MRPT_LOAD_CONFIG_VAR(refine_initialization, bool, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(max_cross_point_range, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(min_cross_point_range, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(hit_increment, uint64_t, cfg, section);
 
     requireKey(nz_min >= 2, section, "nz_min", "must be >= 2 (two rays make a cross-point)");
     requireKey(ncross_valid >= 1, section, "ncross_valid", "must be >= 1");
@@ -69,6 +81,11 @@ void CCeilingLightsMap::TInsertionOptions::loadFromConfigFile(
     requireKey(p_new_mahalanobis2 > 0, section, "p_new_mahalanobis2", "must be > 0");
     requireKey(max_candidate_measurements >= nz_min, section, "max_candidate_measurements",
                "must be >= nz_min");
+    requireKey(max_cross_point_range >= 0, section, "max_cross_point_range", "must be >= 0");
+    requireKey(min_cross_point_range >= 0 &&
+                   (max_cross_point_range == 0 || min_cross_point_range < max_cross_point_range),
+               section, "min_cross_point_range", "must be >= 0 and < max_cross_point_range");
+    requireKey(hit_increment >= 1, section, "hit_increment", "must be >= 1");
 }
 
 void CCeilingLightsMap::TInsertionOptions::dumpToTextStream(std::ostream& out) const
@@ -87,6 +104,9 @@ void CCeilingLightsMap::TInsertionOptions::dumpToTextStream(std::ostream& out) c
     LOADABLEOPTS_DUMP_VAR(candidate_miss_decrement, int);
     LOADABLEOPTS_DUMP_VAR(max_candidate_measurements, int);
     LOADABLEOPTS_DUMP_VAR(refine_initialization, bool);
+    LOADABLEOPTS_DUMP_VAR(max_cross_point_range, double);
+    LOADABLEOPTS_DUMP_VAR(min_cross_point_range, double);
+    LOADABLEOPTS_DUMP_VAR(hit_increment, int);
 }
 
 void CCeilingLightsMap::TLikelihoodOptions::loadFromConfigFile(

@@ -69,6 +69,7 @@ void writeCandidate(CArchive& out, const TCandidateLight& c)
         writePose2D(out, o.robot_in_map);
         out << o.step;
     }
+    out << c.depth_min << c.depth_max;  // version 1
     out << static_cast<uint32_t>(c.cross_points.size());
     for (const auto& x : c.cross_points) {
         writeMatrix(out, x.point);
@@ -77,7 +78,7 @@ void writeCandidate(CArchive& out, const TCandidateLight& c)
     }
 }
 
-void readCandidate(CArchive& in, TCandidateLight& c)
+void readCandidate(CArchive& in, TCandidateLight& c, uint8_t version)
 {
     int32_t counter, misses;
     uint32_t n;
@@ -91,6 +92,8 @@ void readCandidate(CArchive& in, TCandidateLight& c)
         readPose2D(in, o.robot_in_map);
         in >> o.step;
     }
+    c.depth_min = c.depth_max = 0;
+    if (version >= 1) in >> c.depth_min >> c.depth_max;
     in >> n;
     c.cross_points.resize(n);
     for (auto& x : c.cross_points) {
@@ -101,7 +104,7 @@ void readCandidate(CArchive& in, TCandidateLight& c)
 }
 }  // namespace
 
-uint8_t CCeilingLightsMap::serializeGetVersion() const { return 0; }
+uint8_t CCeilingLightsMap::serializeGetVersion() const { return 1; }
 
 void CCeilingLightsMap::serializeTo(mrpt::serialization::CArchive& out) const
 {
@@ -118,6 +121,10 @@ void CCeilingLightsMap::serializeTo(mrpt::serialization::CArchive& out) const
         << static_cast<uint32_t>(io.max_candidate_measurements) << io.refine_initialization;
     out << likelihoodOptions.p_in << likelihoodOptions.use_type_ii_landmarks;
     out << renderOptions.draw_candidates << renderOptions.ellipsoid_quantiles;
+    // version 1: the measurement model and its perceptual and cross-point limits
+    out << static_cast<uint8_t>(sensorOptions.measurement_model) << sensorOptions.max_abs_azimuth
+        << io.max_cross_point_range << io.min_cross_point_range
+        << static_cast<uint32_t>(io.hit_increment);
 
     out << m_step << m_next_landmark_id << m_next_candidate_id;
     out << static_cast<uint32_t>(m_landmarks.size());
@@ -129,7 +136,8 @@ void CCeilingLightsMap::serializeTo(mrpt::serialization::CArchive& out) const
 void CCeilingLightsMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
 {
     switch (version) {
-        case 0: {
+        case 0:
+        case 1: {
             in >> genericMapParams;
             readPose3D(in, sensorOptions.sensor_in_robot);
             in >> sensorOptions.sigma_phi >> sensorOptions.sigma_theta >>
@@ -149,6 +157,21 @@ void CCeilingLightsMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t
             io.max_candidate_measurements = max_meas;
             in >> likelihoodOptions.p_in >> likelihoodOptions.use_type_ii_landmarks;
             in >> renderOptions.draw_candidates >> renderOptions.ellipsoid_quantiles;
+            sensorOptions.measurement_model = TMeasurementModelKind::Spherical;
+            sensorOptions.max_abs_azimuth = M_PI;
+            io.max_cross_point_range = 0;
+            io.min_cross_point_range = 0;
+            io.hit_increment = 1;
+            if (version >= 1) {
+                uint8_t kind;
+                uint32_t hit;
+                in >> kind >> sensorOptions.max_abs_azimuth >> io.max_cross_point_range >>
+                    io.min_cross_point_range >> hit;
+                io.hit_increment = hit;
+                if (kind > static_cast<uint8_t>(TMeasurementModelKind::Planar))
+                    THROW_EXCEPTION_FMT("CCeilingLightsMap: invalid measurement model %u", kind);
+                sensorOptions.measurement_model = static_cast<TMeasurementModelKind>(kind);
+            }
 
             uint32_t n;
             in >> m_step >> m_next_landmark_id >> m_next_candidate_id >> n;
@@ -156,7 +179,7 @@ void CCeilingLightsMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t
             for (auto& lm : m_landmarks) readLandmark(in, lm);
             in >> n;
             m_candidates.resize(n);
-            for (auto& c : m_candidates) readCandidate(in, c);
+            for (auto& c : m_candidates) readCandidate(in, c, version);
         } break;
         default:
             MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);

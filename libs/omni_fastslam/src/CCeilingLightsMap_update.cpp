@@ -10,6 +10,9 @@
 namespace mrpt_vslam::omni_fastslam {
 
 namespace {
+/// Far end of a planar candidate's ray when max_cross_point_range is 0 (no limit) [m]
+constexpr double kUnlimitedDepth = 1e3;
+
 /// XY distance between a robot pose and a point [m].
 double horizontalDistance(const mrpt::math::TPose2D& robot, const Eigen::Vector3d& p)
 {
@@ -49,14 +52,14 @@ double CCeilingLightsMap::updateLandmarks(const std::vector<TBearingMeasurement>
         Eigen::Matrix2d S;
         BearingMeasurementModel::Matrix23 H_x;
         if (!ekfUpdate(lm, z[l], robot_in_map, nu, S, H_x)) continue;
-        lm.counter++;
+        lm.counter += static_cast<int>(insertionOptions.hit_increment);
         if (horizontalDistance(robot_in_map, lm.mean) < insertionOptions.d_min)
             lm.consecutive_close++;
         else
             lm.consecutive_close = 0;
         // lines 11-17: weight from type I landmarks only; L = H_x R H_xᵀ + Q̃
         if (usesForWeight(lm))
-            log_w += logGaussian(nu, H_x * robot_pose_cov * H_x.transpose() + S);
+            log_w += measurementLogLikelihood(nu, H_x * robot_pose_cov * H_x.transpose() + S);
     }
     return log_w;
 }
@@ -88,12 +91,12 @@ void CCeilingLightsMap::addCandidateObservation(TCandidateLight& cand,
 {
     const auto model = measurementModel();
     // log p(z_i | point, x_i) and the squared Mahalanobis distance of one measurement
-    auto term = [&model](const Eigen::Vector3d& point, const TCandidateObservation& o,
-                         double& mahalanobis2) {
+    auto term = [this, &model](const Eigen::Vector3d& point, const TCandidateObservation& o,
+                               double& mahalanobis2) {
         const Eigen::Vector2d nu = BearingMeasurementModel::innovation(
             o.measurement.z, model.predict(point, o.robot_in_map));
         mahalanobis2 = nu.dot(o.measurement.Q.inverse() * nu);
-        return logGaussian(nu, o.measurement.Q);
+        return measurementLogLikelihood(nu, o.measurement.Q);
     };
 
     if (cand.observations.size() >= insertionOptions.max_candidate_measurements) {
@@ -132,8 +135,9 @@ void CCeilingLightsMap::addCandidateObservation(TCandidateLight& cand,
         x.step_second = obs.step;
         x.angle = rx.angle;
         x.gap = rx.gap;
-        // test (b): in front of both cameras and above them
-        x.in_front = rx.s1 > 0 && rx.s2 > 0 && rx.point.z() > std::max(o1.z(), origin.z());
+        // test (b): in front of both cameras and above them (spherical) or in front of both
+        // bearing lines (planar), within max_cross_point_range
+        x.in_front = crossPointInFront(rx, o1, origin, crossPointLimits());
         for (const auto& o : cand.observations) {
             double m2;
             x.sum_log_prob += term(x.point, o, m2);
@@ -142,6 +146,60 @@ void CCeilingLightsMap::addCandidateObservation(TCandidateLight& cand,
         cand.cross_points.push_back(x);
     }
     refreshCrossPointValidity(cand);
+    if (model.isPlanar()) updateDepthInterval(cand);
+}
+
+void CCeilingLightsMap::updateDepthInterval(TCandidateLight& cand) const
+{
+    // Samples of the last ray between the range limits; a depth agrees when every earlier
+    // measurement is within the P_new gate of its projection.
+    constexpr int kSamples = 64;
+    const auto model = measurementModel();
+    const auto& last = cand.observations.back();
+    const Eigen::Vector3d origin = model.rayOriginInMap(last.robot_in_map);
+    const Eigen::Vector3d dir = model.rayDirectionInMap(last.measurement.z, last.robot_in_map);
+    const double s_lo = std::max(insertionOptions.min_cross_point_range, 0.05);
+    const double s_hi = insertionOptions.max_cross_point_range > 0
+                            ? insertionOptions.max_cross_point_range
+                            : kUnlimitedDepth;
+    cand.depth_min = s_hi;
+    cand.depth_max = s_lo;
+    bool any = false;
+    for (int i = 0; i < kSamples; i++) {
+        // geometric spacing: the azimuths change fastest near the robot
+        const double s = s_lo * std::pow(s_hi / s_lo, i / (kSamples - 1.0));
+        const Eigen::Vector3d point = origin + s * dir;
+        bool agrees = true;
+        for (size_t k = 0; agrees && k + 1 < cand.observations.size(); k++) {
+            const auto& o = cand.observations[k];
+            const Eigen::Vector2d nu = BearingMeasurementModel::innovation(
+                o.measurement.z, model.predict(point, o.robot_in_map));
+            agrees = nu.dot(o.measurement.Q.inverse() * nu) < insertionOptions.p_new_mahalanobis2;
+        }
+        if (!agrees) continue;
+        any = true;
+        cand.depth_min = std::min(cand.depth_min, s);
+        cand.depth_max = std::max(cand.depth_max, s);
+    }
+    if (any || cand.observations.size() < 2) return;
+    // No single point explains the measurements (two landmarks were mixed, as happens when
+    // they are seen in nearly the same direction): the candidate starts over from its newest
+    // measurement.
+    cand.observations.erase(cand.observations.begin(), cand.observations.end() - 1);
+    cand.cross_points.clear();
+    cand.nz = 0;  // the caller counts the newest measurement
+    cand.depth_min = s_lo;
+    cand.depth_max = s_hi;
+}
+
+TCrossPointLimits CCeilingLightsMap::crossPointLimits() const
+{
+    TCrossPointLimits limits;
+    limits.min_angle = insertionOptions.ang_min;
+    limits.max_range = insertionOptions.max_cross_point_range;
+    limits.min_range = insertionOptions.min_cross_point_range;
+    limits.planar = sensorOptions.measurement_model == TMeasurementModelKind::Planar;
+    return limits;
 }
 
 void CCeilingLightsMap::refreshCrossPointValidity(TCandidateLight& cand) const
@@ -149,8 +207,9 @@ void CCeilingLightsMap::refreshCrossPointValidity(TCandidateLight& cand) const
     // test (c): Π_i p(z_i | x) > Π_i P_new,i  ⇔  Σ_i d²_i < n · p_new_mahalanobis2
     const double max_sum_m2 =
         insertionOptions.p_new_mahalanobis2 * static_cast<double>(cand.observations.size());
+    const TCrossPointLimits limits = crossPointLimits();
     for (auto& x : cand.cross_points)
-        x.valid = x.in_front && x.angle > insertionOptions.ang_min &&  // tests (a), (b)
+        x.valid = x.in_front && crossPointHasParallax(x.angle, limits) &&  // tests (a), (b)
                   x.sum_mahalanobis2 < max_sum_m2;
 }
 
@@ -208,11 +267,11 @@ void CCeilingLightsMap::updateCandidates(const std::vector<TBearingMeasurement>&
         const TCandidateObservation obs{z[l], robot_in_map, m_step};
         const int c = assoc.candidate_of_measurement[l];
         if (c < 0) {
-            // a new candidate: its counter starts at 1
+            // a new candidate: its counter starts at one hit (paper: 1)
             TCandidateLight cand;
             cand.id = m_next_candidate_id++;
             addCandidateObservation(cand, obs);
-            cand.counter = 1;
+            cand.counter = static_cast<int>(insertionOptions.hit_increment);
             cand.nz = 1;
             created.push_back(std::move(cand));
             continue;
@@ -222,7 +281,7 @@ void CCeilingLightsMap::updateCandidates(const std::vector<TBearingMeasurement>&
         seen[c] = true;
         auto& cand = m_candidates[c];
         addCandidateObservation(cand, obs);
-        cand.counter++;
+        cand.counter += static_cast<int>(insertionOptions.hit_increment);
         cand.nz++;
         cand.consecutive_misses = 0;
     }

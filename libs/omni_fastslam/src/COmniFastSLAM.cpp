@@ -68,6 +68,28 @@ void COmniFastSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cf
     cfg.write(section, "prediction_margin_deg", mrpt::RAD2DEG(prediction_margin));
 }
 
+size_t TAssociationTally::labelled() const
+{
+    size_t n = 0;
+    for (const auto& [landmark, ids] : counts)
+        for (const auto& [id, count] : ids) n += count;
+    return n;
+}
+
+size_t TAssociationTally::wrong() const
+{
+    size_t n = 0;
+    for (const auto& [landmark, ids] : counts) {
+        uint32_t total = 0, most = 0;
+        for (const auto& [id, count] : ids) {
+            total += count;
+            most = std::max(most, count);
+        }
+        n += total - most;
+    }
+    return n;
+}
+
 COmniFastSLAM::COmniFastSLAM(const CCeilingLightsMap& map_template, size_t particle_count,
                              uint32_t seed)
 {
@@ -88,6 +110,7 @@ void COmniFastSLAM::reset(const TPose2D& robot_in_map, double timestamp)
         p.d->robot_in_map = robot_in_map;
         p.d->path = start;
         p.d->accumulated_log_w = 0;
+        p.d->associations = {};
     }
 }
 
@@ -172,10 +195,9 @@ TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
 
     // Alg. 2: φ_{l,j} for every measurement and landmark
     Eigen::MatrixXd log_phi = Eigen::MatrixXd::Constant(z.size(), lms.size(), -kInf);
-    const double max_theta = map.sensorOptions.max_theta + options.prediction_margin;
     for (size_t j = 0; j < lms.size(); j++) {
         const auto pred = model.predictWithJacobians(lms[j].mean, x_hat);  // lines 2-4
-        if (!pred.valid || pred.z[1] > max_theta) continue;
+        if (!pred.valid || !map.couldBeObserved(pred.z, options.prediction_margin)) continue;
         const Eigen::Matrix2d HmSHm = pred.H_m * lms[j].cov * pred.H_m.transpose();
         for (size_t l = 0; l < z.size(); l++) {
             const Eigen::Matrix2d Q_jl = z[l].Q + HmSHm;  // line 6
@@ -185,7 +207,7 @@ TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
             const Eigen::Vector3d dx = Sigma_x * pred.H_x.transpose() * Q_inv *
                                        BearingMeasurementModel::innovation(z[l].z, pred.z);
             const Eigen::Vector2d z_hat = model.predict(lms[j].mean, plus(x_hat, dx));  // 9-10
-            log_phi(l, j) = CCeilingLightsMap::logGaussian(
+            log_phi(l, j) = map.measurementLogLikelihood(
                 BearingMeasurementModel::innovation(z[l].z, z_hat), Q_jl);  // line 11
         }
     }
@@ -231,6 +253,11 @@ void COmniFastSLAM::updateParticle(TOmniFastSLAMParticle& p, double& log_w, cons
                                    const std::vector<int>& landmark_of_measurement,
                                    const Eigen::Matrix3d& R_t)
 {
+    for (size_t l = 0; l < z.size(); l++) {
+        const int j = landmark_of_measurement[l];
+        if (j >= 0 && z[l].hidden_id >= 0)
+            p.associations.counts[p.map.landmarks()[j].id][z[l].hidden_id]++;
+    }
     // Alg. 4 lines 1-27
     const double log_w_inc = p.map.updateLandmarks(z, x_t, landmark_of_measurement, R_t);
     // Sec. III-C level 2, Alg. 4 lines 28-29

@@ -54,6 +54,9 @@ struct OmniFastSLAMApp::Impl {
     uint32_t seed = 1;
     TInput input = TInput::Auto;
     std::string imageLabel = "OMNICAM";
+    /// One robot of a multi-robot rawlog (ini `robot`): labels <ROBOT>_ODOM and <ROBOT>_RB,
+    /// outputs and ground truth with the _<ROBOT> suffix. Empty: a single-robot rawlog.
+    std::string robot;
     core::SingleRobotStart start;
 
     mrpt::bayes::CParticleFilter pf;
@@ -99,10 +102,12 @@ void OmniFastSLAMApp::Impl::loadConfig()
     else if (in == "images") input = TInput::Images;
     else throw usage("[OmniFastSLAM] input must be auto, bearings or images, not '" + in + "'");
     imageLabel = cfg.read_string(kAppSection, "image_label", imageLabel);
+    robot = cfg.read_string(kAppSection, "robot", "");
     start.loadFromConfig(cfg, kAppSection);
 
     try {
         filterOptions.loadFromConfigFile(cfg, kAppSection);
+        if (!robot.empty()) filterOptions.bearings_label = robot + "_RB";
         pf.m_options.loadFromConfigFile(cfg, "ParticleFilter");
         camera.loadFromConfigFile(cfg, "Camera");
         detectorOptions.loadFromConfigFile(cfg, "LightDetector");
@@ -172,7 +177,7 @@ void OmniFastSLAMApp::initialize()
     d.loadConfig();
     if (!mrpt::system::fileExists(d.rawlog))
         throw std::runtime_error(d.rawlog + ": cannot open rawlog");
-    d.start.resolve(d.args, d.rawlog);
+    d.start.resolve(d.args, d.rawlog, d.robot);
     outDir = d.args.outDir;
     d.filter = std::make_unique<COmniFastSLAM>(d.mapTemplate, d.pf.m_options.sampleSize, d.seed);
     // CParticleFilter's resampling draws from MRPT's global generator.
@@ -200,8 +205,9 @@ void OmniFastSLAMApp::run()
     core::RawlogReader reader(d.rawlog);
     core::ProgressReporter progress("omni-fastslam", 0, d.args.quiet);
 
-    core::ActionFrameSource source(reader, {d.filterOptions.bearings_label, d.imageLabel},
-                                   d.motionModel);
+    core::ActionFrameSource source(
+        reader, {d.filterOptions.bearings_label, d.imageLabel}, d.motionModel,
+        d.robot.empty() ? std::vector<std::string>{} : std::vector<std::string>{d.robot + "_ODOM"});
     mrpt::poses::CPose2D odometry(d.start.pose);
     bool started = false;
     mrpt::obs::CActionCollection::Ptr actions;
@@ -245,8 +251,11 @@ void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTi
 {
     core::OutputDirectory out(app.outDir);
     const auto& best = filter->bestParticle();
-    app.estimatedPath.save(out.file("estimated_path.tum"), "omni-fastslam: best particle's path");
-    app.odometryPath.save(out.file("odometry_path.tum"), "omni-fastslam: dead reckoning");
+    const std::string suffix = robot.empty() ? "" : "_" + robot;
+    app.estimatedPath.save(out.file("estimated_path" + suffix + ".tum"),
+                           "omni-fastslam: best particle's path");
+    app.odometryPath.save(out.file("odometry_path" + suffix + ".tum"),
+                          "omni-fastslam: dead reckoning");
     core::saveFinalMap(best.map, app.outDir);
 
     mrpt::opengl::COpenGLScene scene;
@@ -274,6 +283,24 @@ void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTi
     report.setCount("landmarks", best.map.landmarks().size());
     report.setCount("candidates", best.map.candidates().size());
     report.setTiming(timer);
+    if (best.associations.labelled() > 0) {
+        // evaluation only: the rawlog gave landmark numbers (landmarkID), the filter ignored them
+        report.setResult("labelled_associations", best.associations.labelled());
+        report.setResult("wrong_associations", best.associations.wrong());
+        // per map landmark id: the landmark numbers of the measurements associated to it
+        std::string table = "{";
+        for (const auto& [landmark, ids] : best.associations.counts) {
+            table += (table.size() > 1 ? ", \"" : "\"") + std::to_string(landmark) + "\": {";
+            bool first = true;
+            for (const auto& [id, count] : ids) {
+                table += (first ? "\"" : ", \"") + std::to_string(id) + "\": " +
+                         std::to_string(count);
+                first = false;
+            }
+            table += "}";
+        }
+        report.setResultJson("associations_by_landmark", table + "}");
+    }
     if (start.groundTruth) report.setGroundTruth(start.groundTruthPrefix);
     report.write(out.file("run.json"));
 

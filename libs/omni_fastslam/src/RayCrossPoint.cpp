@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 
 namespace mrpt_vslam::omni_fastslam {
@@ -37,6 +38,23 @@ TRayCrossPoint computeRayCrossPoint(const Eigen::Vector3d& origin1, const Eigen:
     out.point = 0.5 * (p1 + p2);
     out.gap = (p1 - p2).norm();
     return out;
+}
+
+bool crossPointHasParallax(double angle, const TCrossPointLimits& limits)
+{
+    // planar: the angle between the two lines, not between the two directions
+    const double parallax = limits.planar ? std::min(angle, M_PI - angle) : angle;
+    return parallax > limits.min_angle;
+}
+
+bool crossPointInFront(const TRayCrossPoint& x, const Eigen::Vector3d& origin1,
+                       const Eigen::Vector3d& origin2, const TCrossPointLimits& limits)
+{
+    if (x.parallel || !(x.s1 > limits.min_range && x.s2 > limits.min_range) || !(x.s1 > 0 && x.s2 > 0))
+        return false;
+    if (!limits.planar && !(x.point.z() > std::max(origin1.z(), origin2.z()))) return false;
+    // unit directions: s_i is the distance from origin i along its ray
+    return limits.max_range <= 0 || (x.s1 <= limits.max_range && x.s2 <= limits.max_range);
 }
 
 }  // namespace mrpt_vslam::omni_fastslam

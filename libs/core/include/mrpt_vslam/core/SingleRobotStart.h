@@ -22,12 +22,15 @@ class SingleRobotStart {
   public:
     /// Reads the keys of `section`.
     void loadFromConfig(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
-    /** Loads the ground truth of `rawlog` if there is one and sets pose.
+    /** Loads the ground truth of `rawlog` if there is one and sets pose: `NAME.groundtruth.tum`,
+     *  or `NAME.groundtruth_<ROBOT>.tum` when `robot` is given (one robot of a multi-robot
+     *  rawlog).
      *  \throw std::runtime_error naming the file when `--ground-truth` names a missing file. */
-    void resolve(const AppArguments& args, const std::string& rawlog);
+    void resolve(const AppArguments& args, const std::string& rawlog,
+                 const std::string& robot = "");
 
     std::string groundTruthPrefix;             ///< `NAME` of the ground-truth files
-    std::optional<TumTrajectory> groundTruth;  ///< when `NAME.groundtruth.tum` exists
+    std::optional<TumTrajectory> groundTruth;  ///< when the ground-truth file exists
     mrpt::math::TPose2D pose;                  ///< the start pose
 
   private:

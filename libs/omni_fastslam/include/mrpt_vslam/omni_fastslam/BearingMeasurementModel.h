@@ -2,6 +2,7 @@
 
 #include <mrpt/math/TPose2D.h>
 #include <mrpt/poses/CPose3D.h>
+#include <mrpt_vslam/omni_fastslam/LightMapElements.h>
 
 #include <Eigen/Core>
 
@@ -23,6 +24,16 @@ namespace mrpt_vslam::omni_fastslam {
  *  2. landmark in the camera frame: d = R_C^T (m − t_C)                            (Eq. M2)
  *  3. angles: φ = atan2(d_y, d_x), θ = atan2(√(d_x² + d_y²), d_z)                  (Eq. M3)
  *  4. Jacobians by the chain rule: H = ∂(φ, θ)/∂d · ∂d/∂(x | m)                      (Eq. M4)
+ *
+ *  Planar model (`TMeasurementModelKind::Planar`, doc/omni-fastslam.md §12, Eq. P1-P3): the
+ *  sensor measures the azimuth only, landmarks are points of the robot's plane (z = 0). Only
+ *  (x, y, yaw) of `sensor_in_robot` count. z = (φ, π/2): θ is the constant of a horizontal
+ *  direction, its rows of H_x and H_m are zero, so its innovation is always 0 and it carries no
+ *  information; the map evaluates likelihoods on φ alone.
+ *  1. sensor position and heading: t_c = (x, y) + R(yaw) t_s, ψ = yaw + yaw_s        (Eq. P1)
+ *  2. φ = atan2(m_y − t_cy, m_x − t_cx) − ψ, wrapped                                 (Eq. P2)
+ *  3. ∂φ/∂m = (−Δ_y, Δ_x, 0)/|Δ|², ∂φ/∂(x, y) = −∂φ/∂m_{xy},
+ *     ∂φ/∂yaw = −∂φ/∂m_{xy} · R'(yaw) t_s − 1, Δ = m − t_c                            (Eq. P3)
  */
 class BearingMeasurementModel {
 public:
@@ -42,13 +53,21 @@ public:
     };
 
     BearingMeasurementModel() = default;
-    /** \param sensor_in_robot camera pose on the robot (z up, optical axis = camera +z) */
-    explicit BearingMeasurementModel(const mrpt::poses::CPose3D& sensor_in_robot);
+    /** \param sensor_in_robot camera pose on the robot (z up, optical axis = camera +z)
+     *  \param kind spherical (φ, θ) or planar (azimuth only) */
+    explicit BearingMeasurementModel(
+        const mrpt::poses::CPose3D& sensor_in_robot,
+        TMeasurementModelKind kind = TMeasurementModelKind::Spherical);
+
+    TMeasurementModelKind kind() const { return m_kind; }
+    bool isPlanar() const { return m_kind == TMeasurementModelKind::Planar; }
+    /// θ of every planar measurement and prediction: a horizontal direction [rad].
+    static constexpr double kPlanarTheta = M_PI / 2;
 
     const mrpt::poses::CPose3D& sensorInRobot() const { return m_sensor_in_robot; }
     void setSensorInRobot(const mrpt::poses::CPose3D& sensor_in_robot);
 
-    /// Camera pose in the map for a planar robot pose (Eq. M1).
+    /// Camera pose in the map for a planar robot pose (Eq. M1; planar: Eq. P1, on the floor).
     mrpt::poses::CPose3D cameraInMap(const mrpt::math::TPose2D& robot_in_map) const;
 
     /// h(m, x) only (Eq. M1-M3). Undefined φ (landmark on the optical axis) gives φ = 0.
@@ -77,6 +96,10 @@ public:
 
 private:
     mrpt::poses::CPose3D m_sensor_in_robot{0, 0, 1.8, 0, 0, 0};
+    TMeasurementModelKind m_kind = TMeasurementModelKind::Spherical;
+
+    TPrediction predictPlanar(const Vector3& landmark_in_map,
+                              const mrpt::math::TPose2D& robot_in_map) const;
 };
 
 }  // namespace mrpt_vslam::omni_fastslam

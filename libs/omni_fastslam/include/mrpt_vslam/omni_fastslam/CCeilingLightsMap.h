@@ -8,6 +8,7 @@
 #include <mrpt/poses/CPose3D.h>
 #include <mrpt_vslam/omni_fastslam/BearingMeasurementModel.h>
 #include <mrpt_vslam/omni_fastslam/LightMapElements.h>
+#include <mrpt_vslam/omni_fastslam/RayCrossPoint.h>
 
 #include <Eigen/Core>
 
@@ -44,6 +45,9 @@ class CCeilingLightsMap : public mrpt::maps::CMetricMap {
 public:
     /** Camera description ("<prefix>_creationOpts" section). Shared by insertion and likelihood. */
     struct TSensorOptions : public mrpt::config::CLoadableOptions {
+        /// `spherical` (φ, θ of an upward camera, 3D landmarks) or `planar` (azimuth only,
+        /// landmarks in the robot's plane; doc/omni-fastslam.md §12).
+        TMeasurementModelKind measurement_model = TMeasurementModelKind::Spherical;
         /// Camera pose on the robot; ini: `sensor_in_robot = [x y z yaw pitch roll]` (m, deg).
         mrpt::poses::CPose3D sensor_in_robot{0, 0, 1.8, 0, 0, 0};
         /// Default σ of φ / θ [rad] (ini: `sigma_phi_deg`, `sigma_theta_deg`), used when the
@@ -54,6 +58,9 @@ public:
         double max_theta = 80.0 * M_PI / 180;
         /// Perceptual range: maximum horizontal camera-landmark distance [m] (0 = unlimited).
         double max_horizontal_distance = 0;
+        /// Perceptual range: maximum |φ| [rad] (ini: `max_abs_azimuth_deg`), half the horizontal
+        /// field of view of a forward camera; π = all around.
+        double max_abs_azimuth = M_PI;
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                 const std::string& section) override;
@@ -82,6 +89,17 @@ public:
         /// measurements into the new landmark by EKF updates from the poses they were taken
         /// from. false = the paper (mean = best cross-point, covariance Σ0).
         bool refine_initialization = false;
+        /// Cross-points farther than this along either ray are not valid [m] (0 = no limit);
+        /// the planar mode's maximum range of a bearing-line crossing.
+        double max_cross_point_range = 0;
+        /// Cross-points nearer than this along either ray are not valid [m] (0 = no limit);
+        /// planar: also the near end of the segment a candidate's last ray predicts.
+        double min_cross_point_range = 0;
+        /// Counter increment i_j of a landmark or candidate per associated measurement (a new
+        /// candidate starts at it); misses still cost 1 (landmarks) or the candidate decrement.
+        /// Paper: 1. With a detection probability p < 1/2 inside the perceptual range the
+        /// paper's counters drift down and delete real landmarks; k·p − (1 − p) > 0 keeps them.
+        unsigned int hit_increment = 1;
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                 const std::string& section) override;
@@ -133,8 +151,16 @@ public:
      *  sensorOptions defaults. Entries with a non-finite yaw or pitch are skipped. */
     std::vector<TBearingMeasurement> measurementsFromObservation(
         const mrpt::obs::CObservationBearingRange& obs) const;
-    /// log P_new = −log 2π − ½ log|Q| − p_new_mahalanobis2 / 2 (Sec. IV).
+    /// log P_new = −log 2π − ½ log|Q| − p_new_mahalanobis2 / 2 (Sec. IV); planar: the same
+    /// on φ alone, −½ log(2π Q_φφ) − p_new_mahalanobis2 / 2.
     double logPNew(const TBearingMeasurement& m) const;
+    /// log N(ν; 0, S) of an innovation of this map's measurements: logGaussian() for the
+    /// spherical model, the 1D density of ν_φ with variance S_φφ for the planar one.
+    double measurementLogLikelihood(const Eigen::Vector2d& innovation,
+                                    const Eigen::Matrix2d& S) const;
+    /** Whether a predicted measurement can have been observed: θ ≤ max_theta + margin
+     *  (spherical) and |φ| ≤ max_abs_azimuth + margin. \param margin [rad] */
+    bool couldBeObserved(const Eigen::Vector2d& z_predicted, double margin = 0) const;
     /// log N(ν; 0, S) of a 2D innovation.
     static double logGaussian(const Eigen::Vector2d& innovation, const Eigen::Matrix2d& S);
     /// Whether a point is inside the perceptual range of the camera at robot_in_map.
@@ -233,6 +259,20 @@ private:
     bool usesForWeight(const TLightLandmark& lm) const;
     void addCandidateObservation(TCandidateLight& cand, const TCandidateObservation& obs) const;
     void refreshCrossPointValidity(TCandidateLight& cand) const;
+    /** Planar candidate likelihood: innovation of z against the segment [s_lo, s_hi] [m] of a
+     *  candidate's last ray (origin, unit dir); x is the crossing of that ray with the ray of
+     *  z. */
+    static Eigen::Vector2d segmentInnovation(const BearingMeasurementModel& model,
+                                             const Eigen::Vector3d& origin,
+                                             const Eigen::Vector3d& dir, double s_lo, double s_hi,
+                                             const TRayCrossPoint& x, const Eigen::Vector2d& z,
+                                             const mrpt::math::TPose2D& robot_in_map);
+    /** Planar: the depths along the candidate's last ray, between min_ and
+     *  max_cross_point_range, where every earlier measurement is within the P_new gate. When
+     *  there is none, the candidate keeps only its newest measurement. */
+    void updateDepthInterval(TCandidateLight& cand) const;
+    /// Limits of the cross-point tests (a), (b) from the options and the measurement model.
+    TCrossPointLimits crossPointLimits() const;
     bool tryPromote(const TCandidateLight& cand);
     /** Alg. 4 lines 4-9 for one landmark and measurement at a pose. Returns false (and changes
      *  nothing) where the prediction is undefined; else the innovation, its covariance Q̃ and

@@ -9,6 +9,7 @@
 #include <mrpt_vslam/core/ParticleFilterDataImpl.h>
 #include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +23,19 @@ struct TPathNode {
     std::shared_ptr<const TPathNode> previous;
 };
 
+/** Evaluation only, when the data set gives landmark numbers (TBearingMeasurement::hidden_id):
+ *  the numbers of the measurements associated (level 1) to each landmark of a particle's map,
+ *  over the particle's lineage. A landmark stands for its most frequent number; every other
+ *  association to it is wrong. The filter never reads it. */
+struct TAssociationTally {
+    /// map landmark id → hidden id → measurements
+    std::map<int64_t, std::map<int64_t, uint32_t>> counts;
+    /// Level-1 associations of measurements with a hidden id.
+    size_t labelled() const;
+    /// Associations whose hidden id is not the most frequent one of their landmark.
+    size_t wrong() const;
+};
+
 /** One FastSLAM particle: the robot pose, its path and its own map of ceiling lights. */
 struct TOmniFastSLAMParticle {
     mrpt::math::TPose2D robot_in_map;
@@ -30,6 +44,7 @@ struct TOmniFastSLAMParticle {
     /// Σ of the log-weight increments since the start, kept through resampling: the best
     /// particle is the one with the largest value.
     double accumulated_log_w = 0;
+    TAssociationTally associations;  ///< evaluation only
 };
 
 /** FastSLAM 2.0 for an omnidirectional camera and ceiling lights (Gamallo, Mucientes &

@@ -14,7 +14,16 @@ namespace mrpt_vslam::omni_fastslam {
 struct TBearingMeasurement {
     Eigen::Vector2d z = Eigen::Vector2d::Zero();  ///< (φ, θ) [rad]
     Eigen::Matrix2d Q = Eigen::Matrix2d::Identity() * 3e-4;  ///< covariance of (φ, θ) [rad²]
+    /// The landmark's number when the data set gives it (`landmarkID`), else −1. Kept for
+    /// evaluation only (counting wrong associations); the filter never reads it.
+    int64_t hidden_id = -1;
 };
+
+/** Measurement model of the map (ini `measurement_model`):
+ *  - `spherical`: an upward camera, z = (φ, θ), 3D landmarks (doc/omni-fastslam.md §2);
+ *  - `planar`: azimuth only, z = φ, landmarks are points of the robot's plane (z = 0)
+ *    (doc/omni-fastslam.md §12). */
+enum class TMeasurementModelKind : uint8_t { Spherical = 0, Planar = 1 };
 
 /** Landmark types of Sec. III-F(2): type II landmarks were initialized from far away and are
  *  neither used for the pose proposal (Alg. 3) nor for the particle weight (Alg. 4). */
@@ -66,6 +75,9 @@ struct TCandidateLight {
     int counter = 0;             ///< i_j: +1 per measurement, −I_not per miss
     int consecutive_misses = 0;  ///< I_not of the paper: iterations in a row without measurement
     uint32_t nz = 0;             ///< NZ_j: measurements associated along time (incl. dropped)
+    /// Planar model: depths [m] along the last measurement's ray where the light agrees with
+    /// all kept measurements (doc/omni-fastslam.md §12).
+    double depth_min = 0, depth_max = 0;
 };
 
 /** Result of the hierarchical data association (Sec. III-C). */
@@ -82,4 +94,9 @@ struct TLightAssociation {
 MRPT_ENUM_TYPE_BEGIN(mrpt_vslam::omni_fastslam::TAssociationMethod)
 MRPT_FILL_ENUM_CUSTOM_NAME(mrpt_vslam::omni_fastslam::TAssociationMethod::Hungarian, "hungarian");
 MRPT_FILL_ENUM_CUSTOM_NAME(mrpt_vslam::omni_fastslam::TAssociationMethod::ML, "ml");
+MRPT_ENUM_TYPE_END()
+
+MRPT_ENUM_TYPE_BEGIN(mrpt_vslam::omni_fastslam::TMeasurementModelKind)
+MRPT_FILL_ENUM_CUSTOM_NAME(mrpt_vslam::omni_fastslam::TMeasurementModelKind::Spherical, "spherical");
+MRPT_FILL_ENUM_CUSTOM_NAME(mrpt_vslam::omni_fastslam::TMeasurementModelKind::Planar, "planar");
 MRPT_ENUM_TYPE_END()

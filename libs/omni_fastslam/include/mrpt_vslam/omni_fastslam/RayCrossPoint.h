@@ -29,4 +29,25 @@ TRayCrossPoint computeRayCrossPoint(const Eigen::Vector3d& origin1, const Eigen:
 /// Angle between two directions (any length), in [0, π] [rad]; the ANG of the ANG_min test.
 double angleBetweenDirections(const Eigen::Vector3d& dir1, const Eigen::Vector3d& dir2);
 
+/** Geometric tests of a cross-point (Sec. III-F(1) tests a and b; doc/omni-fastslam.md §3, §12).
+ *  Spherical (lights above the camera): angle > min_angle, in front of both cameras (s_i > 0)
+ *  and above both. Planar (bearing lines in the robot's plane): parallax
+ *  min(angle, π − angle) > min_angle — two lines meeting under an angle near π are as
+ *  ill-conditioned as nearly parallel ones — and in front of both rays. Both: between min_range
+ *  and max_range of both ray origins along the rays (max_range 0 = no limit). Directions must
+ *  be unit vectors.
+ */
+struct TCrossPointLimits {
+    double min_angle = 0;  ///< ANG_min [rad]
+    double max_range = 0;  ///< [m], 0 = no limit
+    bool planar = false;
+    double min_range = 0;  ///< [m]
+};
+/** Test (a): the rays' angle (spherical) or the lines' parallax (planar) exceeds min_angle.
+ *  \param angle the `angle` of a TRayCrossPoint that is not `parallel` [rad] */
+bool crossPointHasParallax(double angle, const TCrossPointLimits& limits);
+/// Test (b): in front of both rays (and above both origins, spherical), within the range limits.
+bool crossPointInFront(const TRayCrossPoint& x, const Eigen::Vector3d& origin1,
+                       const Eigen::Vector3d& origin2, const TCrossPointLimits& limits);
+
 }  // namespace mrpt_vslam::omni_fastslam
