@@ -9,7 +9,7 @@
 #      threshold E0 (0.25 vs 0.7) and the paper's R_t pixel sigmas (1, 10, 10) vs ours on team2;
 #   5. team3 without resample_per_robot, with the optimal proposal, and with the paper's sigmas.
 # Writes run folders, tables (*.txt) and plots (*.png) under out/reproduce-multirobot/ (or $OUT)
-# and prints markdown tables. Builds first (scripts/setup.sh). Takes about 25 min on one core.
+# and prints markdown tables. Builds first (scripts/setup.sh). Takes about 50 min on one core.
 # Environment: SEEDS (default 1 2 3 4 5), SWEEP_SEEDS for sections 2 and 3 (default 1 to 10), OUT.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
