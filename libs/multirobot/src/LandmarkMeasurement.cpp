@@ -79,9 +79,9 @@ std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
 
 std::vector<TLandmarkMeasurement> selectNearest(std::vector<TLandmarkMeasurement> z, size_t B)
 {
-    std::stable_sort(z.begin(), z.end(), [](const auto& a, const auto& b) {
-        return a.depth < b.depth || (a.depth == b.depth && a.track_id < b.track_id);
-    });
+    // ties keep the observation's order: track_id may be an identity the filter must not read
+    std::stable_sort(z.begin(), z.end(),
+                     [](const auto& a, const auto& b) { return a.depth < b.depth; });
     if (B > 0 && z.size() > B) z.resize(B);
     return z;
 }

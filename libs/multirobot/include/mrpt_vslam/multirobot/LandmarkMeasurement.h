@@ -58,7 +58,7 @@ std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
     const mrpt::obs::CObservationBearingRange& obs, const TRangeBearingNoise& noise);
 
 /** The (at most) B measurements with the smallest depth, the most precise for a stereo pair,
- *  in that order (ties: lower track id); all of them if B = 0 or fewer. */
+ *  in that order (ties: in the order given); all of them if B = 0 or fewer. */
 std::vector<TLandmarkMeasurement> selectNearest(std::vector<TLandmarkMeasurement> z, size_t B);
 
 /** The map-frame transform of a robot pose, x = (x, y, θ): translation and cos θ, sin θ once,
