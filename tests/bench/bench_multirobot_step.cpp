@@ -1,6 +1,7 @@
 // One step of the multi-robot visual SLAM filter (paper 003, Alg. 1 lines 5-15) on the
 // synthetic team world, for the (M, B, K) of the issue: (500, 8, 2), (1500, 20, 2),
-// (3000, 20, 3), the last also with resampling after each robot (R = 1, as office-team-3.ini).
+// (3000, 20, 3), the last also with resampling after each robot (R = 1, as office-team-3.ini);
+// O = 0 the paper's proposal (pfStandardProposal), O = 1 pfOptimalProposal (office-team-2.ini).
 // The map is first built over 60 steps; the timed steps continue the run.
 #include <benchmark/benchmark.h>
 #include <mrpt/bayes/CParticleFilter.h>
@@ -29,7 +30,9 @@ void BM_MultiRobotStep(benchmark::State& state)
     filter.reset(world.startPoses(), world.time);
     mrpt::random::getRandomGenerator().randomize(1);
     mrpt::bayes::CParticleFilter pf;
-    pf.m_options.PF_algorithm = mrpt::bayes::CParticleFilter::pfStandardProposal;
+    pf.m_options.PF_algorithm = state.range(4) != 0
+                                    ? mrpt::bayes::CParticleFilter::pfOptimalProposal
+                                    : mrpt::bayes::CParticleFilter::pfStandardProposal;
     pf.m_options.resamplingMethod = mrpt::bayes::CParticleFilter::prSystematic;
     pf.m_options.BETA = 0.5;
     pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
@@ -49,10 +52,14 @@ void BM_MultiRobotStep(benchmark::State& state)
 }  // namespace
 
 BENCHMARK(BM_MultiRobotStep)
-    ->ArgNames({"M", "B", "K", "R"})
-    ->Args({500, 8, 2, 0})
-    ->Args({1500, 20, 2, 0})
-    ->Args({3000, 20, 3, 0})
-    ->Args({3000, 20, 3, 1})
+    ->ArgNames({"M", "B", "K", "R", "O"})
+    ->Args({500, 8, 2, 0, 0})
+    ->Args({500, 8, 2, 0, 1})
+    ->Args({1500, 20, 2, 0, 0})
+    ->Args({1500, 20, 2, 0, 1})
+    ->Args({3000, 20, 3, 0, 0})
+    ->Args({3000, 20, 3, 1, 0})
+    ->Args({3000, 20, 3, 0, 1})
+    ->Args({3000, 20, 3, 1, 1})
     ->Iterations(kTimed)
     ->Unit(benchmark::kMillisecond);
