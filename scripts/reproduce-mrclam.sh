@@ -23,19 +23,21 @@ SEEDS="${SEEDS:-1 2 3 4 5}"
 mkdir -p "$OUT/data"
 
 # --- 1. import ----------------------------------------------------------------------------------
-import() {  # import NAME ROBOTS [options...]
-  local name="$1" robots="$2"; shift 2
+import() {  # import NAME ROBOTS COMMAND_DELAY [options...]
+  local name="$1" robots="$2" delay="$3"; shift 3
   [ -f "$OUT/data/$name.rawlog" ] ||
-    "$BIN/mrclam2rawlog" "$DATASET" --robots "$robots" --command-delay 0.2 \
+    "$BIN/mrclam2rawlog" "$DATASET" --robots "$robots" --command-delay "$delay" \
       --out "$OUT/data/$name.rawlog" --quiet "$@"
 }
-import r123 1,2,3
-import r123-ids 1,2,3 --keep-ids
-import r1 1
-import r2 2
-import r3 3
-import r12 1,2
-import r12345 1,2,3,4,5
+import r123 1,2,3 0.2
+import r123-ids 1,2,3 0.2 --keep-ids
+import r1 1 0.2
+import r2 2 0.2
+import r3 3 0.2
+import r12 1,2 0.2
+import r12345 1,2,3,4,5 0.2
+# omni-fastslam's config was chosen on the commands as recorded (doc/omni-fastslam.md §12)
+import r1-omni 1 0 --keep-ids
 
 # run DIR RAWLOG ROBOTS [options...]: one multirobot-vslam run and its evaluation; prints
 # "est_1 odo_1 ... | once duplicated extra fused wrong total_s"
@@ -106,3 +108,26 @@ team "R2 alone" "$OUT/data/r2.rawlog" "R2"
 team "R3 alone" "$OUT/data/r3.rawlog" "R3"
 team "R1-R2" "$OUT/data/r12.rawlog" "R1 R2"
 team "R1-R5" "$OUT/data/r12345.rawlog" "R1 R2 R3 R4 R5"
+
+# --- 4. omni-fastslam, planar bearing-only, robot 1 ---------------------------------------------
+echo
+echo "### omni-fastslam planar bearing-only on robot 1 (mrclam-bearing-only.ini)"
+echo
+echo "| seed | ATE RMSE [m] | odometry [m] | landmarks matched | false | wrong associations | of | run [s] |"
+echo "|---|---|---|---|---|---|---|---|"
+for seed in 1 2 3 4 5 6 7 8; do
+  dir="$OUT/omni-r1-seed$seed"
+  "$BIN/omni-fastslam" "$CONFIGS/omni-fastslam/mrclam-bearing-only.ini" "$OUT/data/r1-omni.rawlog" \
+    --out "$dir" --quiet --seed "$seed"
+  "$BIN/vslam-eval" "$dir" --ground-truth "$OUT/data/r1-omni" > "$dir/summary.txt"
+  est=$(awk '/^R1 estimate:/ {print $5}' "$dir/summary.txt")
+  odo=$(awk '/^R1 odometry:/ {print $5}' "$dir/summary.txt")
+  lm=$(sed -n 's/^landmarks: .*estimated: \([0-9]*\) matched, \([0-9]*\) false.*/\1 \2/p' "$dir/summary.txt")
+  wrong=$(grep -o '"wrong_associations": *[0-9]*' "$dir/run.json" | awk '{print $2}')
+  labelled=$(grep -o '"labelled_associations": *[0-9]*' "$dir/run.json" | awk '{print $2}')
+  t=$(grep -o '"total_s": *[0-9.e-]*' "$dir/run.json" | awk '{printf "%.2f", $2}')
+  read -r matched fals <<< "$lm"
+  echo "| $seed | $est | $odo | $matched | $fals | $wrong | $labelled | $t |"
+done
+echo
+echo "Run folders (paths.png, errors.png, metrics.json, run.json) in $OUT"
