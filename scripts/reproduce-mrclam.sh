@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
 # Real data: UTIAS MRCLAM dataset 7 (doc/real-data.md), identities hidden from the filters.
-#   1. import with mrclam2rawlog, commands delayed 0.2 s (robots 1-3, 1, 2, 3, 1-2 and 1-5; ids
-#      hidden, and robots 1-3
-#      once more with ids kept, to count wrong associations: the filter never reads them);
+#   1. import with mrclam2rawlog, commands delayed 0.2 s, the robots' readings of each other kept
+#      (robots 1-3, 1, 2, 3, 1-2 and 1-5; landmark ids hidden, and robots 1-3 once more with ids
+#      kept, to count wrong associations: the filter never reads them);
 #   2. multirobot-vslam (mrclam.ini), robots 1-3 jointly, several seeds: per-robot ATE vs
 #      odometry, landmarks mapped once within 0.5 m, extra landmarks, wrong associations, run time;
-#   3. the same filter on each robot alone, and on 2 and 5 robots;
+#   3. the same filter on each robot alone, on 2 and 5 robots, and on robots 1-3 without the
+#      readings of robots;
 #   4. omni-fastslam in planar bearing-only mode on robot 1 (mrclam-bearing-only.ini): ATE vs
 #      odometry and the landmark table.
 # Writes run folders (paths.png, errors.png, metrics.json, run.json), tables and plots under
 # out/reproduce-mrclam/ (or $OUT) and prints markdown tables. Builds first (scripts/setup.sh).
+# Takes about 30 min on one core (M = 2000 as shipped).
 # Environment: SEEDS (default 1 2 3 4 5), OUT, DATASET (default ../shared/datasets/utias-mrclam/dataset7).
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -29,22 +31,25 @@ import() {  # import NAME ROBOTS COMMAND_DELAY [options...]
     "$BIN/mrclam2rawlog" "$DATASET" --robots "$robots" --command-delay "$delay" \
       --out "$OUT/data/$name.rawlog" --quiet "$@"
 }
-import r123 1,2,3 0.2
-import r123-ids 1,2,3 0.2 --keep-ids
+import r123 1,2,3 0.2 --keep-robot-measurements
+import r123-ids 1,2,3 0.2 --keep-robot-measurements --keep-ids
 import r1 1 0.2
 import r2 2 0.2
 import r3 3 0.2
-import r12 1,2 0.2
-import r12345 1,2,3,4,5 0.2
+import r12 1,2 0.2 --keep-robot-measurements
+import r12345 1,2,3,4,5 0.2 --keep-robot-measurements
 # omni-fastslam's config was chosen on the commands as recorded (doc/omni-fastslam.md §12)
 import r1-omni 1 0 --keep-ids
 
-# run DIR RAWLOG ROBOTS [options...]: one multirobot-vslam run and its evaluation; prints
+# run DIR RAWLOG ROBOTS [options...]: one multirobot-vslam run and its evaluation (robot Rn reads
+# as id n; READINGS_OF_ROBOTS=no drops those readings); prints
 # "est_1 odo_1 ... | once duplicated extra fused wrong total_s"
 run() {
   local dir="$1" rawlog="$2" robots="$3"; shift 3
+  local ids="${robots//R/}"
+  [ "${READINGS_OF_ROBOTS:-yes}" = no ] && ids=""
   "$BIN/multirobot-vslam" "$CONFIGS/multirobot-vslam/mrclam.ini" "$rawlog" --out "$dir" --quiet \
-    --set "MultiRobotVSLAM.robots=$robots" "$@"
+    --set "MultiRobotVSLAM.robots=$robots" --set "MultiRobotVSLAM.robot_reading_ids=$ids" "$@"
   "$BIN/vslam-eval" "$dir" --ground-truth "${rawlog%.rawlog}" > "$dir/summary.txt"
   local rmse
   rmse=$(awk '/^R[0-9]+ (estimate|odometry):/ {printf "%s ", $5}' "$dir/summary.txt")
@@ -108,6 +113,7 @@ team "R2 alone" "$OUT/data/r2.rawlog" "R2"
 team "R3 alone" "$OUT/data/r3.rawlog" "R3"
 team "R1-R2" "$OUT/data/r12.rawlog" "R1 R2"
 team "R1-R5" "$OUT/data/r12345.rawlog" "R1 R2 R3 R4 R5"
+READINGS_OF_ROBOTS=no team "R1-R3, readings of robots unused" "$OUT/data/r123.rawlog" "R1 R2 R3"
 
 # --- 4. omni-fastslam, planar bearing-only, robot 1 ---------------------------------------------
 echo

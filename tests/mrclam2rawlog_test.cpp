@@ -172,8 +172,9 @@ TEST_F(TinyDataset, WritesTheStepContract)
     // R2's one reading with Vicon: landmark 7 at (−1, 3) from (1 + 0.3 · 2.125, −1, 0.5).
     const double dx = -1 - (1 + 0.3 * 2.125), dy = 3 - -1.0;
     const std::string residuals =
-        fmt("R2: 2 readings in 2 observations, 2 ground-truth poses, residuals vs Vicon range "
-            "%.3f +- 0.000 m, bearing %.2f +- 0.00 deg (1 readings).",
+        fmt("R2: 2 landmark readings in 2 observations, 0 readings of robots, 2 ground-truth "
+            "poses, residuals vs Vicon range %.3f +- 0.000 m, bearing %.2f +- 0.00 deg (1 "
+            "readings).",
             4.0 - std::hypot(dx, dy), (-0.5 - (std::atan2(dy, dx) - 0.5)) * 180 / M_PI);
     EXPECT_NE(r.out.find(residuals), std::string::npos) << residuals << "\n" << r.out;
 
@@ -309,16 +310,30 @@ TEST_F(TinyDataset, MapsBarcodesAndHidesIdentities)
             {9.0, {R{"R1_RB", id6, 1.0f, 0.0f}}}};
         EXPECT_EQ(readings, want) << (keep_ids ? "--keep-ids" : "ids hidden");
     }
-    // --keep-robot-measurements keeps robot 2's barcode read at 3 s (subject 2).
-    const TCommandResult r =
-        runImporter(*s_scratch, dataArgs() + " --out '" + out("robots.rawlog") +
-                                    "' --keep-ids --keep-robot-measurements --start 2.5 --end 3.5");
-    ASSERT_EQ(r.exit_code, 0) << r.out;
-    std::vector<int> ids;
-    for (const auto& o : readObservations(out("robots.rawlog")))
-        if (const auto rb = std::dynamic_pointer_cast<mrpt::obs::CObservationBearingRange>(o))
-            for (const auto& m : rb->sensedData) ids.push_back(m.landmarkID);
-    EXPECT_EQ(ids, std::vector<int>{2});
+    // --keep-robot-measurements keeps robot 2's barcode read at 3 s as R1_ROBOTS, its id kept
+    // without --keep-ids (robots know each other's barcodes); importing robot 1 alone drops it.
+    for (const std::string robots : {"1,2", "1"}) {
+        const TCommandResult r = runImporter(
+            *s_scratch, "'" + data() + "' --robots " + robots + " --out '" + out("robots.rawlog") +
+                            "' --keep-robot-measurements --start 2.5 --end 6");
+        ASSERT_EQ(r.exit_code, 0) << r.out;
+        std::vector<std::tuple<std::string, int, float>> seen;
+        for (const auto& o : readObservations(out("robots.rawlog")))
+            if (const auto rb = std::dynamic_pointer_cast<mrpt::obs::CObservationBearingRange>(o))
+                for (const auto& m : rb->sensedData)
+                    if (rb->sensorLabel != "R1_RB")  // landmark 8 at 5.4375 s
+                        seen.emplace_back(rb->sensorLabel, m.landmarkID, m.range);
+        using S = std::tuple<std::string, int, float>;
+        if (robots == "1,2") {
+            EXPECT_EQ(seen, std::vector<S>{S("R1_ROBOTS", 2, 1.0f)});
+            EXPECT_NE(r.out.find("R1: 1 landmark readings in 1 observations, 1 readings of robots"),
+                      std::string::npos)
+                << r.out;
+        } else {
+            EXPECT_TRUE(seen.empty());
+            EXPECT_NE(r.out.find("1 of robots dropped"), std::string::npos) << r.out;
+        }
+    }
 }
 
 TEST_F(TinyDataset, WritesGroundTruthBesideTheRawlog)

@@ -127,7 +127,14 @@ TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
     EXPECT_NE(impossible.out.find("max_observations_per_robot"), std::string::npos)
         << impossible.out;
 
-    for (const auto* r : {&missing, &corrupt, &unknown, &impossible}) {
+    const TCommandResult ids = run(cfg + kData +
+                                   "team2.rawlog -q --set MultiRobotVSLAM.robot_reading_ids=7 --out " +
+                                   out("e5"));
+    EXPECT_NE(ids.exit_code, 0);
+    EXPECT_NE(ids.out.find("robot_reading_ids: must give one id per robot"), std::string::npos)
+        << ids.out;
+
+    for (const auto* r : {&missing, &corrupt, &unknown, &impossible, &ids}) {
         size_t lines = 0;
         for (const char c : r->out) lines += c == '\n';
         EXPECT_EQ(lines, 1u) << r->out;

@@ -71,6 +71,33 @@ double TRunningStats::std() const
     return std::sqrt(std::max(0.0, sum_sq / n - m * m));
 }
 
+mrpt::obs::CObservationBearingRange MrclamImporter::bearingRange(
+    const std::string& label, mrpt::Clock::time_point stamp,
+    const std::vector<TSubjectReading>& readings, bool keep_ids) const
+{
+    mrpt::obs::CObservationBearingRange obs;
+    obs.sensorLabel = label;
+    obs.timestamp = stamp;
+    obs.minSensorDistance = 0;
+    obs.maxSensorDistance = static_cast<float>(kMaxRange);
+    obs.fieldOfView_yaw = static_cast<float>(mrpt::DEG2RAD(kFieldOfViewDeg));
+    obs.sensorLocationOnRobot = mrpt::poses::CPose3D();
+    obs.validCovariances = false;
+    obs.sensor_std_range = static_cast<float>(m_options.std_range);
+    obs.sensor_std_yaw = static_cast<float>(m_options.std_bearing);
+    obs.sensor_std_pitch = 0;
+    for (const TSubjectReading& r : readings) {
+        mrpt::obs::CObservationBearingRange::TMeasurement m;
+        m.range = static_cast<float>(r.range);
+        m.yaw = static_cast<float>(r.bearing);
+        m.pitch = 0;
+        m.landmarkID = keep_ids ? r.subject : -1;
+        m.covariance.setZero();
+        obs.sensedData.push_back(m);
+    }
+    return obs;
+}
+
 void MrclamImporter::addResiduals(size_t k, const std::vector<TSubjectReading>& readings,
                                   TRobotCounts& counts) const
 {
@@ -103,7 +130,12 @@ MrclamImporter::TStepReadings MrclamImporter::selectReadings(TImportSummary& sum
                 summary.dropped_unknown++;
                 continue;
             }
-            if (subject->second <= TMrclamDataset::kRobots && !m_options.keep_robot_measurements) {
+            if (subject->second <= TMrclamDataset::kRobots &&
+                (!m_options.keep_robot_measurements ||
+                 std::none_of(m_dataset.robots.begin(), m_dataset.robots.end(),
+                              [&](const TMrclamRobot& robot) {
+                                  return robot.number == subject->second;
+                              }))) {
                 summary.dropped_robot++;
                 continue;
             }
@@ -174,30 +206,22 @@ TImportSummary MrclamImporter::run()
         }
         for (const auto& [k, readings] : by_robot) {
             const int number = m_dataset.robots[k].number;
-            mrpt::obs::CObservationBearingRange obs;
-            obs.sensorLabel = robotName(number) + "_RB";
-            obs.timestamp = stamp;
-            obs.minSensorDistance = 0;
-            obs.maxSensorDistance = static_cast<float>(kMaxRange);
-            obs.fieldOfView_yaw = static_cast<float>(mrpt::DEG2RAD(kFieldOfViewDeg));
-            obs.sensorLocationOnRobot = mrpt::poses::CPose3D();
-            obs.validCovariances = false;
-            obs.sensor_std_range = static_cast<float>(m_options.std_range);
-            obs.sensor_std_yaw = static_cast<float>(m_options.std_bearing);
-            obs.sensor_std_pitch = 0;
-            for (const TSubjectReading& r : readings) {
-                mrpt::obs::CObservationBearingRange::TMeasurement m;
-                m.range = static_cast<float>(r.range);
-                m.yaw = static_cast<float>(r.bearing);
-                m.pitch = 0;
-                m.landmarkID = m_options.keep_ids ? r.subject : -1;
-                m.covariance.setZero();
-                obs.sensedData.push_back(m);
+            std::vector<TSubjectReading> of_landmarks, of_robots;
+            for (const TSubjectReading& r : readings)
+                (r.subject <= TMrclamDataset::kRobots ? of_robots : of_landmarks).push_back(r);
+            TRobotCounts& counts = summary.robots[number];
+            if (!of_landmarks.empty()) {
+                writer.writeObservation(bearingRange(robotName(number) + "_RB", stamp,
+                                                     of_landmarks, m_options.keep_ids));
+                addResiduals(k, of_landmarks, counts);
+                counts.measurements += of_landmarks.size();
+                counts.observations++;
             }
-            writer.writeObservation(obs);
-            addResiduals(k, readings, summary.robots[number]);
-            summary.robots[number].measurements += readings.size();
-            summary.robots[number].observations++;
+            if (!of_robots.empty()) {  // robots know each other's barcodes: ids always kept
+                writer.writeObservation(bearingRange(robotName(number) + "_ROBOTS", stamp,
+                                                     of_robots, true));
+                counts.robot_readings += of_robots.size();
+            }
         }
         for (size_t k = 0; k < n_robots; k++) {
             const std::optional<mrpt::math::TPose2D> truth = vicon[k].poseAt(t);
@@ -238,9 +262,11 @@ std::string TImportSummary::describe(const std::string& out_rawlog, double secon
         outside_window);
     for (const auto& [number, c] : robots)
         text += mrpt::format(
-            " R%d: %zu readings in %zu observations, %zu ground-truth poses, residuals vs Vicon "
-            "range %.3f +- %.3f m, bearing %.2f +- %.2f deg (%zu readings).",
-            number, c.measurements, c.observations, c.ground_truth_poses, c.range_residual.mean(),
+            " R%d: %zu landmark readings in %zu observations, %zu readings of robots, %zu "
+            "ground-truth poses, residuals vs Vicon range %.3f +- %.3f m, bearing %.2f +- %.2f "
+            "deg (%zu readings).",
+            number, c.measurements, c.observations, c.robot_readings, c.ground_truth_poses,
+            c.range_residual.mean(),
             c.range_residual.std(), mrpt::RAD2DEG(c.bearing_residual.mean()),
             mrpt::RAD2DEG(c.bearing_residual.std()), c.range_residual.n);
     return text + mrpt::format(" Import took %.2f s.\n", seconds);

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <mrpt/core/Clock.h>
+#include <mrpt/obs/CObservationBearingRange.h>
+
 #include <cstddef>
 #include <map>
 #include <string>
@@ -28,8 +31,9 @@ struct TRunningStats {
 
 /// What one robot contributed to the output.
 struct TRobotCounts {
-    size_t measurements = 0;        ///< range-bearing readings written
+    size_t measurements = 0;        ///< landmark readings written (R<n>_RB)
     size_t observations = 0;        ///< R<n>_RB observations written (steps it observed in)
+    size_t robot_readings = 0;      ///< readings of other robots written (R<n>_ROBOTS)
     size_t ground_truth_poses = 0;  ///< steps with an interpolated Vicon pose
     /** Reading minus the value predicted from the Vicon poses of the robot (interpolated at the
      *  reading's time) and of the landmark, over the landmark readings written: range [m] and
@@ -41,7 +45,8 @@ struct TRobotCounts {
 struct TImportSummary {
     size_t steps = 0;                      ///< distinct measurement timestamps
     size_t kept = 0;                       ///< readings written
-    size_t dropped_robot = 0;              ///< readings of robots' barcodes, dropped
+    size_t dropped_robot = 0;  ///< readings of robots' barcodes dropped (all, or of robots
+                               ///< not imported with keep_robot_measurements)
     size_t dropped_unknown = 0;            ///< readings of barcodes not in Barcodes.dat, dropped
     size_t outside_window = 0;             ///< readings before --start or after --end
     double first_step = 0, last_step = 0;  ///< [s] Unix time of the first and last step
@@ -57,11 +62,15 @@ struct TImportSummary {
  *  `OUT.groundtruth_R<n>.tum`, `OUT.odometry_R<n>.tum` and `OUT.landmarks.txt`
  *  (doc/data-formats.md, "MRCLAM import").
  *
- *  1. Keeps the readings inside the time window whose barcode is a landmark (or a robot, with
- *     keep_robot_measurements); the distinct timestamps of those are the steps.
+ *  1. Keeps the readings inside the time window whose barcode is a landmark (or one of the
+ *     imported robots, with keep_robot_measurements); the distinct timestamps of those are the
+ *     steps.
  *  2. Writes one R<n>_ODOM reading per robot at the window's start.
  *  3. At every step t: R<n>_ODOM for every robot (speed commands integrated up to t), R<n>_RB
- *     for every robot with readings at t, R<n>_GROUND_TRUTH for every robot with Vicon at t.
+ *     for every robot with landmark readings at t (landmarkID −1, or the subject with
+ *     keep_ids), R<n>_ROBOTS for every robot with readings of other robots at t (landmarkID =
+ *     the seen robot's number, always: each robot carries its own barcode), R<n>_GROUND_TRUTH
+ *     for every robot with Vicon at t.
  *  4. Writes the TUM files and the landmarks, then renames the rawlog into place.
  *
  *  Throws std::runtime_error naming the dataset folder when the window has no readings, and
@@ -89,6 +98,12 @@ class MrclamImporter {
     /// Readings kept, by timestamp and then by robot index (into m_dataset.robots).
     using TStepReadings = std::map<double, std::map<size_t, std::vector<TSubjectReading>>>;
     TStepReadings selectReadings(TImportSummary& summary) const;
+    /// The readings of one robot at one step, labelled `label`; landmarkID = the subject
+    /// number if keep_ids, else −1.
+    mrpt::obs::CObservationBearingRange bearingRange(const std::string& label,
+                                                     mrpt::Clock::time_point stamp,
+                                                     const std::vector<TSubjectReading>& readings,
+                                                     bool keep_ids) const;
     /// Accumulates the residuals vs Vicon of robot k's landmark readings.
     void addResiduals(size_t k, const std::vector<TSubjectReading>& readings,
                       TRobotCounts& counts) const;

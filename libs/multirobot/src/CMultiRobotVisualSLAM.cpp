@@ -48,6 +48,28 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
     rb.std_bearing = mrpt::DEG2RAD(cfg.read_double(section, "range_bearing_std_bearing_deg",
                                                    mrpt::RAD2DEG(rb.std_bearing)));
     rb.std_height = cfg.read_double(section, "range_bearing_std_height", rb.std_height);
+    MRPT_LOAD_CONFIG_VAR(robot_readings_suffix, string, cfg, section);
+    auto& rr = robot_reading_noise;
+    rr.std_range = cfg.read_double(section, "robot_reading_std_range", rr.std_range);
+    rr.std_bearing = mrpt::DEG2RAD(cfg.read_double(section, "robot_reading_std_bearing_deg",
+                                                   mrpt::RAD2DEG(rr.std_bearing)));
+    rr.std_height = cfg.read_double(section, "robot_reading_std_height", rr.std_height);
+    if (cfg.keyExists(section, "robot_reading_ids")) {
+        robot_reading_ids.clear();
+        std::vector<std::string> ids;
+        mrpt::system::tokenize(cfg.read_string(section, "robot_reading_ids", ""), " \t,", ids);
+        for (const auto& id : ids) {
+            size_t used = 0;
+            int value = 0;
+            try {
+                value = std::stoi(id, &used);
+            } catch (const std::exception&) {
+            }
+            requireKey(used == id.size() && used > 0, section, "robot_reading_ids",
+                       "must be integers");
+            robot_reading_ids.push_back(value);
+        }
+    }
     MRPT_LOAD_CONFIG_VAR(max_observations_per_robot, uint64_t, cfg, section);
     MRPT_LOAD_CONFIG_VAR(min_motion_std_xy, double, cfg, section);
     min_motion_std_phi = mrpt::DEG2RAD(
@@ -65,6 +87,19 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
     requireKey(!landmarks_suffix.empty(), section, "landmarks_suffix", "must not be empty");
     requireKey(!range_bearing_suffix.empty() && range_bearing_suffix != landmarks_suffix, section,
                "range_bearing_suffix", "must not be empty nor equal landmarks_suffix");
+    requireKey(!robot_readings_suffix.empty() && robot_readings_suffix != landmarks_suffix &&
+                   robot_readings_suffix != range_bearing_suffix,
+               section, "robot_readings_suffix",
+               "must not be empty nor equal landmarks_suffix or range_bearing_suffix");
+    requireKey(robot_reading_ids.empty() || robot_reading_ids.size() == robots.size(), section,
+               "robot_reading_ids", "must give one id per robot of `robots`, or none");
+    for (size_t i = 0; i < robot_reading_ids.size(); i++)
+        requireKey(std::count(robot_reading_ids.begin(), robot_reading_ids.end(),
+                              robot_reading_ids[i]) == 1,
+                   section, "robot_reading_ids", "must not repeat an id");
+    requireKey(rr.std_range > 0, section, "robot_reading_std_range", "must be > 0");
+    requireKey(rr.std_bearing > 0, section, "robot_reading_std_bearing_deg", "must be > 0");
+    requireKey(rr.std_height > 0, section, "robot_reading_std_height", "must be > 0");
     requireKey(rb.std_range > 0, section, "range_bearing_std_range", "must be > 0");
     requireKey(rb.std_bearing > 0, section, "range_bearing_std_bearing_deg", "must be > 0");
     requireKey(rb.std_height > 0, section, "range_bearing_std_height", "must be > 0");
@@ -87,6 +122,14 @@ void CMultiRobotVisualSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     cfg.write(section, "range_bearing_std_range", range_bearing_noise.std_range);
     cfg.write(section, "range_bearing_std_bearing_deg", mrpt::RAD2DEG(range_bearing_noise.std_bearing));
     cfg.write(section, "range_bearing_std_height", range_bearing_noise.std_height);
+    cfg.write(section, "robot_readings_suffix", robot_readings_suffix);
+    std::string ids;
+    for (const int id : robot_reading_ids) ids += (ids.empty() ? "" : " ") + std::to_string(id);
+    cfg.write(section, "robot_reading_ids", ids);
+    cfg.write(section, "robot_reading_std_range", robot_reading_noise.std_range);
+    cfg.write(section, "robot_reading_std_bearing_deg",
+              mrpt::RAD2DEG(robot_reading_noise.std_bearing));
+    cfg.write(section, "robot_reading_std_height", robot_reading_noise.std_height);
     cfg.write(section, "max_observations_per_robot", max_observations_per_robot);
     cfg.write(section, "min_motion_std_xy", min_motion_std_xy);
     cfg.write(section, "min_motion_std_phi_deg", mrpt::RAD2DEG(min_motion_std_phi));
@@ -197,6 +240,47 @@ std::vector<TLandmarkMeasurement> CMultiRobotVisualSLAM::measurementsOf(
     return selectNearest(std::move(z), options.max_observations_per_robot);
 }
 
+std::vector<CMultiRobotVisualSLAM::TRobotReading> CMultiRobotVisualSLAM::robotReadingsOf(
+    size_t k, const mrpt::obs::CSensoryFrame& frame) const
+{
+    std::vector<TRobotReading> readings;
+    if (options.robot_reading_ids.empty()) return readings;
+    const auto obs = frame.getObservationBySensorLabelAs<mrpt::obs::CObservationBearingRange::Ptr>(
+        options.robots[k] + options.robot_readings_suffix);
+    if (!obs) return readings;
+    const auto& ids = options.robot_reading_ids;
+    for (const auto& m : measurementsFromBearingRange(*obs, options.robot_reading_noise)) {
+        const auto seen = std::find(ids.begin(), ids.end(), m.track_id);
+        const auto j = static_cast<size_t>(seen - ids.begin());
+        if (seen != ids.end() && j != k) readings.push_back({j, m});
+    }
+    return readings;
+}
+
+double CMultiRobotVisualSLAM::robotReadingLogLikelihood(const Eigen::Vector3d& offset,
+                                                        const Eigen::Matrix3d& S)
+{
+    const Cholesky3 L(S);
+    if (!L.ok)
+        throw std::runtime_error("a robot reading has a covariance that is not positive definite");
+    return -0.5 * (3 * std::log(2 * M_PI) + L.logDet() + L.whiten(offset).squaredNorm());
+}
+
+void CMultiRobotVisualSLAM::weighRobotReadings(size_t k, const std::vector<TRobotReading>& readings)
+{
+    for (auto& p : m_particles) {
+        const TPlanarTransform pose(p.d->poses[k]);
+        for (const auto& r : readings) {
+            const TMapMeasurement w = toMapFrame(r.m, pose);
+            const TPose2D& other = p.d->poses[r.robot];
+            const double log_w =
+                robotReadingLogLikelihood(w.z - Eigen::Vector3d(other.x, other.y, 0), w.R);
+            p.log_w += log_w;
+            p.d->accumulated_log_w += log_w;
+        }
+    }
+}
+
 Eigen::Vector3d CMultiRobotVisualSLAM::drawGaussian(const Eigen::Matrix3d& L)
 {
     Eigen::Vector3d n;
@@ -274,7 +358,8 @@ void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandma
 }
 
 void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const TMotionGaussian& motion,
-                                           const std::vector<TLandmarkMeasurement>& z)
+                                           const std::vector<TLandmarkMeasurement>& z,
+                                           const std::vector<TRobotReading>& readings)
 {
     // x̂ = x_{t-1} ⊕ u for every particle; the search also covers 3σ of the motion noise
     std::vector<TPose2D> predicted = posesOf(k);
@@ -298,18 +383,30 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const TMotionGaussian& moti
         // each measurement associated with the pose uncertainty so far in its gate; the
         // product of the marginals N(v; 0, Σ_l + R_w + H Σ Hᵀ) is the weight
         // p(z_t | x_{t-1}, u_t, map) (FastSLAM 2.0, ours for paper 003)
+        Eigen::Matrix3d HS;
+        // the point measured from the current mean, with H Σ Hᵀ added to its covariance
+        const auto linearize = [&](const TLandmarkMeasurement& m) {
+            const TMapMeasurement w = toMapFrame(m, TPose2D(mu[0], mu[1], mu[2]));
+            // H = ∂z_w/∂(x, y, θ): identity in x, y, and ∂R(θ)z/∂θ
+            Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+            H(0, 0) = H(1, 1) = 1;
+            H(0, 2) = -(w.z.y() - mu[1]);
+            H(1, 2) = w.z.x() - mu[0];
+            HS = H * Sigma;
+            return TMapMeasurement{w.z, w.R + HS * H.transpose()};
+        };
+        // the EKF update of the proposal with innovation v and its covariance S
+        const auto correct = [&](const Eigen::Vector3d& v, const Eigen::Matrix3d& S) {
+            const Eigen::Matrix3d K = HS.transpose() * Cholesky3(S).inverse();
+            mu -= K * v;
+            mu[2] = mrpt::math::wrapToPi(mu[2]);
+            const Eigen::Matrix3d updated = Sigma - K * HS;
+            Sigma = 0.5 * (updated + updated.transpose());
+        };
         double log_w = 0;
         taken.clear();
         for (size_t j = 0; j < z.size(); j++) {
-            const TMapMeasurement w = toMapFrame(z[j], TPose2D(mu[0], mu[1], mu[2]));
-            // H = ∂z_w/∂(x, y, θ): identity in x, y, and ∂R(θ)z/∂θ
-            const double hx = -(w.z.y() - mu[1]), hy = w.z.x() - mu[0];
-            Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-            H(0, 0) = H(1, 1) = 1;
-            H(0, 2) = hx;
-            H(1, 2) = hy;
-            const Eigen::Matrix3d HS = H * Sigma;
-            const TMapMeasurement gated{w.z, w.R + HS * H.transpose()};
+            const TMapMeasurement gated = linearize(z[j]);
             assoc[j] = p.map.associate(gated, candidates[j], &taken);
             if (!assoc[j]) {
                 log_w += std::log(p.map.insertionOptions.p0);  // line 36
@@ -318,11 +415,14 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const TMotionGaussian& moti
             taken.push_back(assoc[j]->id);
             log_w += assoc[j]->log_likelihood;
             const TVisualLandmark& lm = *p.map.landmark(assoc[j]->id);
-            const Eigen::Matrix3d K = HS.transpose() * Cholesky3(lm.cov + gated.R).inverse();
-            mu -= K * (w.z - lm.mean);
-            mu[2] = mrpt::math::wrapToPi(mu[2]);
-            const Eigen::Matrix3d updated = Sigma - K * HS;
-            Sigma = 0.5 * (updated + updated.transpose());
+            correct(gated.z - lm.mean, lm.cov + gated.R);
+        }
+        for (const auto& r : readings) {  // the seen robot's pose is exact in this particle
+            const TMapMeasurement w = linearize(r.m);
+            const Eigen::Vector3d v =
+                w.z - Eigen::Vector3d(p.poses[r.robot].x, p.poses[r.robot].y, 0);
+            log_w += robotReadingLogLikelihood(v, w.R);
+            correct(v, w.R);
         }
         const Cholesky3 L(Sigma);
         if (!L.ok)
@@ -363,11 +463,15 @@ void CMultiRobotVisualSLAM::runStep(
         const TMotionGaussian motion = motionOf(k, *odo);
         const auto z = observation ? measurementsOf(k, *observation)
                                    : std::vector<TLandmarkMeasurement>();
-        if (optimal && !z.empty()) {
-            proposeAndFuse(k, motion, z);
+        const auto readings =
+            observation ? robotReadingsOf(k, *observation) : std::vector<TRobotReading>();
+        lastStepStats.robot_readings += readings.size();
+        if (optimal && !(z.empty() && readings.empty())) {
+            proposeAndFuse(k, motion, z, readings);
         } else {
             sampleMotion(k, motion);
             if (!z.empty()) fuseMeasurements(k, z);
+            weighRobotReadings(k, readings);
         }
         // after the last robot the framework resamples (Alg. 1 line 13)
         if (options.resample_per_robot && k + 1 < K && ESS() < pf_options.BETA)

@@ -71,6 +71,7 @@ struct MultiRobotVSLAMApp::Impl {
     std::unique_ptr<core::LiveView> window;  ///< --gui
 
     size_t steps = 0, measurements = 0, stereoFrames = 0, landmarkObservations = 0;
+    size_t robotReadings = 0;
 
     void loadConfig();
     void findGroundTruth();
@@ -261,6 +262,8 @@ void MultiRobotVSLAMApp::run()
     for (const auto& r : robots) {
         stepLabels.insert(r + d.filterOptions.landmarks_suffix);
         stepLabels.insert(r + d.filterOptions.range_bearing_suffix);
+        if (!d.filterOptions.robot_reading_ids.empty())
+            stepLabels.insert(r + d.filterOptions.robot_readings_suffix);
         stepLabels.insert(r + "_STEREO");
         odometryLabels.push_back(r + "_ODOM");
     }
@@ -286,6 +289,7 @@ void MultiRobotVSLAMApp::run()
             odometryPaths[k].push_back(t, to3D(odometry[k].asTPose()));
         }
         d.measurements += d.filter->lastStepStats.measurements;
+        d.robotReadings += d.filter->lastStepStats.robot_readings;
         progress.update(++d.steps);
         if (d.window) d.window->show([&](auto& scene) { d.drawBestParticle(scene); });
     }
@@ -419,6 +423,7 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
     report.setCount("stereo_frames", static_cast<double>(stereoFrames));
     report.setCount("landmark_observations", static_cast<double>(landmarkObservations));
     report.setCount("measurements", static_cast<double>(measurements));
+    report.setCount("robot_readings", static_cast<double>(robotReadings));
     report.setCount("particles", static_cast<double>(filter->particlesCount()));
     report.setCount("landmarks", static_cast<double>(best.map.size()));
     report.setTiming(timer);

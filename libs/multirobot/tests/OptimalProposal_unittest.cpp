@@ -1,12 +1,14 @@
 // pfOptimalProposal of CMultiRobotVisualSLAM against brute force: for one measurement of one
-// mapped landmark, the particles' weight must be the evidence p(z | x_{t-1}, u, map) and their
-// sampled poses the posterior p(x_t | x_{t-1}, u, z, map), both computed here by importance
-// sampling from the motion prior with the exact (nonlinear) measurement model.
+// mapped landmark, and for one reading of another robot of the team, the particles' weight must
+// be the evidence p(z | x_{t-1}, u, map) and their sampled poses the posterior
+// p(x_t | x_{t-1}, u, z, map), both computed here by importance sampling from the motion prior
+// with the exact (nonlinear) measurement model.
 #include <gtest/gtest.h>
 #include <mrpt/bayes/CParticleFilter.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/maps/CLandmarksMap.h>
 #include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
@@ -18,12 +20,38 @@
 using namespace mrpt_vslam::multirobot;
 
 namespace {
+/// An odometry action without motion: its Gaussian is the noise floor alone.
+mrpt::obs::CActionRobotMovement2D noiseOnly(double std_xy, double std_phi)
+{
+    mrpt::obs::CActionRobotMovement2D::TMotionModelOptions model;
+    model.modelSelection = mrpt::obs::CActionRobotMovement2D::mmGaussian;
+    model.gaussianModel.a1 = model.gaussianModel.a2 = 0;
+    model.gaussianModel.a3 = model.gaussianModel.a4 = 0;
+    model.gaussianModel.minStdXY = static_cast<float>(std_xy);
+    model.gaussianModel.minStdPHI = static_cast<float>(std_phi);
+    mrpt::obs::CActionRobotMovement2D act;
+    act.computeFromOdometry(mrpt::poses::CPose2D(0, 0, 0), model);
+    return act;
+}
+
+/// log N(v; 0, C) of v = R(θ) z + (x, y, 0) − target, C = target_cov + R(θ) Rz R(θ)ᵀ
+double pointLogLikelihood(const Eigen::Vector3d& x, const Eigen::Vector3d& z,
+                          const Eigen::Matrix3d& Rz, const Eigen::Vector3d& target,
+                          const Eigen::Matrix3d& target_cov)
+{
+    Eigen::Matrix3d rot = Eigen::Matrix3d::Identity();
+    rot.topLeftCorner<2, 2>() << std::cos(x[2]), -std::sin(x[2]), std::sin(x[2]), std::cos(x[2]);
+    const Eigen::Vector3d v = rot * z + Eigen::Vector3d(x[0], x[1], 0) - target;
+    const Eigen::Matrix3d C = target_cov + rot * Rz * rot.transpose();
+    return -0.5 * (3 * std::log(2 * M_PI) + std::log(C.determinant()) + v.dot(C.llt().solve(v)));
+}
+
 struct TOneMeasurementCase {
     Eigen::Vector3d landmark{2.0, 0.6, 1.0};
     Eigen::Matrix3d landmark_cov = Eigen::Vector3d(0.02, 0.03, 0.02).cwiseAbs2().asDiagonal();
     Eigen::Vector3d z{2.05, 0.55, 1.0};  // robot frame: true pose ≈ (−0.03, 0.04, 1.5°)
     Eigen::Matrix3d R = Eigen::Vector3d(0.03, 0.02, 0.02).cwiseAbs2().asDiagonal();
-    mrpt::math::TPose2D odometry{0.0, 0.0, 0.0};  // no motion: the prior is the noise alone
+    // no motion: the prior is the noise alone
     double std_xy = 0.06, std_phi = mrpt::DEG2RAD(3.0);
 
     mrpt_vslam::core::USurfDescriptor::TDescriptor descriptor() const
@@ -33,18 +61,7 @@ struct TOneMeasurementCase {
         return d;
     }
 
-    mrpt::obs::CActionRobotMovement2D action() const
-    {
-        mrpt::obs::CActionRobotMovement2D::TMotionModelOptions model;
-        model.modelSelection = mrpt::obs::CActionRobotMovement2D::mmGaussian;
-        model.gaussianModel.a1 = model.gaussianModel.a2 = 0;
-        model.gaussianModel.a3 = model.gaussianModel.a4 = 0;
-        model.gaussianModel.minStdXY = static_cast<float>(std_xy);
-        model.gaussianModel.minStdPHI = static_cast<float>(std_phi);
-        mrpt::obs::CActionRobotMovement2D act;
-        act.computeFromOdometry(mrpt::poses::CPose2D(odometry), model);
-        return act;
-    }
+    mrpt::obs::CActionRobotMovement2D action() const { return noiseOnly(std_xy, std_phi); }
 
     mrpt::obs::CObservationVisualLandmarks::Ptr observation() const
     {
@@ -65,16 +82,38 @@ struct TOneMeasurementCase {
         return obs;
     }
 
-    /// log N(v; 0, C) of the map-frame point seen from x (the exact model, no linearization)
+    /// the map-frame point seen from x (the exact model, no linearization)
     double logLikelihood(const Eigen::Vector3d& x) const
     {
-        Eigen::Matrix3d rot = Eigen::Matrix3d::Identity();
-        rot.topLeftCorner<2, 2>() << std::cos(x[2]), -std::sin(x[2]), std::sin(x[2]),
-            std::cos(x[2]);
-        const Eigen::Vector3d v = rot * z + Eigen::Vector3d(x[0], x[1], 0) - landmark;
-        const Eigen::Matrix3d C = landmark_cov + rot * R * rot.transpose();
-        return -0.5 * (3 * std::log(2 * M_PI) + std::log(C.determinant()) +
-                       v.dot(C.llt().solve(v)));
+        return pointLogLikelihood(x, z, R, landmark, landmark_cov);
+    }
+};
+
+/// R1 reads R2, whose pose every particle knows exactly (it starts there, no spread).
+struct TRobotReadingCase {
+    mrpt::math::TPose2D seen{2.0, 0.6, 0.3};  // R2's start pose
+    float range = 2.14f, bearing = 0.30f;    // true R1 pose ≈ (−0.05, 0.03, −1°)
+    TRangeBearingNoise noise{0.04, mrpt::DEG2RAD(1.0), 0.01};
+    double std_xy = 0.06, std_phi = mrpt::DEG2RAD(3.0);
+
+    mrpt::obs::CObservationBearingRange::Ptr observation() const
+    {
+        auto obs = mrpt::obs::CObservationBearingRange::Create();
+        obs->sensorLabel = "R1_ROBOTS";
+        mrpt::obs::CObservationBearingRange::TMeasurement m;
+        m.range = range;
+        m.yaw = bearing;
+        m.pitch = 0;
+        m.landmarkID = 2;
+        obs->sensedData.push_back(m);
+        return obs;
+    }
+
+    double logLikelihood(const Eigen::Vector3d& x) const
+    {
+        const TLandmarkMeasurement m = measurementsFromBearingRange(*observation(), noise).at(0);
+        return pointLogLikelihood(x, m.z, m.R, Eigen::Vector3d(seen.x, seen.y, 0),
+                                  Eigen::Matrix3d::Zero());
     }
 };
 
@@ -114,13 +153,46 @@ CMultiRobotVisualSLAM runOneStep(const TOneMeasurementCase& c,
     return filter;
 }
 
+/// One step of a two-robot filter in which R1 reads R2 (M particles, R1 at the origin).
+CMultiRobotVisualSLAM runRobotReadingStep(
+    const TRobotReadingCase& c, mrpt::bayes::CParticleFilter::TParticleFilterAlgorithm algorithm,
+    size_t M, Eigen::Matrix3d& prior_cov)
+{
+    CMultiRobotVisualSLAM filter(CVisualLandmarksMap(), M, 17);
+    filter.options.robots = {"R1", "R2"};
+    filter.options.robot_reading_ids = {1, 2};
+    filter.options.robot_reading_noise = c.noise;
+    filter.options.initial_std_xy = filter.options.initial_std_phi = 0;
+    filter.reset({mrpt::math::TPose2D(0, 0, 0), c.seen}, 0);
+
+    mrpt::obs::CActionCollection acts;
+    acts.insert(noiseOnly(c.std_xy, c.std_phi));
+    acts.insert(noiseOnly(0.01, 0.01));  // R2 moves after R1's reading: no effect on it
+    mrpt::obs::CSensoryFrame sf;
+    sf.insert(c.observation());
+    mrpt::bayes::CParticleFilter::TParticleFilterOptions opts;
+    opts.PF_algorithm = algorithm;
+    filter.prediction_and_update(&acts, &sf, opts);  // no resampling
+
+    mrpt::math::CMatrixDouble33 cov;
+    mrpt::poses::CPose2D mean;
+    noiseOnly(c.std_xy, c.std_phi).poseChange->getCovarianceAndMean(cov, mean);
+    prior_cov = cov.asEigen();
+    prior_cov.diagonal() +=
+        Eigen::Vector3d(filter.options.min_motion_std_xy, filter.options.min_motion_std_xy,
+                        filter.options.min_motion_std_phi)
+            .cwiseAbs2();
+    return filter;
+}
+
 struct TBruteForce {
     double log_evidence;
     Eigen::Vector3d mean;
     Eigen::Matrix3d cov;
 };
 
-TBruteForce importanceSampling(const TOneMeasurementCase& c, const Eigen::Matrix3d& prior_cov)
+template <class Case>
+TBruteForce importanceSampling(const Case& c, const Eigen::Matrix3d& prior_cov)
 {
     mrpt::random::CRandomGenerator rng(99);
     const Eigen::Matrix3d L = prior_cov.llt().matrixL();
@@ -143,32 +215,25 @@ TBruteForce importanceSampling(const TOneMeasurementCase& c, const Eigen::Matrix
     b.cov = sum_xx / sum_w - b.mean * b.mean.transpose();
     return b;
 }
-}  // namespace
-
-TEST(OptimalProposal, WeightIsTheEvidenceAndSamplesFollowThePosterior)
+/** Robot R1's particles (all with the same prior) against the brute force: each weight is the
+ *  evidence, and their poses have the posterior's mean and covariance. */
+void expectEvidenceAndPosterior(const CMultiRobotVisualSLAM& filter, const TBruteForce& exact,
+                                const Eigen::Matrix3d& prior_cov)
 {
-    const TOneMeasurementCase c;
-    const size_t M = 20000;
-    Eigen::Matrix3d prior_cov;
-    const auto filter =
-        runOneStep(c, mrpt::bayes::CParticleFilter::pfOptimalProposal, M, prior_cov);
-    const auto exact = importanceSampling(c, prior_cov);
-    ASSERT_EQ(filter.lastStepStats.associated, M);
-
-    // every particle had the same prior, so the same weight: the evidence
+    const auto M = static_cast<double>(filter.m_particles.size());
     for (const auto& p : filter.m_particles) EXPECT_NEAR(p.log_w, exact.log_evidence, 0.02);
 
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     for (const auto& p : filter.m_particles)
         mean += Eigen::Vector3d(p.d->poses[0].x, p.d->poses[0].y, p.d->poses[0].phi);
-    mean /= static_cast<double>(M);
+    mean /= M;
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
     for (const auto& p : filter.m_particles) {
         const Eigen::Vector3d d =
             Eigen::Vector3d(p.d->poses[0].x, p.d->poses[0].y, p.d->poses[0].phi) - mean;
         cov += d * d.transpose();
     }
-    cov /= static_cast<double>(M - 1);
+    cov /= M - 1;
     // the measurement moves the pose by several prior σ in x, y, and shrinks the spread
     EXPECT_GT(std::abs(exact.mean.x()), 0.02);
     EXPECT_LT(exact.cov.trace(), 0.5 * prior_cov.trace());
@@ -181,6 +246,29 @@ TEST(OptimalProposal, WeightIsTheEvidenceAndSamplesFollowThePosterior)
     }
 }
 
+/// The mean of the standard proposal's weights (likelihoods at the sampled poses) is the evidence.
+void expectMeanWeightIsTheEvidence(const CMultiRobotVisualSLAM& filter, const TBruteForce& exact)
+{
+    double sum = 0;
+    for (const auto& p : filter.m_particles) sum += std::exp(p.log_w);
+    EXPECT_NEAR(std::log(sum / static_cast<double>(filter.m_particles.size())),
+                exact.log_evidence, 0.05);
+}
+}  // namespace
+
+TEST(OptimalProposal, WeightIsTheEvidenceAndSamplesFollowThePosterior)
+{
+    const TOneMeasurementCase c;
+    const size_t M = 20000;
+    Eigen::Matrix3d prior_cov;
+    const auto filter =
+        runOneStep(c, mrpt::bayes::CParticleFilter::pfOptimalProposal, M, prior_cov);
+    const auto exact = importanceSampling(c, prior_cov);
+    ASSERT_EQ(filter.lastStepStats.associated, M);
+
+    expectEvidenceAndPosterior(filter, exact, prior_cov);
+}
+
 // The standard proposal's weights are the likelihood at the sampled pose: their mean over the
 // particles estimates the same evidence.
 TEST(OptimalProposal, StandardProposalWeightsAverageToTheSameEvidence)
@@ -190,8 +278,22 @@ TEST(OptimalProposal, StandardProposalWeightsAverageToTheSameEvidence)
     Eigen::Matrix3d prior_cov;
     const auto filter =
         runOneStep(c, mrpt::bayes::CParticleFilter::pfStandardProposal, M, prior_cov);
+    expectMeanWeightIsTheEvidence(filter, importanceSampling(c, prior_cov));
+}
+
+// A reading of another robot of the team is a measurement of an exactly known point: the same
+// evidence and posterior, with both proposals.
+TEST(OptimalProposal, ReadingOfAnotherRobotGivesTheEvidenceAndPosterior)
+{
+    const TRobotReadingCase c;
+    const size_t M = 20000;
+    Eigen::Matrix3d prior_cov;
+    const auto optimal =
+        runRobotReadingStep(c, mrpt::bayes::CParticleFilter::pfOptimalProposal, M, prior_cov);
     const auto exact = importanceSampling(c, prior_cov);
-    double sum = 0;
-    for (const auto& p : filter.m_particles) sum += std::exp(p.log_w);
-    EXPECT_NEAR(std::log(sum / static_cast<double>(M)), exact.log_evidence, 0.05);
+    EXPECT_EQ(optimal.lastStepStats.robot_readings, 1u);
+    expectEvidenceAndPosterior(optimal, exact, prior_cov);
+    expectMeanWeightIsTheEvidence(
+        runRobotReadingStep(c, mrpt::bayes::CParticleFilter::pfStandardProposal, M, prior_cov),
+        exact);
 }

@@ -28,7 +28,12 @@ namespace mrpt_vslam::multirobot {
  *  Input of one step: an action collection with one `CActionRobotMovement2D` per robot, in the
  *  order of options.robots, and a sensory frame with each robot's `<ROBOT>_LANDMARKS`
  *  (`CObservationVisualLandmarks`) or `<ROBOT>_RB` (`CObservationBearingRange`: planar
- *  range-bearing without descriptors, associated by the gate alone); a robot may have none. Robot by robot (lines 7-9):
+ *  range-bearing without descriptors, associated by the gate alone); a robot may have none.
+ *  With options.robot_reading_ids, `<ROBOT>_ROBOTS` readings of the other robots of the team
+ *  (ours: cooperative localization, as in MRCLAM) weigh each particle by how well they fit
+ *  its poses of both robots; the seen robot is known, so there is no association and no gate.
+ *  With `pfOptimalProposal` they also update the proposal of the reading robot. Robot by robot
+ *  (lines 7-9):
  *   1. sample each particle's pose of that robot from the odometry's Gaussian (Sec. 3.1);
  *   2. keep its B nearest measurements (Sec. 6.2) and, for each one, search the shared pool
  *      for candidates once (E ≤ E0 near the point, radius widened by the particles' spread);
@@ -60,6 +65,15 @@ public:
         /// Noise of range-bearing measurements (ini: range_bearing_std_range,
         /// range_bearing_std_bearing_deg, range_bearing_std_height).
         TRangeBearingNoise range_bearing_noise;
+        /// Suffix of the labels of range-bearing readings of other robots of the team
+        /// (`CObservationBearingRange`, landmarkID = the seen robot's id below).
+        std::string robot_readings_suffix = "_ROBOTS";
+        /// The landmarkID that names each robot of `robots` in those readings, in the same order
+        /// (ini: `robot_reading_ids = 1 2 3`); empty: readings of robots are not used.
+        std::vector<int> robot_reading_ids;
+        /// Noise of those readings (ini: robot_reading_std_range, robot_reading_std_bearing_deg,
+        /// robot_reading_std_height).
+        TRangeBearingNoise robot_reading_noise;
         /// B: measurements integrated per robot and step (paper: 8 online, 20 offline).
         unsigned int max_observations_per_robot = 8;
         /// Added to the odometry covariance (std) so the proposal never degenerates.
@@ -85,6 +99,7 @@ public:
         size_t candidates = 0;            ///< pool candidates, summed over measurements
         size_t created = 0;               ///< new landmarks, summed over particles
         size_t associated = 0;            ///< EKF updates, summed over particles
+        size_t robot_readings = 0;        ///< readings of team robots used, all robots
     } lastStepStats;
 
     /** \param map_template options every particle's map starts with (must be empty)
@@ -121,6 +136,20 @@ private:
     /// Robot k's B nearest measurements in the frame: `<ROBOT>_LANDMARKS` or `<ROBOT>_RB`.
     std::vector<TLandmarkMeasurement> measurementsOf(size_t k,
                                                      const mrpt::obs::CSensoryFrame& frame) const;
+    /// A reading of another robot of the team: its index and where robot k saw it.
+    struct TRobotReading {
+        size_t robot;
+        TLandmarkMeasurement m;
+    };
+    /// Robot k's readings of the other robots of the team (`<ROBOT>_ROBOTS`); others dropped.
+    std::vector<TRobotReading> robotReadingsOf(size_t k,
+                                               const mrpt::obs::CSensoryFrame& frame) const;
+    /** log p(reading | both poses of the particle): the Gaussian of the point's offset from
+     *  the seen robot, covariance S (the reading's, plus H Σ Hᵀ in the optimal proposal). */
+    static double robotReadingLogLikelihood(const Eigen::Vector3d& offset,
+                                            const Eigen::Matrix3d& S);
+    /// pfStandardProposal: multiplies each particle's weight by its robot readings' likelihood.
+    void weighRobotReadings(size_t k, const std::vector<TRobotReading>& readings);
     Eigen::Vector3d drawGaussian(const Eigen::Matrix3d& L);
     std::vector<mrpt::math::TPose2D> posesOf(size_t k) const;
     /// One step: every robot moves and measures (lines 7-9); `optimal` selects the proposal.
@@ -140,7 +169,8 @@ private:
     /// pfOptimalProposal for robot k: Gaussian proposal from the motion and the measurements,
     /// weight p(z | x_{t-1}, u, map), then the landmark updates from the sampled pose.
     void proposeAndFuse(size_t k, const TMotionGaussian& motion,
-                        const std::vector<TLandmarkMeasurement>& z);
+                        const std::vector<TLandmarkMeasurement>& z,
+                        const std::vector<TRobotReading>& readings);
 
     CVisualLandmarksMap m_template;  ///< empty; shares the particles' descriptor pool
     mrpt::random::CRandomGenerator m_rng;
