@@ -329,6 +329,14 @@ TEST_F(TinyDataset, MapsBarcodesAndHidesIdentities)
             EXPECT_NE(r.out.find("R1: 1 landmark readings in 1 observations, 1 readings of robots"),
                       std::string::npos)
                 << r.out;
+            // R2 at (1 + 0.3 · 3, −1) seen from R1 at (0.1 · 3, 2, heading1(3)): range 1, bearing 0
+            const double dx = 1 + 0.3 * 3 - 0.1 * 3, dy = -1.0 - 2.0;
+            const std::string residuals = fmt(
+                "R1 reading robots: residuals vs Vicon range %.3f +- 0.000 m, bearing %.2f +- "
+                "0.00 deg (1 readings).",
+                1.0 - std::hypot(dx, dy),
+                mrpt::math::wrapToPi(0.0 - (std::atan2(dy, dx) - heading1(3))) * 180 / M_PI);
+            EXPECT_NE(r.out.find(residuals), std::string::npos) << residuals << "\n" << r.out;
         } else {
             EXPECT_TRUE(seen.empty());
             EXPECT_NE(r.out.find("1 of robots dropped"), std::string::npos) << r.out;

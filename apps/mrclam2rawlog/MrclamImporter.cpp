@@ -99,18 +99,24 @@ mrpt::obs::CObservationBearingRange MrclamImporter::bearingRange(
 }
 
 void MrclamImporter::addResiduals(size_t k, const std::vector<TSubjectReading>& readings,
-                                  TRobotCounts& counts) const
+                                  TRunningStats& range, TRunningStats& bearing) const
 {
     const ViconTrack vicon(m_dataset.robots[k].ground_truth);
     for (const TSubjectReading& r : readings) {
-        const auto landmark = m_dataset.landmarks.find(r.subject);
         const std::optional<mrpt::math::TPose2D> robot = vicon.poseAt(r.t);
-        if (landmark == m_dataset.landmarks.end() || !robot) continue;
-        // predicted range and bearing of the landmark from the robot's Vicon pose
-        const double dx = landmark->second.x - robot->x, dy = landmark->second.y - robot->y;
-        counts.range_residual.add(r.range - std::hypot(dx, dy));
-        counts.bearing_residual.add(
-            mrpt::math::wrapToPi(r.bearing - (std::atan2(dy, dx) - robot->phi)));
+        std::optional<mrpt::math::TPoint2D> seen;
+        if (const auto landmark = m_dataset.landmarks.find(r.subject);
+            landmark != m_dataset.landmarks.end())
+            seen = landmark->second;
+        for (const TMrclamRobot& other : m_dataset.robots)
+            if (other.number == r.subject)
+                if (const auto pose = ViconTrack(other.ground_truth).poseAt(r.t))
+                    seen = mrpt::math::TPoint2D(pose->x, pose->y);
+        if (!seen || !robot) continue;
+        // predicted range and bearing of the subject from the robot's Vicon pose
+        const double dx = seen->x - robot->x, dy = seen->y - robot->y;
+        range.add(r.range - std::hypot(dx, dy));
+        bearing.add(mrpt::math::wrapToPi(r.bearing - (std::atan2(dy, dx) - robot->phi)));
     }
 }
 
@@ -213,13 +219,15 @@ TImportSummary MrclamImporter::run()
             if (!of_landmarks.empty()) {
                 writer.writeObservation(bearingRange(robotName(number) + "_RB", stamp,
                                                      of_landmarks, m_options.keep_ids));
-                addResiduals(k, of_landmarks, counts);
+                addResiduals(k, of_landmarks, counts.range_residual, counts.bearing_residual);
                 counts.measurements += of_landmarks.size();
                 counts.observations++;
             }
             if (!of_robots.empty()) {  // robots know each other's barcodes: ids always kept
                 writer.writeObservation(bearingRange(robotName(number) + "_ROBOTS", stamp,
                                                      of_robots, true));
+                addResiduals(k, of_robots, counts.robot_range_residual,
+                             counts.robot_bearing_residual);
                 counts.robot_readings += of_robots.size();
             }
         }
@@ -269,6 +277,14 @@ std::string TImportSummary::describe(const std::string& out_rawlog, double secon
             c.range_residual.mean(),
             c.range_residual.std(), mrpt::RAD2DEG(c.bearing_residual.mean()),
             mrpt::RAD2DEG(c.bearing_residual.std()), c.range_residual.n);
+    for (const auto& [number, c] : robots)
+        if (c.robot_range_residual.n > 0)
+            text += mrpt::format(
+                " R%d reading robots: residuals vs Vicon range %.3f +- %.3f m, bearing %.2f +- "
+                "%.2f deg (%zu readings).",
+                number, c.robot_range_residual.mean(), c.robot_range_residual.std(),
+                mrpt::RAD2DEG(c.robot_bearing_residual.mean()),
+                mrpt::RAD2DEG(c.robot_bearing_residual.std()), c.robot_range_residual.n);
     return text + mrpt::format(" Import took %.2f s.\n", seconds);
 }
 

@@ -39,6 +39,8 @@ struct TRobotCounts {
      *  reading's time) and of the landmark, over the landmark readings written: range [m] and
      *  bearing [rad] (wrapped to (−π, π]). */
     TRunningStats range_residual, bearing_residual;
+    /// The same over its readings of other robots (both robots' Vicon poses interpolated).
+    TRunningStats robot_range_residual, robot_bearing_residual;
 };
 
 /// Counts of an import, for the summary and the tests.
@@ -104,9 +106,9 @@ class MrclamImporter {
                                                      mrpt::Clock::time_point stamp,
                                                      const std::vector<TSubjectReading>& readings,
                                                      bool keep_ids) const;
-    /// Accumulates the residuals vs Vicon of robot k's landmark readings.
+    /// Accumulates the residuals vs Vicon of robot k's readings (of landmarks or of robots).
     void addResiduals(size_t k, const std::vector<TSubjectReading>& readings,
-                      TRobotCounts& counts) const;
+                      TRunningStats& range, TRunningStats& bearing) const;
 
     const TMrclamDataset& m_dataset;
     const TMrclamCommandLine& m_options;
