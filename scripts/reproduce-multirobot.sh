@@ -6,10 +6,11 @@
 #   2. Fig. 4(a): RMSE vs M in {1, 10, 50, 100, 200, 500, 1000, 1500, 2500} (2 robots, B = 8);
 #   3. Fig. 4(b): RMSE vs B in {1, 5, 10, 20} (2 robots, M = 500);
 #   4. the paper's proposal (pfStandardProposal) vs the shipped pfOptimalProposal, descriptor
-#      threshold E0 (0.25 vs 0.7) and the paper's R_t pixel sigmas (1, 10, 10) vs ours on team2;
+#      threshold E0 (0.25 vs 0.7) and the paper's R_t pixel sigmas (1, 10, 10) vs ours on team2,
+#      and RMSE vs B with the paper's sigmas;
 #   5. team3 without resample_per_robot, with the optimal proposal, and with the paper's sigmas.
 # Writes run folders, tables (*.txt) and plots (*.png) under out/reproduce-multirobot/ (or $OUT)
-# and prints markdown tables. Builds first (scripts/setup.sh). Takes about 50 min on one core.
+# and prints markdown tables. Builds first (scripts/setup.sh). Takes about 55 min on one core.
 # Environment: SEEDS (default 1 2 3 4 5), SWEEP_SEEDS for sections 2 and 3 (default 1 to 10), OUT.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -75,10 +76,11 @@ team_table team2 "$CONFIGS/office-team-2.ini" "$DATA/team2.rawlog" 2
 team_table team3 "$CONFIGS/office-team-3.ini" "$DATA/team3.rawlog" 3
 
 # --- 2./3. Fig. 4: RMSE (mean of both robots) vs M and vs B, both proposals --------------------
-sweep() {  # sweep NAME KEY PROPOSAL VALUES...: one series of rmse-vs-NAME.txt
+sweep() {  # sweep NAME KEY PROPOSAL VALUES...: one series of rmse-vs-NAME.txt (SWEEP_RAWLOG: team2)
   local name="$1" key="$2" proposal="$3"; shift 3
+  local rawlog="${SWEEP_RAWLOG:-$DATA/team2.rawlog}"
   echo
-  echo "### RMSE vs $name, $proposal (team2; mean of both robots; mean ± sd over seeds $SWEEP_SEEDS)"
+  echo "### RMSE vs $name, $proposal ($(basename "$(dirname "$rawlog")")/$(basename "$rawlog"); mean of both robots; mean ± sd over seeds $SWEEP_SEEDS)"
   echo
   echo "| $name | mean RMSE [m] | sd [m] | step [ms] |"
   echo "|---|---|---|---|"
@@ -88,7 +90,7 @@ sweep() {  # sweep NAME KEY PROPOSAL VALUES...: one series of rmse-vs-NAME.txt
     for seed in $SWEEP_SEEDS; do
       local res
       res=$(run "$OUT/$proposal-$name$value-seed$seed" "$CONFIGS/office-team-2.ini" \
-        "$DATA/team2.rawlog" --seed "$seed" --set "$key=$value" \
+        "$rawlog" --seed "$seed" --set "$key=$value" \
         --set "ParticleFilter.PF_algorithm=$proposal")
       mean_rmse "$res" >> "$OUT/sweep.tmp"; echo >> "$OUT/sweep.tmp"
       ms_sum=$(awk -v a="$ms_sum" -v b="${res##* }" 'BEGIN {print a + b}')
@@ -151,6 +153,12 @@ paper_sigma_rawlog() {  # paper_sigma_rawlog NAME ROBOTS: simulates and extracts
 }
 paper_sigma_rawlog team2 2
 variant "paper sigma 1/10/10" paper-sigma-run "$OUT/paper-sigma/team2.rawlog"
+# Fig. 4(b) once more with the paper's R_t, where one measurement carries less information
+: > "$OUT/rmse-vs-B-paper-sigma.txt"
+for proposal in pfOptimalProposal pfStandardProposal; do
+  SWEEP_RAWLOG="$OUT/paper-sigma/team2.rawlog" sweep B-paper-sigma \
+    MultiRobotVSLAM.max_observations_per_robot "$proposal" 1 5 10 20
+done
 
 # --- 5. team3 with the paper's R_t sigmas (1, 10, 10), and without resample_per_robot --------
 paper_sigma_rawlog team3 3
