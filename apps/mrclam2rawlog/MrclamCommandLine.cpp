@@ -70,7 +70,8 @@ TMrclamCommandLine TMrclamCommandLine::parse(int argc, const char* const* argv)
     TCLAP::SwitchArg keep_ids("", "keep-ids",
                               "landmarkID = subject number (default -1: identities hidden)", cmd);
     TCLAP::SwitchArg keep_robots("", "keep-robot-measurements",
-                                 "Keep the readings of other robots' barcodes (dropped by default)",
+                                 "Keep the readings of the other imported robots' barcodes, as R<n>_ROBOTS with "
+                                 "landmarkID = the seen robot (dropped by default)",
                                  cmd);
     TCLAP::ValueArg<double> std_range("", "std-range",
                                       "sensor_std_range of the observations [m] (default 0.20)",
