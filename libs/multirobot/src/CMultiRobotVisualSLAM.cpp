@@ -31,6 +31,27 @@ void requireKey(bool ok, const std::string& section, const char* key, const char
     if (!ok)
         throw std::invalid_argument("[" + section + "] " + key + ": " + what);
 }
+/// `<prefix>_std_range`, `<prefix>_std_bearing_deg`, `<prefix>_std_height`, each > 0.
+void loadNoise(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+               const std::string& prefix, TRangeBearingNoise& noise)
+{
+    noise.std_range = cfg.read_double(section, prefix + "_std_range", noise.std_range);
+    noise.std_bearing = mrpt::DEG2RAD(cfg.read_double(section, prefix + "_std_bearing_deg",
+                                                      mrpt::RAD2DEG(noise.std_bearing)));
+    noise.std_height = cfg.read_double(section, prefix + "_std_height", noise.std_height);
+    requireKey(noise.std_range > 0, section, (prefix + "_std_range").c_str(), "must be > 0");
+    requireKey(noise.std_bearing > 0, section, (prefix + "_std_bearing_deg").c_str(),
+               "must be > 0");
+    requireKey(noise.std_height > 0, section, (prefix + "_std_height").c_str(), "must be > 0");
+}
+
+void saveNoise(mrpt::config::CConfigFileBase& cfg, const std::string& section,
+               const std::string& prefix, const TRangeBearingNoise& noise)
+{
+    cfg.write(section, prefix + "_std_range", noise.std_range);
+    cfg.write(section, prefix + "_std_bearing_deg", mrpt::RAD2DEG(noise.std_bearing));
+    cfg.write(section, prefix + "_std_height", noise.std_height);
+}
 }  // namespace
 
 void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
@@ -43,17 +64,9 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
     }
     MRPT_LOAD_CONFIG_VAR(landmarks_suffix, string, cfg, section);
     MRPT_LOAD_CONFIG_VAR(range_bearing_suffix, string, cfg, section);
-    auto& rb = range_bearing_noise;
-    rb.std_range = cfg.read_double(section, "range_bearing_std_range", rb.std_range);
-    rb.std_bearing = mrpt::DEG2RAD(cfg.read_double(section, "range_bearing_std_bearing_deg",
-                                                   mrpt::RAD2DEG(rb.std_bearing)));
-    rb.std_height = cfg.read_double(section, "range_bearing_std_height", rb.std_height);
+    loadNoise(cfg, section, "range_bearing", range_bearing_noise);
     MRPT_LOAD_CONFIG_VAR(robot_readings_suffix, string, cfg, section);
-    auto& rr = robot_reading_noise;
-    rr.std_range = cfg.read_double(section, "robot_reading_std_range", rr.std_range);
-    rr.std_bearing = mrpt::DEG2RAD(cfg.read_double(section, "robot_reading_std_bearing_deg",
-                                                   mrpt::RAD2DEG(rr.std_bearing)));
-    rr.std_height = cfg.read_double(section, "robot_reading_std_height", rr.std_height);
+    loadNoise(cfg, section, "robot_reading", robot_reading_noise);
     if (cfg.keyExists(section, "robot_reading_ids")) {
         robot_reading_ids.clear();
         std::vector<std::string> ids;
@@ -97,12 +110,6 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
         requireKey(std::count(robot_reading_ids.begin(), robot_reading_ids.end(),
                               robot_reading_ids[i]) == 1,
                    section, "robot_reading_ids", "must not repeat an id");
-    requireKey(rr.std_range > 0, section, "robot_reading_std_range", "must be > 0");
-    requireKey(rr.std_bearing > 0, section, "robot_reading_std_bearing_deg", "must be > 0");
-    requireKey(rr.std_height > 0, section, "robot_reading_std_height", "must be > 0");
-    requireKey(rb.std_range > 0, section, "range_bearing_std_range", "must be > 0");
-    requireKey(rb.std_bearing > 0, section, "range_bearing_std_bearing_deg", "must be > 0");
-    requireKey(rb.std_height > 0, section, "range_bearing_std_height", "must be > 0");
     requireKey(max_observations_per_robot >= 1, section, "max_observations_per_robot",
                "must be >= 1");
     requireKey(min_motion_std_xy > 0, section, "min_motion_std_xy", "must be > 0");
@@ -119,17 +126,12 @@ void CMultiRobotVisualSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     cfg.write(section, "robots", names);
     cfg.write(section, "landmarks_suffix", landmarks_suffix);
     cfg.write(section, "range_bearing_suffix", range_bearing_suffix);
-    cfg.write(section, "range_bearing_std_range", range_bearing_noise.std_range);
-    cfg.write(section, "range_bearing_std_bearing_deg", mrpt::RAD2DEG(range_bearing_noise.std_bearing));
-    cfg.write(section, "range_bearing_std_height", range_bearing_noise.std_height);
+    saveNoise(cfg, section, "range_bearing", range_bearing_noise);
     cfg.write(section, "robot_readings_suffix", robot_readings_suffix);
     std::string ids;
     for (const int id : robot_reading_ids) ids += (ids.empty() ? "" : " ") + std::to_string(id);
     cfg.write(section, "robot_reading_ids", ids);
-    cfg.write(section, "robot_reading_std_range", robot_reading_noise.std_range);
-    cfg.write(section, "robot_reading_std_bearing_deg",
-              mrpt::RAD2DEG(robot_reading_noise.std_bearing));
-    cfg.write(section, "robot_reading_std_height", robot_reading_noise.std_height);
+    saveNoise(cfg, section, "robot_reading", robot_reading_noise);
     cfg.write(section, "max_observations_per_robot", max_observations_per_robot);
     cfg.write(section, "min_motion_std_xy", min_motion_std_xy);
     cfg.write(section, "min_motion_std_phi_deg", mrpt::RAD2DEG(min_motion_std_phi));

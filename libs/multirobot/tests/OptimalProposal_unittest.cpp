@@ -117,6 +117,29 @@ struct TRobotReadingCase {
     }
 };
 
+/** One step of `filter` (the framework's resampling not called); returns the first robot's
+ *  prior covariance: its odometry's plus the filter's floor. */
+Eigen::Matrix3d stepWithoutResampling(CMultiRobotVisualSLAM& filter,
+                                      const mrpt::obs::CActionCollection& acts,
+                                      const mrpt::obs::CSensoryFrame& sf,
+                                      mrpt::bayes::CParticleFilter::TParticleFilterAlgorithm algorithm)
+{
+    mrpt::bayes::CParticleFilter::TParticleFilterOptions opts;
+    opts.PF_algorithm = algorithm;
+    filter.prediction_and_update(&acts, &sf, opts);
+
+    mrpt::math::CMatrixDouble33 cov;
+    mrpt::poses::CPose2D mean;
+    acts.getActionByClass<mrpt::obs::CActionRobotMovement2D>()->poseChange->getCovarianceAndMean(
+        cov, mean);
+    Eigen::Matrix3d prior_cov = cov.asEigen();
+    prior_cov.diagonal() +=
+        Eigen::Vector3d(filter.options.min_motion_std_xy, filter.options.min_motion_std_xy,
+                        filter.options.min_motion_std_phi)
+            .cwiseAbs2();
+    return prior_cov;
+}
+
 /// Runs one step of the filter (M particles at the origin, all holding the landmark).
 CMultiRobotVisualSLAM runOneStep(const TOneMeasurementCase& c,
                                  mrpt::bayes::CParticleFilter::TParticleFilterAlgorithm algorithm,
@@ -138,18 +161,7 @@ CMultiRobotVisualSLAM runOneStep(const TOneMeasurementCase& c,
     acts.insert(c.action());
     mrpt::obs::CSensoryFrame sf;
     sf.insert(c.observation());
-    mrpt::bayes::CParticleFilter::TParticleFilterOptions opts;
-    opts.PF_algorithm = algorithm;
-    filter.prediction_and_update(&acts, &sf, opts);  // no resampling
-
-    mrpt::math::CMatrixDouble33 cov;
-    mrpt::poses::CPose2D mean;
-    c.action().poseChange->getCovarianceAndMean(cov, mean);
-    prior_cov = cov.asEigen();
-    prior_cov.diagonal() +=
-        Eigen::Vector3d(filter.options.min_motion_std_xy, filter.options.min_motion_std_xy,
-                        filter.options.min_motion_std_phi)
-            .cwiseAbs2();
+    prior_cov = stepWithoutResampling(filter, acts, sf, algorithm);
     return filter;
 }
 
@@ -170,18 +182,7 @@ CMultiRobotVisualSLAM runRobotReadingStep(
     acts.insert(noiseOnly(0.01, 0.01));  // R2 moves after R1's reading: no effect on it
     mrpt::obs::CSensoryFrame sf;
     sf.insert(c.observation());
-    mrpt::bayes::CParticleFilter::TParticleFilterOptions opts;
-    opts.PF_algorithm = algorithm;
-    filter.prediction_and_update(&acts, &sf, opts);  // no resampling
-
-    mrpt::math::CMatrixDouble33 cov;
-    mrpt::poses::CPose2D mean;
-    noiseOnly(c.std_xy, c.std_phi).poseChange->getCovarianceAndMean(cov, mean);
-    prior_cov = cov.asEigen();
-    prior_cov.diagonal() +=
-        Eigen::Vector3d(filter.options.min_motion_std_xy, filter.options.min_motion_std_xy,
-                        filter.options.min_motion_std_phi)
-            .cwiseAbs2();
+    prior_cov = stepWithoutResampling(filter, acts, sf, algorithm);
     return filter;
 }
 
