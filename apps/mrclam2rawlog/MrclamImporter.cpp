@@ -99,18 +99,18 @@ mrpt::obs::CObservationBearingRange MrclamImporter::bearingRange(
 }
 
 void MrclamImporter::addResiduals(size_t k, const std::vector<TSubjectReading>& readings,
-                                  TRunningStats& range, TRunningStats& bearing) const
+                                  const std::vector<ViconTrack>& vicon, TRunningStats& range,
+                                  TRunningStats& bearing) const
 {
-    const ViconTrack vicon(m_dataset.robots[k].ground_truth);
     for (const TSubjectReading& r : readings) {
-        const std::optional<mrpt::math::TPose2D> robot = vicon.poseAt(r.t);
+        const std::optional<mrpt::math::TPose2D> robot = vicon[k].poseAt(r.t);
         std::optional<mrpt::math::TPoint2D> seen;
         if (const auto landmark = m_dataset.landmarks.find(r.subject);
             landmark != m_dataset.landmarks.end())
             seen = landmark->second;
-        for (const TMrclamRobot& other : m_dataset.robots)
-            if (other.number == r.subject)
-                if (const auto pose = ViconTrack(other.ground_truth).poseAt(r.t))
+        for (size_t j = 0; j < m_dataset.robots.size(); j++)
+            if (m_dataset.robots[j].number == r.subject)
+                if (const auto pose = vicon[j].poseAt(r.t))
                     seen = mrpt::math::TPoint2D(pose->x, pose->y);
         if (!seen || !robot) continue;
         // predicted range and bearing of the subject from the robot's Vicon pose
@@ -219,14 +219,15 @@ TImportSummary MrclamImporter::run()
             if (!of_landmarks.empty()) {
                 writer.writeObservation(bearingRange(robotName(number) + "_RB", stamp,
                                                      of_landmarks, m_options.keep_ids));
-                addResiduals(k, of_landmarks, counts.range_residual, counts.bearing_residual);
+                addResiduals(k, of_landmarks, vicon, counts.range_residual,
+                             counts.bearing_residual);
                 counts.measurements += of_landmarks.size();
                 counts.observations++;
             }
             if (!of_robots.empty()) {  // robots know each other's barcodes: ids always kept
                 writer.writeObservation(bearingRange(robotName(number) + "_ROBOTS", stamp,
                                                      of_robots, true));
-                addResiduals(k, of_robots, counts.robot_range_residual,
+                addResiduals(k, of_robots, vicon, counts.robot_range_residual,
                              counts.robot_bearing_residual);
                 counts.robot_readings += of_robots.size();
             }

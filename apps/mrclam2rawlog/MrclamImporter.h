@@ -13,6 +13,8 @@
 
 namespace mrpt_vslam::mrclam {
 
+class ViconTrack;
+
 /// Mean and standard deviation of a series, accumulated one value at a time.
 struct TRunningStats {
     size_t n = 0;
@@ -106,9 +108,11 @@ class MrclamImporter {
                                                      mrpt::Clock::time_point stamp,
                                                      const std::vector<TSubjectReading>& readings,
                                                      bool keep_ids) const;
-    /// Accumulates the residuals vs Vicon of robot k's readings (of landmarks or of robots).
+    /// Accumulates the residuals vs Vicon of robot k's readings (of landmarks or of robots);
+    /// `vicon` holds the tracks of m_dataset.robots, in order.
     void addResiduals(size_t k, const std::vector<TSubjectReading>& readings,
-                      TRunningStats& range, TRunningStats& bearing) const;
+                      const std::vector<ViconTrack>& vicon, TRunningStats& range,
+                      TRunningStats& bearing) const;
 
     const TMrclamDataset& m_dataset;
     const TMrclamCommandLine& m_options;

@@ -45,6 +45,16 @@ void loadNoise(const mrpt::config::CConfigFileBase& cfg, const std::string& sect
     requireKey(noise.std_height > 0, section, (prefix + "_std_height").c_str(), "must be > 0");
 }
 
+/** log p(reading | both poses of a particle): the Gaussian of the point's offset from the seen
+ *  robot, covariance S (the reading's, plus H Σ Hᵀ in the optimal proposal). */
+double robotReadingLogLikelihood(const Eigen::Vector3d& offset, const Eigen::Matrix3d& S)
+{
+    const Cholesky3 L(S);
+    if (!L.ok)
+        throw std::runtime_error("a robot reading has a covariance that is not positive definite");
+    return L.logGaussian(L.whiten(offset).squaredNorm());
+}
+
 void saveNoise(mrpt::config::CConfigFileBase& cfg, const std::string& section,
                const std::string& prefix, const TRangeBearingNoise& noise)
 {
@@ -257,15 +267,6 @@ std::vector<CMultiRobotVisualSLAM::TRobotReading> CMultiRobotVisualSLAM::robotRe
         if (seen != ids.end() && j != k) readings.push_back({j, m});
     }
     return readings;
-}
-
-double CMultiRobotVisualSLAM::robotReadingLogLikelihood(const Eigen::Vector3d& offset,
-                                                        const Eigen::Matrix3d& S)
-{
-    const Cholesky3 L(S);
-    if (!L.ok)
-        throw std::runtime_error("a robot reading has a covariance that is not positive definite");
-    return -0.5 * (3 * std::log(2 * M_PI) + L.logDet() + L.whiten(offset).squaredNorm());
 }
 
 void CMultiRobotVisualSLAM::weighRobotReadings(size_t k, const std::vector<TRobotReading>& readings)

@@ -87,7 +87,6 @@ std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     // equal E (no descriptors, as in range-bearing data: all E = 0) the smallest D.
     std::optional<TAssociation> best;
     float best_E = 0;
-    double best_log_det = 0;
     for (const auto& c : candidates.candidates) {
         if (best && c.E > best_E) break;
         const TVisualLandmark* lm = m_store.find(c.id);
@@ -99,11 +98,9 @@ std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
                                                ": innovation covariance not positive definite");
         const double D = L.whiten(m.z - lm->mean).squaredNorm();  // Eq. 15
         if (!(D <= insertionOptions.D0) || (best && D >= best->D)) continue;  // line 28
-        best = TAssociation{c.id, D, 0};
+        best = TAssociation{c.id, D, L.logGaussian(D)};  // Eq. 13
         best_E = c.E;
-        best_log_det = L.logDet();
     }
-    if (best) best->log_likelihood = -0.5 * (3 * std::log(2 * M_PI) + best_log_det + best->D);  // Eq. 13
     return best;
 }
 

@@ -144,10 +144,6 @@ private:
     /// Robot k's readings of the other robots of the team (`<ROBOT>_ROBOTS`); others dropped.
     std::vector<TRobotReading> robotReadingsOf(size_t k,
                                                const mrpt::obs::CSensoryFrame& frame) const;
-    /** log p(reading | both poses of the particle): the Gaussian of the point's offset from
-     *  the seen robot, covariance S (the reading's, plus H Σ Hᵀ in the optimal proposal). */
-    static double robotReadingLogLikelihood(const Eigen::Vector3d& offset,
-                                            const Eigen::Matrix3d& S);
     /// pfStandardProposal: multiplies each particle's weight by its robot readings' likelihood.
     void weighRobotReadings(size_t k, const std::vector<TRobotReading>& readings);
     Eigen::Vector3d drawGaussian(const Eigen::Matrix3d& L);

@@ -35,6 +35,8 @@ struct Cholesky3 {
         return L;
     }
     double logDet() const { return 2 * (std::log(l00) + std::log(l11) + std::log(l22)); }
+    /// log N(v; 0, Z) of a v whose squared Mahalanobis distance vᵀ Z⁻¹ v is D
+    double logGaussian(double D) const { return -0.5 * (3 * std::log(2 * M_PI) + logDet() + D); }
     /// Z⁻¹ = L⁻ᵀ L⁻¹
     Eigen::Matrix3d inverse() const
     {
