@@ -347,12 +347,19 @@ std::vector<TPose2D> CMultiRobotVisualSLAM::posesOf(size_t k) const
 void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandmarkMeasurement>& z)
 {
     auto candidates = searchCandidates(posesOf(k), 0, 0, z);
+    const bool joint = m_template.insertionOptions.joint_association;
+    std::vector<TMapMeasurement> in_map(z.size());
+    std::vector<std::optional<CVisualLandmarksMap::TAssociation>> assoc;
     // Alg. 1 lines 18-46, particle by particle so that its landmarks stay in the cache
     for (auto& p : m_particles) {
         const TPlanarTransform pose(p.d->poses[k]);
+        for (size_t j = 0; j < z.size(); j++) in_map[j] = toMapFrame(z[j], pose);
+        if (joint) assoc = p.d->map.associateJointly(in_map, candidates);
         for (size_t j = 0; j < z.size(); j++) {
-            const TFusionResult r = p.d->map.fuse(z[j], toMapFrame(z[j], pose), candidates[j],
-                                                  static_cast<unsigned>(k));
+            const auto k32 = static_cast<unsigned>(k);
+            const TFusionResult r =
+                joint ? p.d->map.fuseAs(z[j], in_map[j], candidates[j], k32, assoc[j])
+                      : p.d->map.fuse(z[j], in_map[j], candidates[j], k32);
             p.log_w += r.log_w;  // line 44 and line 11: the product over the team
             p.d->accumulated_log_w += r.log_w;
             (r.created ? lastStepStats.created : lastStepStats.associated)++;
@@ -372,7 +379,9 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const TMotionGaussian& moti
                          3 * std::sqrt(motion.cov(2, 2)), z);
 
     std::vector<std::optional<CVisualLandmarksMap::TAssociation>> assoc(z.size());
+    std::vector<TMapMeasurement> gated(z.size());
     std::vector<uint32_t> taken;
+    const bool joint = m_template.insertionOptions.joint_association;
     for (size_t i = 0; i < m_particles.size(); i++) {
         auto& p = *m_particles[i].d;
         // prior N(x̂, J C Jᵀ), J the rotation of the increment into the map frame
@@ -408,17 +417,25 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const TMotionGaussian& moti
         };
         double log_w = 0;
         taken.clear();
+        if (joint) {  // every point against the prior, then the updates one by one
+            for (size_t j = 0; j < z.size(); j++) gated[j] = linearize(z[j]);
+            assoc = p.map.associateJointly(gated, candidates);
+        }
         for (size_t j = 0; j < z.size(); j++) {
-            const TMapMeasurement gated = linearize(z[j]);
-            assoc[j] = p.map.associate(gated, candidates[j], &taken);
+            gated[j] = linearize(z[j]);
+            if (!joint) {
+                assoc[j] = p.map.associate(gated[j], candidates[j], &taken);
+                if (assoc[j]) taken.push_back(assoc[j]->id);
+            } else if (assoc[j]) {  // p(z_j | z_1..z_{j-1}) for the weight
+                assoc[j] = p.map.evaluate(gated[j], assoc[j]->id);
+            }
             if (!assoc[j]) {
                 log_w += std::log(p.map.insertionOptions.p0);  // line 36
                 continue;
             }
-            taken.push_back(assoc[j]->id);
             log_w += assoc[j]->log_likelihood;
             const TVisualLandmark& lm = *p.map.landmark(assoc[j]->id);
-            correct(gated.z - lm.mean, lm.cov + gated.R);
+            correct(gated[j].z - lm.mean, lm.cov + gated[j].R);
         }
         for (const auto& r : readings) {  // the seen robot's pose is exact in this particle
             const TMapMeasurement w = linearize(r.m);

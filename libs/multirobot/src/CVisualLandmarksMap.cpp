@@ -3,6 +3,7 @@
 #include <mrpt/opengl/CPointCloudColoured.h>
 #include <mrpt/opengl/CSetOfObjects.h>
 #include <mrpt_vslam/core/AtomicFile.h>
+#include <mrpt_vslam/core/HungarianAssignment.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/multirobot/CVisualLandmarksMap.h>
 #include <mrpt_vslam/multirobot/Cholesky3.h>
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <bitset>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 using mrpt_vslam::multirobot::CVisualLandmarksMap;
@@ -78,6 +80,18 @@ TMeasurementCandidates CVisualLandmarksMap::findCandidates(const TLandmarkMeasur
 }
 
 
+CVisualLandmarksMap::TAssociation CVisualLandmarksMap::evaluate(const TMapMeasurement& m,
+                                                                uint32_t id) const
+{
+    const TVisualLandmark* lm = m_store.find(id);
+    if (!lm) throw std::invalid_argument("landmark " + std::to_string(id) + " is not in the map");
+    const Cholesky3 L(lm->cov + m.R);  // Eq. 6-8
+    if (!L.ok) throw std::invalid_argument("landmark " + std::to_string(id) +
+                                           ": innovation covariance not positive definite");
+    const double D = L.whiten(m.z - lm->mean).squaredNorm();  // Eq. 15
+    return TAssociation{id, D, L.logGaussian(D)};             // Eq. 13
+}
+
 std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     const TMapMeasurement& m, const TMeasurementCandidates& candidates,
     const std::vector<uint32_t>* excluded) const
@@ -89,19 +103,55 @@ std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     float best_E = 0;
     for (const auto& c : candidates.candidates) {
         if (best && c.E > best_E) break;
-        const TVisualLandmark* lm = m_store.find(c.id);
-        if (!lm || (excluded && std::find(excluded->begin(), excluded->end(), c.id) !=
-                                    excluded->end()))
+        if (!m_store.find(c.id) || (excluded && std::find(excluded->begin(), excluded->end(),
+                                                          c.id) != excluded->end()))
             continue;
-        const Cholesky3 L(lm->cov + m.R);  // Eq. 6-8
-        if (!L.ok) throw std::invalid_argument("landmark " + std::to_string(c.id) +
-                                               ": innovation covariance not positive definite");
-        const double D = L.whiten(m.z - lm->mean).squaredNorm();  // Eq. 15
-        if (!(D <= insertionOptions.D0) || (best && D >= best->D)) continue;  // line 28
-        best = TAssociation{c.id, D, L.logGaussian(D)};  // Eq. 13
+        const TAssociation a = evaluate(m, c.id);
+        if (!(a.D <= insertionOptions.D0) || (best && a.D >= best->D)) continue;  // line 28
+        best = a;
         best_E = c.E;
     }
     return best;
+}
+
+std::vector<std::optional<CVisualLandmarksMap::TAssociation>>
+CVisualLandmarksMap::associateJointly(const std::vector<TMapMeasurement>& m,
+                                      const std::vector<TMeasurementCandidates>& candidates) const
+{
+    if (m.size() != candidates.size())
+        throw std::invalid_argument("associateJointly(): one candidate list per point needed");
+    // columns: the candidates of any point that this map holds
+    std::vector<uint32_t> ids;
+    for (const auto& c : candidates)
+        for (const auto& l : c.candidates)
+            if (m_store.find(l.id)) ids.push_back(l.id);
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+
+    constexpr double kForbidden = std::numeric_limits<double>::infinity();
+    Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(m.size()),
+                                                     static_cast<Eigen::Index>(ids.size()),
+                                                     kForbidden);
+    std::vector<std::vector<TAssociation>> pairs(m.size());
+    for (size_t j = 0; j < m.size(); j++)
+        for (const auto& l : candidates[j].candidates) {
+            if (!m_store.find(l.id)) continue;
+            const TAssociation a = evaluate(m[j], l.id);
+            if (!(a.D <= insertionOptions.D0)) continue;  // the gate of Alg. 1 line 27
+            const auto col = std::lower_bound(ids.begin(), ids.end(), l.id) - ids.begin();
+            cost(static_cast<Eigen::Index>(j), col) = -a.log_likelihood;
+            pairs[j].push_back(a);
+        }
+    const auto assignment =
+        core::solveHungarianAssignment(cost, -std::log(insertionOptions.p0));
+    std::vector<std::optional<TAssociation>> out(m.size());
+    for (size_t j = 0; j < m.size(); j++) {
+        const int col = assignment.row_to_col[j];
+        if (col < 0) continue;
+        for (const auto& a : pairs[j])
+            if (a.id == ids[static_cast<size_t>(col)]) out[j] = a;
+    }
+    return out;
 }
 
 TFusionResult CVisualLandmarksMap::fuse(const TLandmarkMeasurement& m, const TMapMeasurement& in_map,

@@ -23,6 +23,7 @@ void CVisualLandmarksMap::TInsertionOptions::loadFromConfigFile(
     MRPT_LOAD_CONFIG_VAR(p0, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(search_radius, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(grid_cell_size, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(joint_association, bool, cfg, section);
     requireKey(D0 > 0 && std::isfinite(D0), section, "D0", "must be finite and > 0");
     requireKey(E0 >= 0 && E0 <= 4, section, "E0",
                "must be in [0, 4] (squared distance of unit descriptors)");
@@ -41,6 +42,7 @@ void CVisualLandmarksMap::TInsertionOptions::dumpToTextStream(std::ostream& out)
     LOADABLEOPTS_DUMP_VAR(p0, double);
     LOADABLEOPTS_DUMP_VAR(search_radius, double);
     LOADABLEOPTS_DUMP_VAR(grid_cell_size, double);
+    LOADABLEOPTS_DUMP_VAR(joint_association, bool);
 }
 
 void CVisualLandmarksMap::TRenderOptions::loadFromConfigFile(

@@ -3,14 +3,15 @@
 
 namespace mrpt_vslam::multirobot {
 
-uint8_t CVisualLandmarksMap::serializeGetVersion() const { return 1; }
+uint8_t CVisualLandmarksMap::serializeGetVersion() const { return 2; }
 
 void CVisualLandmarksMap::serializeTo(mrpt::serialization::CArchive& out) const
 {
     out << genericMapParams;
     // Options travel with the map: CMultiMetricMap copies (particle resampling) serialize it.
     const auto& io = insertionOptions;
-    out << io.D0 << io.E0 << io.p0 << io.search_radius << io.grid_cell_size;
+    out << io.D0 << io.E0 << io.p0 << io.search_radius << io.grid_cell_size
+        << io.joint_association;
     out << renderOptions.draw_ellipsoids << renderOptions.ellipsoid_quantiles
         << renderOptions.point_size;
     out << static_cast<uint32_t>(m_store.size());
@@ -27,10 +28,12 @@ void CVisualLandmarksMap::serializeTo(mrpt::serialization::CArchive& out) const
 
 void CVisualLandmarksMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
 {
-    if (version > 1) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+    if (version > 2) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
     in >> genericMapParams;
     auto& io = insertionOptions;
     in >> io.D0 >> io.E0 >> io.p0 >> io.search_radius >> io.grid_cell_size;
+    io.joint_association = false;
+    if (version >= 2) in >> io.joint_association;  // version 2
     in >> renderOptions.draw_ellipsoids >> renderOptions.ellipsoid_quantiles >>
         renderOptions.point_size;
     if (!(io.grid_cell_size > 0)) THROW_EXCEPTION("CVisualLandmarksMap: invalid grid cell size");

@@ -9,6 +9,9 @@
 #include <mrpt_vslam/test/ScratchFolder.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <functional>
+#include <limits>
 #include <random>
 
 using namespace mrpt_vslam::multirobot;
@@ -144,6 +147,112 @@ TEST(CVisualLandmarksMap, EkfUpdateAndWeightMatchTheCameraFrameEquations)
     EXPECT_LT((map.landmarks().find(id)->cov - Sigma).norm(), 1e-12);
 }
 
+/// The points of a frame in the map frame (robot at the origin) and their shared candidates.
+struct TFrame {
+    std::vector<TMapMeasurement> in_map;
+    std::vector<TMeasurementCandidates> candidates;
+};
+TFrame frameOf(const CVisualLandmarksMap& map, const std::vector<TLandmarkMeasurement>& z)
+{
+    TFrame f;
+    for (const auto& m : z) {
+        f.in_map.push_back(toMapFrame(m, {0, 0, 0}));
+        f.candidates.push_back(map.findCandidates(m, f.in_map.back()));
+    }
+    return f;
+}
+
+TEST(CVisualLandmarksMap, JointAssociationKeepsTwoNearbyLandmarksApart)
+{
+    // Two posts 0.2 m apart, read in one frame at y = 0.12 and y = 0.3 (σ 0.05 m). One by one,
+    // the first reading takes the nearer post B and the second finds B taken and A outside its
+    // gate: a new landmark. Jointly: first → A, second → B, no new landmark.
+    CVisualLandmarksMap map;
+    map.insertionOptions.E0 = 4;  // descriptors play no part here
+    const uint32_t a = map.addLandmark(landmarkAt({2, 0, 1}, 0.01), unitDescriptor(1));
+    const uint32_t b = map.addLandmark(landmarkAt({2, 0.2, 1}, 0.01), unitDescriptor(1));
+    const auto f = frameOf(map, {measurement({2, 0.12, 1}, 0.05, 1),
+                                 measurement({2, 0.3, 1}, 0.05, 1)});
+
+    std::vector<uint32_t> taken;
+    const auto first = map.associate(f.in_map[0], f.candidates[0], &taken);
+    ASSERT_TRUE(first);
+    EXPECT_EQ(first->id, b);
+    taken.push_back(first->id);
+    EXPECT_FALSE(map.associate(f.in_map[1], f.candidates[1], &taken)) << "A is outside its gate";
+
+    const auto joint = map.associateJointly(f.in_map, f.candidates);
+    ASSERT_EQ(joint.size(), 2u);
+    ASSERT_TRUE(joint[0] && joint[1]);
+    EXPECT_EQ(joint[0]->id, a);
+    EXPECT_EQ(joint[1]->id, b);
+    const auto direct = map.evaluate(f.in_map[0], a);
+    EXPECT_DOUBLE_EQ(joint[0]->log_likelihood, direct.log_likelihood);
+    EXPECT_DOUBLE_EQ(joint[0]->D, direct.D);
+}
+
+TEST(CVisualLandmarksMap, JointAssociationMatchesBruteForce)
+{
+    // Random frames of 1-4 points among 1-5 landmarks: the joint association maximizes the sum
+    // of log N(v; 0, Z) over gated pairs plus log p0 per new landmark, each landmark used once;
+    // checked against enumerating every such assignment.
+    std::mt19937 gen(7);
+    std::uniform_real_distribution<double> u(-0.4, 0.4);
+    for (int trial = 0; trial < 300; trial++) {
+        CVisualLandmarksMap map;
+        map.insertionOptions.E0 = 4;
+        map.insertionOptions.p0 = 20 * (1 + trial % 3);
+        const int n_landmarks = 1 + trial % 5, n_points = 1 + (trial / 5) % 4;
+        std::vector<uint32_t> ids;
+        for (int l = 0; l < n_landmarks; l++)
+            ids.push_back(map.addLandmark(landmarkAt({2 + u(gen), u(gen), 1}, 0.03),
+                                          unitDescriptor(1)));
+        std::vector<TLandmarkMeasurement> z;
+        for (int j = 0; j < n_points; j++)
+            z.push_back(measurement({2 + u(gen), u(gen), 1 + 0.1 * u(gen)}, 0.1, 1));
+        const auto f = frameOf(map, z);
+
+        // brute force: every landmark (or none) for each point, no landmark twice
+        double best = -std::numeric_limits<double>::infinity();
+        std::vector<int> choice(z.size(), -1);
+        std::function<void(size_t, double)> enumerate = [&](size_t j, double sum) {
+            if (j == z.size()) {
+                best = std::max(best, sum);
+                return;
+            }
+            choice[j] = -1;
+            enumerate(j + 1, sum + std::log(map.insertionOptions.p0));
+            for (int l = 0; l < n_landmarks; l++) {
+                if (std::find(choice.begin(), choice.begin() + static_cast<long>(j), l) !=
+                    choice.begin() + static_cast<long>(j))
+                    continue;
+                const auto a = map.evaluate(f.in_map[j], ids[static_cast<size_t>(l)]);
+                if (a.D > map.insertionOptions.D0) continue;
+                choice[j] = l;
+                enumerate(j + 1, sum + a.log_likelihood);
+            }
+            choice[j] = -1;
+        };
+        enumerate(0, 0);
+
+        const auto joint = map.associateJointly(f.in_map, f.candidates);
+        ASSERT_EQ(joint.size(), z.size());
+        double sum = 0;
+        std::vector<uint32_t> used;
+        for (size_t j = 0; j < z.size(); j++) {
+            if (!joint[j]) {
+                sum += std::log(map.insertionOptions.p0);
+                continue;
+            }
+            EXPECT_LE(joint[j]->D, map.insertionOptions.D0);
+            EXPECT_EQ(std::count(used.begin(), used.end(), joint[j]->id), 0) << "used twice";
+            used.push_back(joint[j]->id);
+            sum += joint[j]->log_likelihood;
+        }
+        EXPECT_NEAR(sum, best, 1e-9) << "trial " << trial;
+    }
+}
+
 TEST(CVisualLandmarksMap, SerializesCreatesFromIniAndWritesMapTxt)
 {
     mrpt::config::CConfigFileMemory ini(R"(
@@ -155,6 +264,7 @@ E0 = 0.3
 p0 = 0.2
 search_radius = 2.0
 grid_cell_size = 0.5
+joint_association = true
 [Map_visualLandmarksMap_00_renderOpts]
 draw_ellipsoids = false
 )");
@@ -165,6 +275,7 @@ draw_ellipsoids = false
     ASSERT_TRUE(map);
     EXPECT_DOUBLE_EQ(map->insertionOptions.D0, 9.0);
     EXPECT_DOUBLE_EQ(map->insertionOptions.E0, 0.3);
+    EXPECT_TRUE(map->insertionOptions.joint_association);
     EXPECT_DOUBLE_EQ(map->descriptorPool().cellSize(), 0.5);
     for (int i = 0; i < 20; i++)
         fuseAtOrigin(*map, measurement({2.0 + i * 0.3, 0.1 * i, 1}, 0.05, 100 + i), i % 2);
@@ -181,6 +292,7 @@ draw_ellipsoids = false
     ASSERT_TRUE(read);
     ASSERT_EQ(read->size(), 20u);
     EXPECT_DOUBLE_EQ(read->insertionOptions.p0, 0.2);
+    EXPECT_TRUE(read->insertionOptions.joint_association);
     map->landmarks().forEach([&](uint32_t id, const TVisualLandmark& lm) {
         const auto* r = read->landmarks().find(id);
         ASSERT_NE(r, nullptr);

@@ -38,7 +38,8 @@ namespace mrpt_vslam::multirobot {
  *   2. keep its B nearest measurements (Sec. 6.2) and, for each one, search the shared pool
  *      for candidates once (E ≤ E0 near the point, radius widened by the particles' spread);
  *   3. particle by particle (its landmarks stay in the cache), fuse the measurements one
- *      after the other (CVisualLandmarksMap::fuse(): D0 gate, min E, EKF or new landmark) and
+ *      after the other (CVisualLandmarksMap::fuse(): D0 gate, min E, EKF or new landmark; with
+ *      the map's joint_association, associated all at once first by associateJointly()) and
  *      multiply its weight by ω (Eq. 13) or p0; the weights of the K robots multiply (line 11).
  *      The candidates are searched before the frame is fused, so two points of one frame never
  *      become one landmark;

@@ -70,6 +70,9 @@ public:
         double search_radius = 1.5;
         /// Edge of the cells of the descriptor pool's spatial hash [m].
         double grid_cell_size = 1.0;
+        /// Associate the points of one frame jointly (associateJointly(), ours) instead of
+        /// one by one (associate(), the paper's Alg. 1).
+        bool joint_association = false;
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                 const std::string& section) override;
@@ -120,6 +123,15 @@ public:
     std::optional<TAssociation> associate(const TMapMeasurement& m,
                                           const TMeasurementCandidates& candidates,
                                           const std::vector<uint32_t>* excluded = nullptr) const;
+    /** The associations of all points of one frame and robot at once (ours, doc/multirobot.md
+     *  §3): the assignment of the points to distinct landmarks, or to new ones, of largest
+     *  likelihood, N(v; 0, Z) per pair inside the gates (D ≤ D0, E ≤ E0) and p0 per new
+     *  landmark (Alg. 1 line 36), by the Hungarian method. Returns one entry per point. */
+    std::vector<std::optional<TAssociation>> associateJointly(
+        const std::vector<TMapMeasurement>& m,
+        const std::vector<TMeasurementCandidates>& candidates) const;
+    /// D and log N(v; 0, Z) of the measurement against landmark `id` of this map, ungated.
+    TAssociation evaluate(const TMapMeasurement& m, uint32_t id) const;
     /// The landmark with this id (nullptr if this map does not hold it).
     const TVisualLandmark* landmark(uint32_t id) const { return m_store.find(id); }
     /** Steps 3-4 for one measurement: association, EKF update or creation, weight.
