@@ -177,6 +177,10 @@ TEST_F(TinyDataset, WritesTheStepContract)
             "readings).",
             4.0 - std::hypot(dx, dy), (-0.5 - (std::atan2(dy, dx) - 0.5)) * 180 / M_PI);
     EXPECT_NE(r.out.find(residuals), std::string::npos) << residuals << "\n" << r.out;
+    // ... binned by its true range (4.8 m)
+    const std::string by_range = fmt(" Range residual by true range: 4-5 m %.3f +- 0.000 (1).",
+                                     4.0 - std::hypot(dx, dy));
+    EXPECT_NE(r.out.find(residuals + by_range), std::string::npos) << by_range << "\n" << r.out;
 
     // The observation sequence, label by label.
     const auto obs = readObservations(out("a.rawlog"));

@@ -100,7 +100,8 @@ mrpt::obs::CObservationBearingRange MrclamImporter::bearingRange(
 
 void MrclamImporter::addResiduals(size_t k, const std::vector<TSubjectReading>& readings,
                                   const std::vector<ViconTrack>& vicon, TRunningStats& range,
-                                  TRunningStats& bearing) const
+                                  TRunningStats& bearing,
+                                  std::map<int, TRunningStats>* by_range) const
 {
     for (const TSubjectReading& r : readings) {
         const std::optional<mrpt::math::TPose2D> robot = vicon[k].poseAt(r.t);
@@ -115,7 +116,9 @@ void MrclamImporter::addResiduals(size_t k, const std::vector<TSubjectReading>& 
         if (!seen || !robot) continue;
         // predicted range and bearing of the subject from the robot's Vicon pose
         const double dx = seen->x - robot->x, dy = seen->y - robot->y;
-        range.add(r.range - std::hypot(dx, dy));
+        const double true_range = std::hypot(dx, dy);
+        range.add(r.range - true_range);
+        if (by_range) (*by_range)[static_cast<int>(true_range)].add(r.range - true_range);
         bearing.add(mrpt::math::wrapToPi(r.bearing - (std::atan2(dy, dx) - robot->phi)));
     }
 }
@@ -220,7 +223,7 @@ TImportSummary MrclamImporter::run()
                 writer.writeObservation(bearingRange(robotName(number) + "_RB", stamp,
                                                      of_landmarks, m_options.keep_ids));
                 addResiduals(k, of_landmarks, vicon, counts.range_residual,
-                             counts.bearing_residual);
+                             counts.bearing_residual, &counts.range_residual_by_range);
                 counts.measurements += of_landmarks.size();
                 counts.observations++;
             }
@@ -269,7 +272,7 @@ std::string TImportSummary::describe(const std::string& out_rawlog, double secon
         out_rawlog.c_str(), steps, first_step, last_step, first_step - dataset_start,
         last_step - dataset_start, last_step - first_step, kept, dropped_robot, dropped_unknown,
         outside_window);
-    for (const auto& [number, c] : robots)
+    for (const auto& [number, c] : robots) {
         text += mrpt::format(
             " R%d: %zu landmark readings in %zu observations, %zu readings of robots, %zu "
             "ground-truth poses, residuals vs Vicon range %.3f +- %.3f m, bearing %.2f +- %.2f "
@@ -278,6 +281,13 @@ std::string TImportSummary::describe(const std::string& out_rawlog, double secon
             c.range_residual.mean(),
             c.range_residual.std(), mrpt::RAD2DEG(c.bearing_residual.mean()),
             mrpt::RAD2DEG(c.bearing_residual.std()), c.range_residual.n);
+        if (c.range_residual_by_range.empty()) continue;
+        std::string bins;
+        for (const auto& [metres, s] : c.range_residual_by_range)
+            bins += mrpt::format("%s%d-%d m %.3f +- %.3f (%zu)", bins.empty() ? "" : ", ", metres,
+                                 metres + 1, s.mean(), s.std(), s.n);
+        text += " Range residual by true range: " + bins + ".";
+    }
     for (const auto& [number, c] : robots)
         if (c.robot_range_residual.n > 0)
             text += mrpt::format(

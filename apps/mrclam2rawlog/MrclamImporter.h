@@ -41,6 +41,8 @@ struct TRobotCounts {
      *  reading's time) and of the landmark, over the landmark readings written: range [m] and
      *  bearing [rad] (wrapped to (−π, π]). */
     TRunningStats range_residual, bearing_residual;
+    /// The landmark readings' range residual by true range, in 1 m bins (key: whole metres).
+    std::map<int, TRunningStats> range_residual_by_range;
     /// The same over its readings of other robots (both robots' Vicon poses interpolated).
     TRunningStats robot_range_residual, robot_bearing_residual;
 };
@@ -109,10 +111,12 @@ class MrclamImporter {
                                                      const std::vector<TSubjectReading>& readings,
                                                      bool keep_ids) const;
     /// Accumulates the residuals vs Vicon of robot k's readings (of landmarks or of robots);
-    /// `vicon` holds the tracks of m_dataset.robots, in order.
+    /// `vicon` holds the tracks of m_dataset.robots, in order; `by_range`, if given, gets the
+    /// range residuals binned by true range.
     void addResiduals(size_t k, const std::vector<TSubjectReading>& readings,
                       const std::vector<ViconTrack>& vicon, TRunningStats& range,
-                      TRunningStats& bearing) const;
+                      TRunningStats& bearing,
+                      std::map<int, TRunningStats>* by_range = nullptr) const;
 
     const TMrclamDataset& m_dataset;
     const TMrclamCommandLine& m_options;
