@@ -147,6 +147,7 @@ TEST(CVisualLandmarksMap, EkfUpdateAndWeightMatchTheCameraFrameEquations)
     EXPECT_LT((map.landmarks().find(id)->cov - Sigma).norm(), 1e-12);
 }
 
+namespace {
 /// The points of a frame in the map frame (robot at the origin) and their shared candidates.
 struct TFrame {
     std::vector<TMapMeasurement> in_map;
@@ -161,6 +162,7 @@ TFrame frameOf(const CVisualLandmarksMap& map, const std::vector<TLandmarkMeasur
     }
     return f;
 }
+}  // namespace
 
 TEST(CVisualLandmarksMap, JointAssociationKeepsTwoNearbyLandmarksApart)
 {
