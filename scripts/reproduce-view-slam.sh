@@ -5,6 +5,7 @@
 #   - view position RMSE (each view against the true pose of its image);
 #   - uncertainty sqrt(trace P_vv) (mean and final), robot NEES (mean, share of frames inside the
 #     95 % chi-square bounds), number of views, run time;
+#   - the policies' differences paired by seed (mean, standard error, seeds lower / higher);
 #   - plots: sqrt(trace P_vv) and NEES over the frames, paths of seed 1.
 # Each seed simulates its own 500-frame sequence (vslam-sim omni-views --seed S: odometry and
 # pixel noise) and runs view-slam with --seed S. Writes run folders, tables (*.txt) and plots
@@ -78,6 +79,23 @@ for policy in $POLICIES; do
           p, s[3] / n, s[4] / n, s[5] / n, s[6] / n, s[7] / n, s[8] / n, s[9] / n, s[10] / n,
           s[11] / n, s[12] / n, s[13] / n, s[14] / n }' "$OUT/results.txt"
 done
+
+# Paired per seed: information minus traditional, mean, its standard error, and on how many
+# seeds the information policy is lower / equal / higher.
+echo
+echo "### Information minus traditional, paired by seed"
+echo
+echo "| quantity | mean difference | standard error | seeds lower | equal | higher |"
+echo "|---|---|---|---|---|---|"
+awk '{ k = $2; if ($1 == "traditional") { t[k, 1] = $6; t[k, 2] = $10; t[k, 3] = $11; t[k, 4] = $3 }
+       else { i[k, 1] = $6; i[k, 2] = $10; i[k, 3] = $11; i[k, 4] = $3; seeds[k] = 1 } }
+  END { split("position RMSE [m]|mean sqrt tr P_vv|final sqrt tr P_vv|views", name, "|")
+        for (j = 1; j <= 4; j++) {
+          n = s = q = lo = eq = 0
+          for (k in seeds) { d = i[k, j] - t[k, j]; n++; s += d; q += d * d; lo += d < 0; eq += d == 0 }
+          m = s / n; se = n > 1 ? sqrt((q - n * m * m) / (n - 1) / n) : 0
+          printf "| %s | %+.4f | %.4f | %d | %d | %d |\n", name[j], m, se, lo, eq, n - lo - eq } }' \
+  "$OUT/results.txt"
 
 # Plots of the first seed: uncertainty and NEES over the frames, and the paths.
 first=$(echo "$SEEDS" | awk '{print $1}')
