@@ -348,6 +348,7 @@ void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandma
 {
     auto candidates = searchCandidates(posesOf(k), 0, 0, z);
     const bool joint = m_template.insertionOptions.joint_association;
+    const auto robot = static_cast<unsigned>(k);
     std::vector<TMapMeasurement> in_map(z.size());
     std::vector<std::optional<CVisualLandmarksMap::TAssociation>> assoc;
     // Alg. 1 lines 18-46, particle by particle so that its landmarks stay in the cache
@@ -356,10 +357,9 @@ void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandma
         for (size_t j = 0; j < z.size(); j++) in_map[j] = toMapFrame(z[j], pose);
         if (joint) assoc = p.d->map.associateJointly(in_map, candidates);
         for (size_t j = 0; j < z.size(); j++) {
-            const auto k32 = static_cast<unsigned>(k);
             const TFusionResult r =
-                joint ? p.d->map.fuseAs(z[j], in_map[j], candidates[j], k32, assoc[j])
-                      : p.d->map.fuse(z[j], in_map[j], candidates[j], k32);
+                joint ? p.d->map.fuseAs(z[j], in_map[j], candidates[j], robot, assoc[j])
+                      : p.d->map.fuse(z[j], in_map[j], candidates[j], robot);
             p.log_w += r.log_w;  // line 44 and line 11: the product over the team
             p.d->accumulated_log_w += r.log_w;
             (r.created ? lastStepStats.created : lastStepStats.associated)++;
