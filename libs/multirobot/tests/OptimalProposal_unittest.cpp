@@ -247,6 +247,9 @@ void expectEvidenceAndPosterior(const CMultiRobotVisualSLAM& filter, const TBrut
     }
 }
 
+/// Particles of the one-step tests: enough for the 0.02-0.06 tolerances against brute force.
+constexpr size_t kParticles = 20000;
+
 /// The mean of the standard proposal's weights (likelihoods at the sampled poses) is the evidence.
 void expectMeanWeightIsTheEvidence(const CMultiRobotVisualSLAM& filter, const TBruteForce& exact)
 {
@@ -260,7 +263,7 @@ void expectMeanWeightIsTheEvidence(const CMultiRobotVisualSLAM& filter, const TB
 TEST(OptimalProposal, WeightIsTheEvidenceAndSamplesFollowThePosterior)
 {
     const TOneMeasurementCase c;
-    const size_t M = 20000;
+    const size_t M = kParticles;
     Eigen::Matrix3d prior_cov;
     const auto filter =
         runOneStep(c, mrpt::bayes::CParticleFilter::pfOptimalProposal, M, prior_cov);
@@ -275,7 +278,7 @@ TEST(OptimalProposal, WeightIsTheEvidenceAndSamplesFollowThePosterior)
 TEST(OptimalProposal, StandardProposalWeightsAverageToTheSameEvidence)
 {
     const TOneMeasurementCase c;
-    const size_t M = 20000;
+    const size_t M = kParticles;
     Eigen::Matrix3d prior_cov;
     const auto filter =
         runOneStep(c, mrpt::bayes::CParticleFilter::pfStandardProposal, M, prior_cov);
@@ -287,7 +290,7 @@ TEST(OptimalProposal, StandardProposalWeightsAverageToTheSameEvidence)
 TEST(OptimalProposal, ReadingOfAnotherRobotGivesTheEvidenceAndPosterior)
 {
     const TRobotReadingCase c;
-    const size_t M = 20000;
+    const size_t M = kParticles;
     Eigen::Matrix3d prior_cov;
     const auto optimal =
         runRobotReadingStep(c, mrpt::bayes::CParticleFilter::pfOptimalProposal, M, prior_cov);
