@@ -4,13 +4,14 @@
 #      per-robot RMSE vs odometry, merged vs duplicated shared landmarks, step time; paths.png and
 #      errors.png of each run (vslam-eval);
 #   2. Fig. 4(a): RMSE vs M in {1, 10, 50, 100, 200, 500, 1000, 1500, 2500} (2 robots, B = 8);
-#   3. Fig. 4(b): RMSE vs B in {1, 5, 10, 20} (2 robots, M = 500);
+#   3. Fig. 4(b): RMSE vs B in {1, 5, 10, 20} (2 robots, M = 500), with the nearest B kept (as
+#      shipped) and with a random B (observation_selection = random);
 #   4. the paper's proposal (pfStandardProposal) vs the shipped pfOptimalProposal, descriptor
 #      threshold E0 (0.25 vs 0.7) and the paper's R_t pixel sigmas (1, 10, 10) vs ours on team2,
 #      and RMSE vs B with the paper's sigmas;
 #   5. team3 without resample_per_robot, with the optimal proposal, and with the paper's sigmas.
 # Writes run folders, tables (*.txt) and plots (*.png) under out/reproduce-multirobot/ (or $OUT)
-# and prints markdown tables. Builds first (scripts/setup.sh). Takes about 55 min on one core.
+# and prints markdown tables. Builds first (scripts/setup.sh). Takes about 65 min on one core.
 # Environment: SEEDS (default 1 2 3 4 5), SWEEP_SEEDS for sections 2 and 3 (default 1 to 10), OUT.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -76,7 +77,9 @@ team_table team2 "$CONFIGS/office-team-2.ini" "$DATA/team2.rawlog" 2
 team_table team3 "$CONFIGS/office-team-3.ini" "$DATA/team3.rawlog" 3
 
 # --- 2./3. Fig. 4: RMSE (mean of both robots) vs M and vs B, both proposals --------------------
-sweep() {  # sweep NAME KEY PROPOSAL VALUES...: one series of rmse-vs-NAME.txt (SWEEP_RAWLOG: team2)
+# sweep NAME KEY PROPOSAL VALUES...: one series of rmse-vs-NAME.txt (SWEEP_RAWLOG: team2 if unset;
+# SWEEP_SET: one more --set for every run)
+sweep() {
   local name="$1" key="$2" proposal="$3"; shift 3
   local rawlog="${SWEEP_RAWLOG:-$DATA/team2.rawlog}"
   echo
@@ -91,7 +94,7 @@ sweep() {  # sweep NAME KEY PROPOSAL VALUES...: one series of rmse-vs-NAME.txt (
       local res
       res=$(run "$OUT/$proposal-$name$value-seed$seed" "$CONFIGS/office-team-2.ini" \
         "$rawlog" --seed "$seed" --set "$key=$value" \
-        --set "ParticleFilter.PF_algorithm=$proposal")
+        --set "ParticleFilter.PF_algorithm=$proposal" ${SWEEP_SET:+--set "$SWEEP_SET"})
       mean_rmse "$res" >> "$OUT/sweep.tmp"; echo >> "$OUT/sweep.tmp"
       ms_sum=$(awk -v a="$ms_sum" -v b="${res##* }" 'BEGIN {print a + b}')
     done
@@ -114,6 +117,15 @@ done
   --x-label "M" --y-label "position RMSE [m]"
 "$BIN/vslam-plot" "$OUT/rmse-vs-B.txt" "$OUT/rmse-vs-B.png" --y-from-zero \
   --title "RMSE vs observations per robot and step B (M = 500, mean ± sd over seeds)" \
+  --x-label "B" --y-label "position RMSE [m]"
+# the same with B measurements drawn at random instead of the B nearest (the paper does not say)
+: > "$OUT/rmse-vs-B-random.txt"
+for proposal in pfOptimalProposal pfStandardProposal; do
+  SWEEP_SET=MultiRobotVSLAM.observation_selection=random sweep B-random \
+    MultiRobotVSLAM.max_observations_per_robot "$proposal" 1 5 10 20
+done
+"$BIN/vslam-plot" "$OUT/rmse-vs-B-random.txt" "$OUT/rmse-vs-B-random.png" --y-from-zero \
+  --title "RMSE vs B, B measurements drawn at random (M = 500, mean ± sd over seeds)" \
   --x-label "B" --y-label "position RMSE [m]"
 
 # --- 4. E0 and the paper's R_t ------------------------------------------------------------------

@@ -94,6 +94,12 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
         }
     }
     MRPT_LOAD_CONFIG_VAR(max_observations_per_robot, uint64_t, cfg, section);
+    if (cfg.keyExists(section, "observation_selection")) {
+        const auto s = cfg.read_string(section, "observation_selection", "");
+        requireKey(s == "nearest" || s == "random", section, "observation_selection",
+                   "must be `nearest` or `random`");
+        observation_selection = s == "random" ? TSelection::Random : TSelection::Nearest;
+    }
     MRPT_LOAD_CONFIG_VAR(min_motion_std_xy, double, cfg, section);
     min_motion_std_phi = mrpt::DEG2RAD(
         cfg.read_double(section, "min_motion_std_phi_deg", mrpt::RAD2DEG(min_motion_std_phi)));
@@ -143,6 +149,8 @@ void CMultiRobotVisualSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     cfg.write(section, "robot_reading_ids", ids);
     saveNoise(cfg, section, "robot_reading", robot_reading_noise);
     cfg.write(section, "max_observations_per_robot", max_observations_per_robot);
+    cfg.write(section, "observation_selection",
+              observation_selection == TSelection::Random ? "random" : "nearest");
     cfg.write(section, "min_motion_std_xy", min_motion_std_xy);
     cfg.write(section, "min_motion_std_phi_deg", mrpt::RAD2DEG(min_motion_std_phi));
     cfg.write(section, "initial_std_xy", initial_std_xy);
@@ -236,7 +244,7 @@ CMultiRobotVisualSLAM::TMotionGaussian CMultiRobotVisualSLAM::motionOf(
 }
 
 std::vector<TLandmarkMeasurement> CMultiRobotVisualSLAM::measurementsOf(
-    size_t k, const mrpt::obs::CSensoryFrame& frame) const
+    size_t k, const mrpt::obs::CSensoryFrame& frame)
 {
     std::vector<TLandmarkMeasurement> z;
     if (const auto obs = frame.getObservationBySensorLabelAs<
@@ -249,7 +257,10 @@ std::vector<TLandmarkMeasurement> CMultiRobotVisualSLAM::measurementsOf(
         const auto rb = measurementsFromBearingRange(*obs, options.range_bearing_noise);
         z.insert(z.end(), rb.begin(), rb.end());
     }
-    return selectNearest(std::move(z), options.max_observations_per_robot);
+    const size_t B = options.max_observations_per_robot;
+    return options.observation_selection == TOptions::TSelection::Random
+               ? selectAtRandom(std::move(z), B, m_rng)
+               : selectNearest(std::move(z), B);
 }
 
 std::vector<CMultiRobotVisualSLAM::TRobotReading> CMultiRobotVisualSLAM::robotReadingsOf(

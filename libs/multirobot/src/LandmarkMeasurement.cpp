@@ -77,12 +77,33 @@ std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
     return out;
 }
 
-std::vector<TLandmarkMeasurement> selectNearest(std::vector<TLandmarkMeasurement> z, size_t B)
+namespace {
+// ties keep the observation's order: track_id may be an identity the filter must not read
+void sortByDepth(std::vector<TLandmarkMeasurement>& z)
 {
-    // ties keep the observation's order: track_id may be an identity the filter must not read
     std::stable_sort(z.begin(), z.end(),
                      [](const auto& a, const auto& b) { return a.depth < b.depth; });
+}
+}  // namespace
+
+std::vector<TLandmarkMeasurement> selectNearest(std::vector<TLandmarkMeasurement> z, size_t B)
+{
+    sortByDepth(z);
     if (B > 0 && z.size() > B) z.resize(B);
+    return z;
+}
+
+std::vector<TLandmarkMeasurement> selectAtRandom(std::vector<TLandmarkMeasurement> z, size_t B,
+                                                 mrpt::random::CRandomGenerator& rng)
+{
+    if (B > 0 && z.size() > B) {
+        for (size_t i = 0; i < B; i++) {  // the first B steps of a Fisher-Yates shuffle
+            const auto j = i + static_cast<size_t>(rng.drawUniform64bit() % (z.size() - i));
+            std::swap(z[i], z[j]);
+        }
+        z.resize(B);
+    }
+    sortByDepth(z);
     return z;
 }
 

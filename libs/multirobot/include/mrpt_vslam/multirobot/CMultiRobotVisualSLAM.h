@@ -77,6 +77,10 @@ public:
         TRangeBearingNoise robot_reading_noise;
         /// B: measurements integrated per robot and step (paper: 8 online, 20 offline).
         unsigned int max_observations_per_robot = 8;
+        /// Which B of a robot's measurements are kept when it has more (ini:
+        /// `observation_selection = nearest | random`; the paper does not say): the nearest, the
+        /// most precise for a stereo pair, or a uniform random subset.
+        enum class TSelection { Nearest, Random } observation_selection = TSelection::Nearest;
         /// Added to the odometry covariance (std) so the proposal never degenerates.
         double min_motion_std_xy = 0.002;               ///< [m]
         double min_motion_std_phi = 0.1 * M_PI / 180;   ///< [rad] (ini: min_motion_std_phi_deg)
@@ -134,9 +138,9 @@ private:
         Eigen::Matrix3d cov, L;
     };
     TMotionGaussian motionOf(size_t k, const mrpt::obs::CActionRobotMovement2D& odometry) const;
-    /// Robot k's B nearest measurements in the frame: `<ROBOT>_LANDMARKS` or `<ROBOT>_RB`.
-    std::vector<TLandmarkMeasurement> measurementsOf(size_t k,
-                                                     const mrpt::obs::CSensoryFrame& frame) const;
+    /// Robot k's B measurements in the frame (`<ROBOT>_LANDMARKS` or `<ROBOT>_RB`), selected as
+    /// `observation_selection` says (random: drawn from the filter's generator).
+    std::vector<TLandmarkMeasurement> measurementsOf(size_t k, const mrpt::obs::CSensoryFrame& frame);
     /// A reading of another robot of the team: its index and where robot k saw it.
     struct TRobotReading {
         size_t robot;

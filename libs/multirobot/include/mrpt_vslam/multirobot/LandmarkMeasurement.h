@@ -3,6 +3,7 @@
 #include <mrpt/math/TPose2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationVisualLandmarks.h>
+#include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/core/USurfDescriptor.h>
 
 #include <Eigen/Core>
@@ -60,6 +61,11 @@ std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
 /** The (at most) B measurements with the smallest depth, the most precise for a stereo pair,
  *  in that order (ties: in the order given); all of them if B = 0 or fewer. */
 std::vector<TLandmarkMeasurement> selectNearest(std::vector<TLandmarkMeasurement> z, size_t B);
+
+/** B measurements drawn uniformly without replacement (all of them if B = 0 or fewer), ordered
+ *  by depth as selectNearest() orders them, so that only which ones are kept differs. */
+std::vector<TLandmarkMeasurement> selectAtRandom(std::vector<TLandmarkMeasurement> z, size_t B,
+                                                 mrpt::random::CRandomGenerator& rng);
 
 /** The map-frame transform of a robot pose, x = (x, y, θ): translation and cos θ, sin θ once,
  *  for the many measurements fused from it. */
