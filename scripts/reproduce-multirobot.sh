@@ -8,10 +8,10 @@
 #      shipped) and with a random B (observation_selection = random);
 #   4. the paper's proposal (pfStandardProposal) vs the shipped pfOptimalProposal, descriptor
 #      threshold E0 (0.25 vs 0.7) and the paper's R_t pixel sigmas (1, 10, 10) vs ours on team2,
-#      and RMSE vs B with the paper's sigmas;
+#      and RMSE vs B with the paper's sigmas, nearest and random B;
 #   5. team3 without resample_per_robot, with the optimal proposal, and with the paper's sigmas.
 # Writes run folders, tables (*.txt) and plots (*.png) under out/reproduce-multirobot/ (or $OUT)
-# and prints markdown tables. Builds first (scripts/setup.sh). Takes about 65 min on one core.
+# and prints markdown tables. Builds first (scripts/setup.sh). Takes about 75 min on one core.
 # Environment: SEEDS (default 1 2 3 4 5), SWEEP_SEEDS for sections 2 and 3 (default 1 to 10), OUT.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -171,6 +171,15 @@ for proposal in pfOptimalProposal pfStandardProposal; do
   SWEEP_RAWLOG="$OUT/paper-sigma/team2.rawlog" sweep B-paper-sigma \
     MultiRobotVSLAM.max_observations_per_robot "$proposal" 1 5 10 20
 done
+# and with the B drawn at random: the paper's R_t, proposal and (presumably) selection
+: > "$OUT/rmse-vs-B-paper-sigma-random.txt"
+for proposal in pfOptimalProposal pfStandardProposal; do
+  SWEEP_RAWLOG="$OUT/paper-sigma/team2.rawlog" SWEEP_SET=MultiRobotVSLAM.observation_selection=random \
+    sweep B-paper-sigma-random MultiRobotVSLAM.max_observations_per_robot "$proposal" 1 5 10 20
+done
+"$BIN/vslam-plot" "$OUT/rmse-vs-B-paper-sigma-random.txt" "$OUT/rmse-vs-B-paper-sigma-random.png" \
+  --y-from-zero --x-label "B" --y-label "position RMSE [m]" \
+  --title "RMSE vs B, the paper's R_t, B drawn at random (M = 500, mean ± sd over seeds)"
 
 # --- 5. team3 with the paper's R_t sigmas (1, 10, 10), and without resample_per_robot --------
 paper_sigma_rawlog team3 3
