@@ -140,7 +140,8 @@ private:
     TMotionGaussian motionOf(size_t k, const mrpt::obs::CActionRobotMovement2D& odometry) const;
     /// Robot k's B measurements in the frame (`<ROBOT>_LANDMARKS` or `<ROBOT>_RB`), selected as
     /// `observation_selection` says (random: drawn from the filter's generator).
-    std::vector<TLandmarkMeasurement> measurementsOf(size_t k, const mrpt::obs::CSensoryFrame& frame);
+    std::vector<TLandmarkMeasurement> measurementsOf(size_t k,
+                                                     const mrpt::obs::CSensoryFrame& frame);
     /// A reading of another robot of the team: its index and where robot k saw it.
     struct TRobotReading {
         size_t robot;
