@@ -22,7 +22,7 @@ const char* TViewDecision::reasonName(TReason r)
         case TReason::NoObservation: return "no_observation";
         case TReason::FewInliers: return "few_inliers";
         case TReason::TooFar: return "too_far";
-        case TReason::InformationBound: return "information_bound";
+        case TReason::InformationDeficit: return "information_deficit";
         case TReason::LowExistence: return "low_existence";
     }
     return "?";
@@ -35,8 +35,9 @@ void ViewInitializationPolicy::TOptions::validate() const
     require(min_inliers >= 1, "min_inliers", "must be >= 1");
     require(max_view_distance > min_view_spacing && std::isfinite(max_view_distance),
             "max_view_distance", "must be finite and > min_view_spacing");
-    require(entropy_bound > 0 && std::isfinite(entropy_bound), "entropy_bound",
-            "must be finite and > 0");
+    require(information_deficit >= 0 && std::isfinite(information_deficit),
+            "information_deficit", "must be finite and >= 0");
+    require(deficit_frames >= 1, "deficit_frames", "must be >= 1");
     require(trend_frames >= 1, "trend_frames", "must be >= 1");
     require(min_sure_points >= 0 && std::isfinite(min_sure_points), "min_sure_points",
             "must be finite and >= 0");
@@ -56,7 +57,8 @@ void ViewInitializationPolicy::TOptions::loadFromConfigFile(
     MRPT_LOAD_CONFIG_VAR(min_view_spacing, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(min_inliers, int, cfg, section);
     MRPT_LOAD_CONFIG_VAR(max_view_distance, double, cfg, section);
-    MRPT_LOAD_CONFIG_VAR(entropy_bound, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(information_deficit, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(deficit_frames, int, cfg, section);
     MRPT_LOAD_CONFIG_VAR(min_sure_points, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(trend_frames, int, cfg, section);
     existence.loadFromConfigFile(cfg, section);
@@ -74,7 +76,8 @@ void ViewInitializationPolicy::TOptions::saveToConfigFile(mrpt::config::CConfigF
     MRPT_SAVE_CONFIG_VAR(min_view_spacing, cfg, section);
     MRPT_SAVE_CONFIG_VAR(min_inliers, cfg, section);
     MRPT_SAVE_CONFIG_VAR(max_view_distance, cfg, section);
-    MRPT_SAVE_CONFIG_VAR(entropy_bound, cfg, section);
+    MRPT_SAVE_CONFIG_VAR(information_deficit, cfg, section);
+    MRPT_SAVE_CONFIG_VAR(deficit_frames, cfg, section);
     MRPT_SAVE_CONFIG_VAR(min_sure_points, cfg, section);
     MRPT_SAVE_CONFIG_VAR(trend_frames, cfg, section);
     existence.saveToConfigFile(cfg, section);
@@ -140,7 +143,7 @@ TViewDecision InformationViewPolicy::decide(const TViewPolicyInputs& in,
 
     if (auto d = commonRules(in)) {
         d->sure_points = n;
-        if (d->add) m_recent_sure_points.clear();
+        if (d->add) restart();
         return *d;
     }
     TViewDecision d;
@@ -148,23 +151,26 @@ TViewDecision InformationViewPolicy::decide(const TViewPolicyInputs& in,
     if (in.observed.empty()) d.reason = R::NoObservation;
     else if (n_next < m_options.min_sure_points) d.reason = R::LowExistence;
     else {
-        // Steps 2-3: the best view's hypothetical update after the next motion.
-        const Eigen::Matrix3d motion = in.P_vv_predicted - in.P_vv_previous;
-        double best = std::numeric_limits<double>::infinity();
-        for (const auto& o : in.observed) {
-            const Eigen::Matrix2d R_next = o.R * (n / n_next);
-            const Eigen::Matrix3d P = in.ekf->robotCovarianceAfterUpdate(o.view, R_next, motion);
-            // Step 4: entropy above that of the view (the 2πe terms cancel).
-            const double excess = 0.5 * std::log(P.determinant() /
-                                                 in.ekf->viewCovariance(o.view).determinant());
-            best = std::min(best, excess);
-        }
-        d.entropy_excess = best;
-        if (!(best <= m_options.entropy_bound)) d.reason = R::InformationBound;
+        // Steps 2-3: the observed views' hypothetical update after the next motion.
+        std::vector<ViewMapEKF::THypotheticalObservation> next;
+        for (const auto& o : in.observed) next.push_back({o.view, o.R * (n / n_next)});
+        const Eigen::Matrix3d P_next = in.ekf->robotCovarianceAfterUpdates(
+            next, in.P_vv_predicted - in.P_vv_previous);
+        // Step 4: gain minus loss (the 2πe terms cancel), reconstruction §4.2 (c).
+        d.information_balance =
+            0.5 * std::log(in.ekf->robotCovariance().determinant() / P_next.determinant());
+        m_deficits = d.information_balance < -m_options.information_deficit ? m_deficits + 1 : 0;
+        if (m_deficits >= m_options.deficit_frames) d.reason = R::InformationDeficit;
     }
     d.add = d.reason != R::None;
-    if (d.add) m_recent_sure_points.clear();
+    if (d.add) restart();
     return d;
+}
+
+void InformationViewPolicy::restart()
+{
+    m_recent_sure_points.clear();
+    m_deficits = 0;
 }
 
 }  // namespace mrpt_vslam::viewmap

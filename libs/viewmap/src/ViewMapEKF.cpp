@@ -3,6 +3,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -154,20 +155,40 @@ ViewMapEKF::TPredictedObservation ViewMapEKF::predictObservation(size_t view) co
     return {o.h, 0.5 * (o.HPHt + o.HPHt.transpose())};
 }
 
-Eigen::Matrix3d ViewMapEKF::robotCovarianceAfterUpdate(size_t view, const Eigen::Matrix2d& R,
-                                                       const Eigen::Matrix3d& added_P_vv) const
+Eigen::Matrix3d ViewMapEKF::robotCovarianceAfterUpdates(
+    const std::vector<THypotheticalObservation>& observations,
+    const Eigen::Matrix3d& added_P_vv) const
 {
-    requireCovariance(R, true, "ViewMapEKF::robotCovarianceAfterUpdate: R");
-    const Eigen::Index l = viewOffset(view);
-    const auto J = viewObservationJacobians(robotPose(), viewPose(view));
-    const Eigen::Matrix3d P_vv = robotCovariance() + added_P_vv;
-    const Eigen::Matrix3d P_vl = m_P.block<3, 3>(0, l), P_ll = m_P.block<3, 3>(l, l);
-    const Eigen::Matrix<double, 3, 2> PHt_v = P_vv * J.H_v.transpose() + P_vl * J.H_l.transpose();
-    const Eigen::Matrix<double, 3, 2> PHt_l =
-        P_vl.transpose() * J.H_v.transpose() + P_ll * J.H_l.transpose();
-    const Eigen::Matrix2d S = J.H_v * PHt_v + J.H_l * PHt_l + R;
-    const Eigen::Matrix3d P = P_vv - PHt_v * S.inverse() * PHt_v.transpose();
-    return 0.5 * (P + P.transpose());
+    // The sub-state [x_v, x_l1, ..., x_lm] of the observed views: H is zero elsewhere.
+    const auto m = static_cast<Eigen::Index>(observations.size());
+    std::vector<Eigen::Index> offset{0};
+    for (const auto& o : observations) {
+        requireCovariance(o.R, true, "ViewMapEKF::robotCovarianceAfterUpdates: R");
+        const Eigen::Index l = viewOffset(o.view);
+        if (std::find(offset.begin(), offset.end(), l) != offset.end())
+            throw std::invalid_argument("ViewMapEKF::robotCovarianceAfterUpdates: view " +
+                                        std::to_string(o.view) + " listed twice");
+        offset.push_back(l);
+    }
+    Eigen::MatrixXd P(3 + 3 * m, 3 + 3 * m);
+    for (Eigen::Index a = 0; a <= m; a++)
+        for (Eigen::Index b = 0; b <= m; b++)
+            P.block<3, 3>(3 * a, 3 * b) = m_P.block<3, 3>(offset[size_t(a)], offset[size_t(b)]);
+    P.topLeftCorner<3, 3>() += added_P_vv;
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2 * m, 3 + 3 * m);
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+    for (Eigen::Index k = 0; k < m; k++) {
+        const auto& o = observations[size_t(k)];
+        const auto J = viewObservationJacobians(robotPose(), viewPose(o.view));
+        H.block<2, 3>(2 * k, 0) = J.H_v;
+        H.block<2, 3>(2 * k, 3 + 3 * k) = J.H_l;
+        S.block<2, 2>(2 * k, 2 * k) = o.R;
+    }
+    const Eigen::MatrixXd PHt_v = P.topRows<3>() * H.transpose();
+    S += H * P * H.transpose();
+    const Eigen::Matrix3d P_vv =
+        P.topLeftCorner<3, 3>() - PHt_v * S.llt().solve(PHt_v.transpose());
+    return 0.5 * (P_vv + P_vv.transpose());
 }
 
 double ViewMapEKF::robotNEES(const TPose2D& truth) const

@@ -134,9 +134,9 @@ void ViewSLAMApp::run()
                       "estimate; sqrt_trace_Pvv; nees of the robot pose (nan without ground "
                       "truth); features; candidates; accepted observations; best inliers; views "
                       "after the frame; new_view (1 if one was started); reason; sure_points "
-                      "(information policy); entropy_excess [nats]; step_ms\n"
+                      "(information policy); information_balance [nats]; step_ms\n"
                       "# t x y yaw sqrt_trace_Pvv nees features candidates accepted "
-                      "best_inliers views new_view reason sure_points entropy_excess step_ms\n";
+                      "best_inliers views new_view reason sure_points information_balance step_ms\n";
     observations.stream()
         << "# view-slam: one line per attempted view observation. frame; t [s]; view; "
            "matches; inliers; estimated (RANSAC found phi, beta); accepted (passed the gate); "
@@ -214,7 +214,7 @@ void ViewSLAMApp::run()
                       x.x, x.y, x.phi, sqrtTrace, nees, r.features, r.observations.size(),
                       r.accepted(), bestInliers, ekf.viewCount(), int(r.new_view.has_value()),
                       TViewDecision::reasonName(r.decision.reason), r.decision.sure_points,
-                      r.decision.entropy_excess, ms);
+                      r.decision.information_balance, ms);
         steps.stream() << line;
         progress.update(++d.frames);
         if (d.window) d.window->show([&](auto& scene) { d.draw(scene, estimatedPath); });

@@ -100,27 +100,32 @@ TEST(ViewInitializationPolicy, TraditionalFollowsInliersAndDistance)
     EXPECT_EQ(f.decision.reason, TReason::TooFar);
 }
 
-TEST(ViewInitializationPolicy, InformationBoundsTheEntropyAboveTheView)
+TEST(ViewInitializationPolicy, InformationStartsAViewAfterKFramesInDeficit)
 {
+    // Driving away from the only view, each frame gains less than the motion loses.
     auto o = options(ViewInitializationPolicy::TKind::Information);
     std::vector<int> steps;
-    for (const double bound : {1.2, 1.6, 2.2}) {
-        o.entropy_bound = bound;
+    for (const auto& [tau, K] : std::vector<std::pair<double, int>>{
+             {0.02, 3}, {0.02, 5}, {0.12, 3}}) {
+        o.information_deficit = tau;
+        o.deficit_frames = K;
         auto policy = ViewInitializationPolicy::create(o);
         const auto r = runAway(*policy);
-        std::cout << "entropy bound " << bound << " nats: view at step " << r.step << " ("
-                  << TViewDecision::reasonName(r.decision.reason) << ", excess "
-                  << r.decision.entropy_excess << ", sure points " << r.decision.sure_points
-                  << ", sqrt trace P_vv " << r.sqrt_trace << ")\n";
+        std::cout << "tau " << tau << " nats, K " << K << ": view at step " << r.step << " ("
+                  << TViewDecision::reasonName(r.decision.reason) << ", balance "
+                  << r.decision.information_balance << ", sure points "
+                  << r.decision.sure_points << ", sqrt trace P_vv " << r.sqrt_trace << ")\n";
         ASSERT_GT(r.step, 2);  // beyond the 0.4 m spacing
-        EXPECT_EQ(r.decision.reason, TReason::InformationBound);
-        EXPECT_GT(r.decision.entropy_excess, bound);
+        EXPECT_EQ(r.decision.reason, TReason::InformationDeficit);
+        EXPECT_LT(r.decision.information_balance, -tau);
         steps.push_back(r.step);
     }
-    // A looser bound starts the view later, and every run starts it before the traditional
-    // policy's inlier threshold (step 19).
-    EXPECT_LT(steps[0], steps[1]);
-    EXPECT_LT(steps[1], steps[2]);
+    // Every frame beyond the 0.4 m spacing (step 3 on) is in deficit by more than 0.02 nats,
+    // so the view comes K frames later; a larger τ waits until the deficit grows, and every
+    // run starts the view before the traditional policy's inlier threshold (step 19).
+    EXPECT_EQ(steps[0], 3 + 3 - 1);
+    EXPECT_EQ(steps[1], 3 + 5 - 1);
+    EXPECT_GT(steps[2], steps[1]);
     EXPECT_LT(steps[2], 19);
 }
 
@@ -144,15 +149,17 @@ TEST(ViewInitializationPolicy, CommonRulesAndOptions)
 
     mrpt::config::CConfigFileMemory cfg(
         "[P]\npolicy = traditional\nmin_inliers = 12\nmax_view_distance = 2.5\n"
-        "entropy_bound = 0.7\nmax_points = 50\n");
+        "information_deficit = 0.07\ndeficit_frames = 4\nmax_points = 50\n");
     ViewInitializationPolicy::TOptions o;
     o.loadFromConfigFile(cfg, "P");
     EXPECT_EQ(o.policy, ViewInitializationPolicy::TKind::Traditional);
     EXPECT_EQ(o.min_inliers, 12);
     EXPECT_DOUBLE_EQ(o.max_view_distance, 2.5);
-    EXPECT_DOUBLE_EQ(o.entropy_bound, 0.7);
+    EXPECT_DOUBLE_EQ(o.information_deficit, 0.07);
+    EXPECT_EQ(o.deficit_frames, 4);
     EXPECT_EQ(o.existence.max_points, 50);
-    for (const char* bad : {"[P]\npolicy = sometimes\n", "[P]\nentropy_bound = 0\n",
+    for (const char* bad : {"[P]\npolicy = sometimes\n", "[P]\ninformation_deficit = -0.1\n",
+                            "[P]\ndeficit_frames = 0\n",
                             "[P]\nmax_view_distance = 0.2\n", "[P]\nmin_sure_points = -1\n"}) {
         mrpt::config::CConfigFileMemory c(bad);
         ViewInitializationPolicy::TOptions b;

@@ -275,7 +275,7 @@ TEST(ViewMapEKF, PredictionAndHypotheticalUpdateMatchTheDenseEKF)
         EXPECT_EQ(predicted.z.beta, h.beta);
         max_S = std::max(max_S, maxAbs(predicted.HPHt + R - dense.S));
         const Eigen::MatrixXd before = ekf.covariance();
-        const Eigen::Matrix3d P_vv = ekf.robotCovarianceAfterUpdate(j, R);
+        const Eigen::Matrix3d P_vv = ekf.robotCovarianceAfterUpdates({{j, R}});
         EXPECT_TRUE(bitIdentical(before, ekf.covariance()));  // nothing applied
         max_P = std::max(max_P, maxAbs(P_vv - dense.P.topLeftCorner(3, 3)));
 
@@ -287,15 +287,47 @@ TEST(ViewMapEKF, PredictionAndHypotheticalUpdateMatchTheDenseEKF)
         ViewMapEKF moved = ekf;
         moved.predict(TPose2D(0, 0, 0), Q);
         const TDenseUpdate after_motion = denseUpdate(moved, j, h, R);
-        max_P = std::max(max_P, maxAbs(ekf.robotCovarianceAfterUpdate(j, R, F_u * Q * F_u.transpose()) -
+        max_P = std::max(max_P, maxAbs(ekf.robotCovarianceAfterUpdates(
+                                           {{j, R}}, F_u * Q * F_u.transpose()) -
                                        after_motion.P.topLeftCorner(3, 3)));
     }
     EXPECT_LT(max_S, 1e-12);
     EXPECT_LT(max_P, 1e-12);
     ViewMapEKF ekf = randomFilter(rng, 2);
     EXPECT_THROW(ekf.predictObservation(2), std::invalid_argument);
-    EXPECT_THROW(ekf.robotCovarianceAfterUpdate(0, Eigen::Matrix2d::Zero()),
+    EXPECT_THROW(ekf.robotCovarianceAfterUpdates({{0, Eigen::Matrix2d::Zero()}}),
                  std::invalid_argument);
+    EXPECT_THROW(ekf.robotCovarianceAfterUpdates({{1, Eigen::Matrix2d::Identity()},
+                                                  {1, Eigen::Matrix2d::Identity()}}),
+                 std::invalid_argument);
+}
+
+TEST(ViewMapEKF, HypotheticalJointUpdateMatchesTheInformationForm)
+{
+    // Several views at once against the full-state information form
+    // (P⁻¹ + Hᵀ R⁻¹ H)⁻¹ with the stacked H, with and without a motion still to come.
+    std::mt19937 rng(9);
+    double max_P = 0;
+    for (int trial = 0; trial < 20; trial++) {
+        ViewMapEKF ekf = randomFilter(rng, 5);
+        if (trial % 2) ekf.predict(TPose2D(0, 0, 0), randomMotionCovariance(rng));
+        std::vector<ViewMapEKF::THypotheticalObservation> obs;
+        for (size_t j = size_t(trial) % 2; j < 5; j += 2)
+            obs.push_back({j, randomObservationCovariance(rng)});
+        const Eigen::Index n = ekf.mean().size(), m = Eigen::Index(obs.size());
+        Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2 * m, n), R_inv = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+        for (Eigen::Index k = 0; k < m; k++) {
+            const auto J = viewObservationJacobians(ekf.robotPose(), ekf.viewPose(obs[size_t(k)].view));
+            H.block(2 * k, 0, 2, 3) = J.H_v;
+            H.block(2 * k, Eigen::Index(3 + 3 * obs[size_t(k)].view), 2, 3) = J.H_l;
+            R_inv.block(2 * k, 2 * k, 2, 2) = obs[size_t(k)].R.inverse();
+        }
+        const Eigen::MatrixXd info = ekf.covariance().inverse() + H.transpose() * R_inv * H;
+        max_P = std::max(max_P, maxAbs(ekf.robotCovarianceAfterUpdates(obs) -
+                                       info.inverse().topLeftCorner(3, 3)));
+    }
+    std::cout << "joint hypothetical update vs information form: max |dP| " << max_P << "\n";
+    EXPECT_LT(max_P, 1e-9);
 }
 
 TEST(ViewMapEKF, GatingRejectsOutliersAndKeepsTheFilter)

@@ -46,14 +46,15 @@ struct TViewDecision {
         NoObservation,  ///< no view could be observed
         FewInliers,     ///< traditional: best inlier count < N_min
         TooFar,         ///< traditional: farther than D_max from every view
-        InformationBound,  ///< information: predicted entropy above the bound
+        InformationDeficit,  ///< information: the views no longer make up for the motion
         LowExistence,      ///< information: the existence model predicts too few matches
     };
     bool add = false;
     TReason reason = TReason::None;
     double sure_points = std::numeric_limits<double>::quiet_NaN();  ///< n⁻ of the GP
-    /// [nats] predicted ½ log det P_vv next step minus that of the anchoring view.
-    double entropy_excess = std::numeric_limits<double>::quiet_NaN();
+    /// [nats] predicted information balance of the next frame, gain from the observed views
+    /// minus loss by motion: ½ log det P_vv now − ½ log det P̂⁺ next frame.
+    double information_balance = std::numeric_limits<double>::quiet_NaN();
 
     static const char* reasonName(TReason r);
 };
@@ -75,7 +76,8 @@ class ViewInitializationPolicy {
         double min_view_spacing = 0.4;      ///< [m] both
         int min_inliers = 20;               ///< traditional: N_min
         double max_view_distance = 1.5;     ///< [m] traditional: D_max
-        double entropy_bound = 1.0;         ///< [nats] information: δ_H
+        double information_deficit = 0.04;  ///< [nats] information: τ, a frame's deficit
+        int deficit_frames = 3;             ///< information: K consecutive deficits
         double min_sure_points = 20;        ///< information: n_min of the predicted n⁻
         int trend_frames = 3;               ///< information: frames the trend of n⁻ spans
         FeatureExistenceModel::TOptions existence;  ///< information: the GP (same section)
@@ -123,11 +125,12 @@ class TraditionalViewPolicy : public ViewInitializationPolicy {
  *      view observed now would next frame give R̂ = R_t · n⁻_t / n⁻_{t+1};
  *   3. information lost by motion: the next prediction is taken to add what the last one did,
  *      P̂⁻ = P_vv + (P_vv⁻ − P_vv,t−1); information gained: the hypothetical EKF update of
- *      P̂⁻ with each observed view and R̂ gives P̂⁺;
- *   4. a view is started when even the best of them leaves ½ log det P̂⁺ more than δ_H nats
- *      above ½ log det of that view's P_ll: the existing views can no longer keep the robot's
- *      uncertainty within the bound, so the new view is cloned while P_vv is still low; also
- *      when n⁻_{t+1} < n_min (the views are about to be lost) or nothing is observed.
+ *      P̂⁻ with all the observed views at once, each with its R̂, gives P̂⁺;
+ *   4. the balance, gain minus loss, is ½ log det P_vv − ½ log det P̂⁺ (reconstruction
+ *      §4.2 (c)); a view is started after K = deficit_frames consecutive frames whose balance
+ *      is below −τ: the views in reach no longer make up for the motion, so the robot's
+ *      uncertainty would grow without bound; also when n⁻_{t+1} < n_min (the views are about
+ *      to be lost) or nothing is observed.
  */
 class InformationViewPolicy : public ViewInitializationPolicy {
   public:
@@ -135,8 +138,10 @@ class InformationViewPolicy : public ViewInitializationPolicy {
     TViewDecision decide(const TViewPolicyInputs& in, mrpt::random::CRandomGenerator& rng) override;
 
   private:
+    void restart();  ///< a view was started: the trend and the deficits begin anew
     FeatureExistenceModel m_existence;
     std::deque<double> m_recent_sure_points;  ///< n⁻ of the frames since the last view
+    int m_deficits = 0;  ///< consecutive frames with a balance below −τ
 };
 
 }  // namespace mrpt_vslam::viewmap

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <vector>
 
 namespace mrpt_vslam::viewmap {
 
@@ -80,15 +81,21 @@ class ViewMapEKF {
      *  \throw std::domain_error when the estimated robot stands on the view. */
     TPredictedObservation predictObservation(size_t view) const;
 
-    /** P_vv that update() would leave if it accepted an observation of `view` with noise R,
-     *  without changing the filter: P_vv − (P Hᵀ)_v S⁻¹ (P Hᵀ)_vᵀ, computed from the robot's
-     *  and the view's blocks only. With `added_P_vv`, P_vv is first taken as P_vv + added_P_vv
-     *  (a motion still to come). For the information-based view initialization
-     *  (doc/view-slam.md §4.2).
-     *  \throw as predictObservation(), and std::invalid_argument for an R that is not
-     *  symmetric positive definite. */
-    Eigen::Matrix3d robotCovarianceAfterUpdate(
-        size_t view, const Eigen::Matrix2d& R,
+    /// One observation of a view for robotCovarianceAfterUpdates(): the view and its noise.
+    struct THypotheticalObservation {
+        size_t view = 0;
+        Eigen::Matrix2d R = Eigen::Matrix2d::Identity();
+    };
+
+    /** P_vv that one EKF update with all `observations` at once (stacked H and R, linearized
+     *  at the current mean) would leave, without changing the filter:
+     *  P_vv − (P Hᵀ)_v S⁻¹ (P Hᵀ)_vᵀ, from the blocks of the robot and the observed views only.
+     *  With `added_P_vv`, P_vv is first taken as P_vv + added_P_vv (a motion still to come).
+     *  For the information-based view initialization (doc/view-slam.md §4.2).
+     *  \throw as predictObservation() for each view, and std::invalid_argument for an R that
+     *  is not symmetric positive definite or a view listed twice. */
+    Eigen::Matrix3d robotCovarianceAfterUpdates(
+        const std::vector<THypotheticalObservation>& observations,
         const Eigen::Matrix3d& added_P_vv = Eigen::Matrix3d::Zero()) const;
 
     /** NEES of the robot pose against the true pose: eᵀ P_vv⁻¹ e, e = x_v − truth with the
