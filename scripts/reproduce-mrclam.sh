@@ -7,6 +7,8 @@
 #      odometry, landmarks mapped once within 0.5 m, extra landmarks, wrong associations, run time;
 #   3. the same filter on each robot alone, on 2 and 5 robots, and on robots 1-3 without the
 #      readings of robots;
+#   3b. robots 1-3 with known poses (the Vicon poses as odometry) and three gates D0: what the
+#      association alone makes of the readings;
 #   4. omni-fastslam in planar bearing-only mode on robot 1 (mrclam-bearing-only.ini): ATE vs
 #      odometry and the landmark table.
 # Writes run folders (paths.png, errors.png, metrics.json, run.json), tables and plots under
@@ -114,6 +116,29 @@ team "R3 alone" "$OUT/data/r3.rawlog" "R3"
 team "R1-R2" "$OUT/data/r12.rawlog" "R1 R2"
 team "R1-R5" "$OUT/data/r12345.rawlog" "R1 R2 R3 R4 R5"
 READINGS_OF_ROBOTS=no team "R1-R3, readings of robots unused" "$OUT/data/r123.rawlog" "R1 R2 R3"
+
+# --- 3b. the association policy alone: robots 1-3 with known poses -------------------------------
+# R<n>_ODOM = the Vicon poses, motion noise near zero, 100 particles: what the gate D0 makes of the
+# readings when the poses are right (doc/real-data.md, "Known poses")
+import r123-known 1,2,3 0.2 --keep-robot-measurements --keep-ids --odometry-from-ground-truth
+echo
+echo "### Robots 1-3 with known poses (odometry = Vicon), mean over seeds $SEEDS"
+echo
+echo "| D0 | R1 [m] | R2 [m] | R3 [m] | map landmarks | true landmarks matched one-to-one within 0.5 m |"
+echo "|---|---|---|---|---|---|"
+for d0 in 11.34 30 50; do
+  for seed in $SEEDS; do
+    dir="$OUT/r123-known-D0-$d0-seed$seed"
+    res=$(run "$dir" "$OUT/data/r123-known.rawlog" "R1 R2 R3" --seed "$seed" \
+      --set ParticleFilter.sampleSize=100 --set MotionModel.a1=0.01 --set MotionModel.a2=0.001 \
+      --set MotionModel.a3=0.01 --set MotionModel.a4=0.01 --set MotionModel.minStdXY=0.0005 \
+      --set MotionModel.minStdPHI_deg=0.05 \
+      --set "MappingApplication_visualLandmarksMap_00_insertOpts.D0=$d0")
+    # vslam-eval's one-to-one (Hungarian) matching: "landmarks: 15 true, N estimated: K matched"
+    echo "${res%%|*} $(awk '/^landmarks:/ {print $4, $6}' "$dir/summary.txt")"
+  done | awk -v d="$d0" '{a += $1; b += $3; c += $5; lm += $7; m += $8; n++}
+    END {printf "| %s | %.3f | %.3f | %.3f | %.1f | %.1f |\n", d, a / n, b / n, c / n, lm / n, m / n}'
+done
 
 # --- 4. omni-fastslam, planar bearing-only, robot 1 ---------------------------------------------
 echo

@@ -279,6 +279,47 @@ TEST_F(TinyDataset, DelaysTheCommands)
     EXPECT_NE(bad.out.find("--command-delay"), std::string::npos) << bad.out;
 }
 
+// --odometry-from-ground-truth writes the Vicon poses as odometry; in R2's Vicon gap (6.375 s)
+// the last Vicon pose (5.4375 s) carried on by the commands. The dead reckoning file holds them.
+TEST_F(TinyDataset, WritesViconPosesAsOdometryOnRequest)
+{
+    const TCommandResult r =
+        runImporter(*s_scratch, dataArgs() + " --out '" + out("known.rawlog") +
+                                    "' --odometry-from-ground-truth");
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    const auto vicon1 = [](double tau) {
+        return mrpt::poses::CPose2D(0.1 * tau, 2.0, heading1(tau));
+    };
+    const auto vicon2 = [](double tau) {
+        return mrpt::poses::CPose2D(1 + 0.3 * tau, -1.0, 0.5);
+    };
+    std::map<std::pair<int, double>, mrpt::poses::CPose2D> got;
+    for (const auto& o : readObservations(out("known.rawlog")))
+        if (const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(o))
+            got[{odo->sensorLabel == "R1_ODOM" ? 1 : 2,
+                 mrpt::Clock::toDouble(odo->timestamp) - kT0}] = odo->odometry;
+    const auto expectPose = [&](int robot, double tau, const mrpt::poses::CPose2D& want) {
+        const auto it = got.find({robot, tau});
+        ASSERT_NE(it, got.end()) << "R" << robot << " at " << tau;
+        EXPECT_NEAR(it->second.x(), want.x(), 1e-6) << "R" << robot << " at " << tau;
+        EXPECT_NEAR(it->second.y(), want.y(), 1e-6) << "R" << robot << " at " << tau;
+        EXPECT_NEAR(mrpt::math::wrapToPi(it->second.phi() - want.phi()), 0, 1e-6);
+    };
+    expectPose(1, 0, vicon1(0));
+    expectPose(1, 2.125, vicon1(2.125));
+    expectPose(1, 5.4375, vicon1(5.4375));
+    expectPose(2, 5.4375, vicon2(5.4375));
+    const mrpt::poses::CPose2D carried =
+        vicon2(5.4375) + (tinyOdometry(2, 6.375) - tinyOdometry(2, 5.4375));
+    expectPose(2, 6.375, carried);
+    EXPECT_GT(carried.distanceTo(vicon2(6.375)), 0.01);  // the carried pose is not Vicon's
+
+    const auto odo2 = mrpt_vslam::core::TumTrajectory::load(out("known.odometry_R2.tum"));
+    ASSERT_EQ(odo2.size(), 4u);  // 2.125, 5.4375, 6.375, 9 s
+    EXPECT_NEAR(odo2.poses[2].x, carried.x(), 1e-6);
+    EXPECT_NEAR(odo2.poses[2].y, carried.y(), 1e-6);
+}
+
 TEST_F(TinyDataset, MapsBarcodesAndHidesIdentities)
 {
     for (const bool keep_ids : {false, true}) {

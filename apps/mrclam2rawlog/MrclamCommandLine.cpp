@@ -84,6 +84,11 @@ TMrclamCommandLine TMrclamCommandLine::parse(int argc, const char* const* argv)
         "Integrate each speed command this much later [s] (default 0; the robots of dataset 7 "
         "follow their commands about 0.2 s late)",
         false, 0, "S", cmd);
+    TCLAP::SwitchArg odometry_from_ground_truth(
+        "", "odometry-from-ground-truth",
+        "R<n>_ODOM holds the Vicon poses (where Vicon has none, the last one carried on by the "
+        "commands): mapping with known poses, for diagnostics",
+        cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "No summary on stdout", cmd);
 
     TMrclamCommandLine c;
@@ -127,6 +132,7 @@ TMrclamCommandLine TMrclamCommandLine::parse(int argc, const char* const* argv)
         throw usage_error("--std-bearing-deg must be > 0");
     c.command_delay = command_delay.getValue();
     if (!(std::abs(c.command_delay) <= 5)) throw usage_error("--command-delay must be within +-5 s");
+    c.odometry_from_ground_truth = odometry_from_ground_truth.getValue();
     c.quiet = quiet.getValue();
     return c;
 }

@@ -26,6 +26,7 @@ struct TMrclamCommandLine {
     double std_range = 0.20;                  ///< [m] --std-range (doc/real-data.md)
     double std_bearing = mrpt::DEG2RAD(3.5);  ///< [rad] --std-bearing-deg (doc/real-data.md)
     double command_delay = 0;                 ///< [s] --command-delay (doc/real-data.md)
+    bool odometry_from_ground_truth = false;  ///< --odometry-from-ground-truth (diagnostics)
     bool quiet = false;                       ///< --quiet: no summary
 
     /// The output prefix: out_rawlog without its `.rawlog` extension.

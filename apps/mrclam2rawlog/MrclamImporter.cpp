@@ -185,27 +185,42 @@ TImportSummary MrclamImporter::run()
         summary.robots[r.number] = {};
     }
 
+    // The odometry pose of robot k at t, in non-decreasing t: the commands integrated, or with
+    // --odometry-from-ground-truth the Vicon pose, else the last one carried on by the commands.
+    std::vector<TDeadReckoningAnchor> last_vicon = anchors;
+    const auto odometryPose = [&](size_t k, double t) {
+        const mrpt::poses::CPose2D commands(odometry[k].poseAt(t));
+        if (!m_options.odometry_from_ground_truth) return commands.asTPose();
+        if (const auto truth = vicon[k].poseAt(t))
+            last_vicon[k] = {mrpt::poses::CPose2D(*truth), commands};
+        return (last_vicon[k].vicon + (commands - last_vicon[k].odometry)).asTPose();
+    };
+    if (m_options.odometry_from_ground_truth)  // the odometry frame is the map frame
+        for (auto& a : anchors) a.odometry = a.vicon;
+
     sim::DatasetWriter writer(m_options.outPrefix(), false, {});
     for (size_t k = 0; k < n_robots; k++) {
         const TMrclamRobot& r = m_dataset.robots[k];
         writer.writeObservation(odometryReading(r.number, mrpt::Clock::fromDouble(start),
-                                                odometry[k].poseAt(start),
+                                                odometryPose(k, start),
                                                 odometry[k].commandAt(start)));
         const std::string name = robotName(r.number);
         ground_truth[k].name = "groundtruth_" + name;
         ground_truth[k].header_comment =
             "MRCLAM robot " + std::to_string(r.number) + ": Vicon pose interpolated at each step";
         dead_reckoning[k].name = "odometry_" + name;
-        dead_reckoning[k].header_comment = "MRCLAM robot " + std::to_string(r.number) +
-                                           ": dead reckoning from the speed commands, starting "
-                                           "at the Vicon pose";
+        dead_reckoning[k].header_comment =
+            "MRCLAM robot " + std::to_string(r.number) +
+            (m_options.odometry_from_ground_truth
+                 ? ": the odometry of the rawlog, Vicon poses (--odometry-from-ground-truth)"
+                 : ": dead reckoning from the speed commands, starting at the Vicon pose");
     }
 
     for (const auto& [t, by_robot] : steps) {
         const mrpt::Clock::time_point stamp = mrpt::Clock::fromDouble(t);
         const double tum_time = mrpt::Clock::toDouble(stamp);  // the rawlog's time, exactly
         for (size_t k = 0; k < n_robots; k++) {
-            const mrpt::math::TPose2D pose = odometry[k].poseAt(t);
+            const mrpt::math::TPose2D pose = odometryPose(k, t);
             writer.writeObservation(
                 odometryReading(m_dataset.robots[k].number, stamp, pose, odometry[k].commandAt(t)));
             // dead reckoning in the map frame: G_a ⊕ (O_a⁻¹ ⊕ O(t))
