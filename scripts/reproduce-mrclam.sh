@@ -52,7 +52,8 @@ run() {
   [ "${READINGS_OF_ROBOTS:-yes}" = no ] && ids=""
   "$BIN/multirobot-vslam" "$CONFIGS/multirobot-vslam/mrclam.ini" "$rawlog" --out "$dir" --quiet \
     --set "MultiRobotVSLAM.robots=$robots" --set "MultiRobotVSLAM.robot_reading_ids=$ids" "$@"
-  "$BIN/vslam-eval" "$dir" --ground-truth "${rawlog%.rawlog}" > "$dir/summary.txt"
+  "$BIN/vslam-eval" "$dir" --ground-truth "${rawlog%.rawlog}" --landmark-cutoff 0.5 \
+    > "$dir/summary.txt"
   local rmse
   rmse=$(awk '/^R[0-9]+ (estimate|odometry):/ {printf "%s ", $5}' "$dir/summary.txt")
   # json NAME: the number after "NAME": in run.json ("-" when absent)
@@ -134,7 +135,8 @@ for d0 in 11.34 30 50; do
       --set MotionModel.a3=0.01 --set MotionModel.a4=0.01 --set MotionModel.minStdXY=0.0005 \
       --set MotionModel.minStdPHI_deg=0.05 \
       --set "MappingApplication_visualLandmarksMap_00_insertOpts.D0=$d0")
-    # vslam-eval's one-to-one (Hungarian) matching: "landmarks: 15 true, N estimated: K matched"
+    # vslam-eval's one-to-one (Hungarian) matching within 0.5 m (run's --landmark-cutoff):
+    # "landmarks: 15 true, N estimated: K matched"
     echo "${res%%|*} $(awk '/^landmarks:/ {print $4, $6}' "$dir/summary.txt")"
   done | awk -v d="$d0" '{a += $1; b += $3; c += $5; lm += $7; m += $8; n++}
     END {printf "| %s | %.3f | %.3f | %.3f | %.1f | %.1f |\n", d, a / n, b / n, c / n, lm / n, m / n}'
