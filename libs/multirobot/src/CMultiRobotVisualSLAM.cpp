@@ -435,7 +435,7 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const TMotionGaussian& moti
         for (size_t j = 0; j < z.size(); j++) {
             gated[j] = linearize(z[j]);
             if (!joint) {
-                assoc[j] = p.map.associate(gated[j], candidates[j], &taken);
+                assoc[j] = p.map.associate(gated[j], candidates[j], &taken, z[j].identity);
                 if (assoc[j]) taken.push_back(assoc[j]->id);
             } else if (assoc[j]) {  // p(z_j | z_1..z_{j-1}) for the weight
                 assoc[j] = p.map.evaluate(gated[j], assoc[j]->id);

@@ -94,8 +94,13 @@ CVisualLandmarksMap::TAssociation CVisualLandmarksMap::evaluate(const TMapMeasur
 
 std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     const TMapMeasurement& m, const TMeasurementCandidates& candidates,
-    const std::vector<uint32_t>* excluded) const
+    const std::vector<uint32_t>* excluded, int64_t identity) const
 {
+    if (insertionOptions.associate_by_identity && identity >= 0) {  // known correspondences
+        const auto id = m_pool->landmarkOfIdentity(identity);
+        if (!id || !m_store.find(*id)) return std::nullopt;
+        return evaluate(m, *id);
+    }
     // Alg. 1 lines 19-29: the smallest E among the landmarks with D ≤ D0. The candidates
     // (E ≤ E0 already) come in increasing E, so the first one inside the gate is it; among
     // equal E (no descriptors, as in range-bearing data: all E = 0) the smallest D.
@@ -157,7 +162,8 @@ CVisualLandmarksMap::associateJointly(const std::vector<TMapMeasurement>& m,
 TFusionResult CVisualLandmarksMap::fuse(const TLandmarkMeasurement& m, const TMapMeasurement& in_map,
                                         TMeasurementCandidates& candidates, unsigned robot)
 {
-    return fuseAs(m, in_map, candidates, robot, associate(in_map, candidates));
+    return fuseAs(m, in_map, candidates, robot,
+                  associate(in_map, candidates, nullptr, m.identity));
 }
 
 TFusionResult CVisualLandmarksMap::fuseAs(const TLandmarkMeasurement& m,
@@ -167,7 +173,10 @@ TFusionResult CVisualLandmarksMap::fuseAs(const TLandmarkMeasurement& m,
 {
     TFusionResult r;
     if (!a) {  // Alg. 1 lines 33-36
+        const bool known = insertionOptions.associate_by_identity && m.identity >= 0;
+        if (known && !candidates.new_id) candidates.new_id = m_pool->landmarkOfIdentity(m.identity);
         if (!candidates.new_id) candidates.new_id = m_pool->add(m.d, in_map.z);
+        if (known) m_pool->setLandmarkOfIdentity(m.identity, *candidates.new_id);
         TVisualLandmark lm;
         lm.mean = in_map.z;
         lm.cov = in_map.R;
@@ -229,7 +238,7 @@ double CVisualLandmarksMap::internal_computeObservationLikelihood(
     double log_lik = 0;
     for (const auto& m : measurementsFromObservation(*o)) {
         const TMapMeasurement in_map = toMapFrame(m, robot);
-        const auto a = associate(in_map, findCandidates(m, in_map));
+        const auto a = associate(in_map, findCandidates(m, in_map), nullptr, m.identity);
         log_lik += a ? a->log_likelihood : std::log(insertionOptions.p0);
     }
     return log_lik;

@@ -24,12 +24,15 @@ void CVisualLandmarksMap::TInsertionOptions::loadFromConfigFile(
     MRPT_LOAD_CONFIG_VAR(search_radius, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(grid_cell_size, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(joint_association, bool, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(associate_by_identity, bool, cfg, section);
     requireKey(D0 > 0 && std::isfinite(D0), section, "D0", "must be finite and > 0");
     requireKey(E0 >= 0 && E0 <= 4, section, "E0",
                "must be in [0, 4] (squared distance of unit descriptors)");
     requireKey(p0 > 0 && std::isfinite(p0), section, "p0", "must be finite and > 0");
     requireKey(search_radius > 0 && std::isfinite(search_radius), section, "search_radius",
                "must be finite and > 0");
+    requireKey(!(joint_association && associate_by_identity), section, "associate_by_identity",
+               "cannot be combined with joint_association");
     requireKey(grid_cell_size > 0 && std::isfinite(grid_cell_size), section, "grid_cell_size",
                "must be finite and > 0");
 }
@@ -43,6 +46,7 @@ void CVisualLandmarksMap::TInsertionOptions::dumpToTextStream(std::ostream& out)
     LOADABLEOPTS_DUMP_VAR(search_radius, double);
     LOADABLEOPTS_DUMP_VAR(grid_cell_size, double);
     LOADABLEOPTS_DUMP_VAR(joint_association, bool);
+    LOADABLEOPTS_DUMP_VAR(associate_by_identity, bool);
 }
 
 void CVisualLandmarksMap::TRenderOptions::loadFromConfigFile(

@@ -3,7 +3,7 @@
 
 namespace mrpt_vslam::multirobot {
 
-uint8_t CVisualLandmarksMap::serializeGetVersion() const { return 2; }
+uint8_t CVisualLandmarksMap::serializeGetVersion() const { return 3; }
 
 void CVisualLandmarksMap::serializeTo(mrpt::serialization::CArchive& out) const
 {
@@ -11,7 +11,7 @@ void CVisualLandmarksMap::serializeTo(mrpt::serialization::CArchive& out) const
     // Options travel with the map: CMultiMetricMap copies (particle resampling) serialize it.
     const auto& io = insertionOptions;
     out << io.D0 << io.E0 << io.p0 << io.search_radius << io.grid_cell_size
-        << io.joint_association;
+        << io.joint_association << io.associate_by_identity;
     out << renderOptions.draw_ellipsoids << renderOptions.ellipsoid_quantiles
         << renderOptions.point_size;
     out << static_cast<uint32_t>(m_store.size());
@@ -24,16 +24,21 @@ void CVisualLandmarksMap::serializeTo(mrpt::serialization::CArchive& out) const
         for (const float v : m_pool->descriptor(id)) out << v;
         for (int i = 0; i < 3; i++) out << m_pool->creationPosition(id)[i];
     });
+    const auto identities = m_pool->identities();
+    out << static_cast<uint32_t>(identities.size());
+    for (const auto& [identity, id] : identities) out << identity << id;
 }
 
 void CVisualLandmarksMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
 {
-    if (version > 2) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+    if (version > 3) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
     in >> genericMapParams;
     auto& io = insertionOptions;
     in >> io.D0 >> io.E0 >> io.p0 >> io.search_radius >> io.grid_cell_size;
     io.joint_association = false;
     if (version >= 2) in >> io.joint_association;  // version 2
+    io.associate_by_identity = false;
+    if (version >= 3) in >> io.associate_by_identity;  // version 3
     in >> renderOptions.draw_ellipsoids >> renderOptions.ellipsoid_quantiles >>
         renderOptions.point_size;
     if (!(io.grid_cell_size > 0)) THROW_EXCEPTION("CVisualLandmarksMap: invalid grid cell size");
@@ -59,6 +64,15 @@ void CVisualLandmarksMap::serializeFrom(mrpt::serialization::CArchive& in, uint8
         for (int i = 0; i < 3; i++) in >> created[i];
         m_pool->addWithId(id, d, created);
         m_store.insert(id, lm);
+    }
+    if (version >= 3) {
+        in >> n;
+        for (uint32_t k = 0; k < n; k++) {
+            int64_t identity;
+            uint32_t id;
+            in >> identity >> id;
+            m_pool->setLandmarkOfIdentity(identity, id);
+        }
     }
 }
 

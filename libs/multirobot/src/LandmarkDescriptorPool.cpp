@@ -32,6 +32,20 @@ void LandmarkDescriptorPool::index(uint32_t id)
     m_grid[cellKey(cellIndex(p.x()), cellIndex(p.y()), cellIndex(p.z()))].push_back(id);
 }
 
+std::optional<uint32_t> LandmarkDescriptorPool::landmarkOfIdentity(int64_t identity) const
+{
+    const auto it = m_identities.find(identity);
+    if (it == m_identities.end()) return std::nullopt;
+    return it->second;
+}
+
+std::vector<std::pair<int64_t, uint32_t>> LandmarkDescriptorPool::identities() const
+{
+    std::vector<std::pair<int64_t, uint32_t>> out(m_identities.begin(), m_identities.end());
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
 uint32_t LandmarkDescriptorPool::add(const TDescriptor& descriptor, const Eigen::Vector3d& position)
 {
     const auto id = static_cast<uint32_t>(m_descriptors.size());

@@ -72,6 +72,7 @@ std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
         m.R = rot * C * rot.transpose();
         m.depth = r;
         m.track_id = s.landmarkID;
+        m.identity = s.landmarkID >= 0 ? s.landmarkID : -1;
         out.push_back(m);
     }
     return out;

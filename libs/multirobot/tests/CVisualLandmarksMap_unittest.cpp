@@ -102,6 +102,62 @@ TEST(CVisualLandmarksMap, DifferentDescriptorAtTheSamePlaceIsANewLandmark)
     EXPECT_TRUE(lm->cov.isApprox(Eigen::Matrix3d::Identity() * 0.0025));
 }
 
+TEST(CVisualLandmarksMap, KnownCorrespondencesFollowTheIdentityNotTheGate)
+{
+    // associate_by_identity: a reading of identity 7 far outside the gate of 7's landmark goes
+    // to it; a reading of identity 8 on top of that landmark starts 8's; an identity of −1
+    // goes through the gate as before
+    for (const bool by_identity : {false, true}) {
+        SCOPED_TRACE(by_identity ? "by identity" : "by the gate");
+        CVisualLandmarksMap map;
+        map.insertionOptions.associate_by_identity = by_identity;
+        map.insertionOptions.search_radius = 5;
+        const auto reading = [](const Eigen::Vector3d& z, int64_t identity) {
+            auto m = measurement(z, 0.05, 1);
+            m.identity = identity;
+            return m;
+        };
+        const auto first = fuseAtOrigin(map, reading({2, 0, 1}, 7));
+        ASSERT_TRUE(first.created);
+        const auto far = reading({2, 1.0, 1}, 7);
+        const auto expected = map.evaluate(toMapFrame(far, {0, 0, 0}), first.id);
+        EXPECT_GT(expected.D, map.insertionOptions.D0) << "the reading lies outside the gate";
+        const auto second = fuseAtOrigin(map, far);
+        EXPECT_EQ(second.created, !by_identity);
+        EXPECT_EQ(second.id == first.id, by_identity);
+        EXPECT_NEAR(second.log_w,
+                    by_identity ? expected.log_likelihood : std::log(map.insertionOptions.p0),
+                    1e-12)
+            << "weighed by N(v; 0, Z) of its own landmark, or p0 for a new one";
+        const size_t before = map.size();
+        const auto other = fuseAtOrigin(map, reading({2, 0, 1}, 8));
+        EXPECT_EQ(other.created, by_identity) << "identity 8 is another landmark";
+        EXPECT_EQ(map.size(), before + (by_identity ? 1 : 0));
+        const auto hidden = fuseAtOrigin(map, reading({2, 0, 1}, -1));
+        EXPECT_FALSE(hidden.created) << "no identity: the gate associates it";
+    }
+}
+
+TEST(CVisualLandmarksMap, KnownCorrespondencesGiveAnIdentityOneIdInEveryParticle)
+{
+    // two particles' maps share the pool; the one that meets identity 7 later starts its
+    // landmark under the id the first one gave it
+    auto pool = std::make_shared<LandmarkDescriptorPool>();
+    CVisualLandmarksMap a(pool), b(pool);
+    a.insertionOptions.associate_by_identity = b.insertionOptions.associate_by_identity = true;
+    auto m = measurement({2, 0, 1}, 0.05, 1);
+    m.identity = 7;
+    const auto ra = fuseAtOrigin(a, m);
+    fuseAtOrigin(a, measurement({3, 0, 1}, 0.05, 1));  // a landmark without identity
+    m.z = {2.5, 0.3, 1};
+    const auto rb = fuseAtOrigin(b, m);
+    EXPECT_TRUE(ra.created);
+    EXPECT_TRUE(rb.created);
+    EXPECT_EQ(rb.id, ra.id);
+    EXPECT_EQ(pool->landmarkOfIdentity(7), std::optional<uint32_t>(ra.id));
+    EXPECT_FALSE(pool->landmarkOfIdentity(8).has_value());
+}
+
 TEST(CVisualLandmarksMap, EkfUpdateAndWeightMatchTheCameraFrameEquations)
 {
     // Eq. 6-13 written in the sensor frame with g(x, l) = Rᵀ(l − t), G = Rᵀ, versus the map
@@ -255,6 +311,30 @@ TEST(CVisualLandmarksMap, JointAssociationMatchesBruteForce)
     }
 }
 
+TEST(CVisualLandmarksMap, SerializesTheLandmarksOfIdentities)
+{
+    CVisualLandmarksMap map;
+    map.insertionOptions.associate_by_identity = true;
+    for (const int64_t identity : {9, 7}) {
+        auto m = measurement({2.0 + identity, 0, 1}, 0.05, 1);
+        m.identity = identity;
+        fuseAtOrigin(map, m);
+    }
+    mrpt::io::CMemoryStream buf;
+    auto out = mrpt::serialization::archiveFrom(buf);
+    out << map;
+    buf.Seek(0);
+    CVisualLandmarksMap back;
+    auto in = mrpt::serialization::archiveFrom(buf);
+    in >> back;
+    EXPECT_TRUE(back.insertionOptions.associate_by_identity);
+    EXPECT_EQ(back.descriptorPool().identities(), map.descriptorPool().identities());
+    EXPECT_EQ(back.descriptorPool().identities().size(), 2u);
+    auto m = measurement({2.0 + 7, 0, 1}, 0.05, 1);
+    m.identity = 7;
+    EXPECT_EQ(fuseAtOrigin(back, m).id, *map.descriptorPool().landmarkOfIdentity(7));
+}
+
 TEST(CVisualLandmarksMap, SerializesCreatesFromIniAndWritesMapTxt)
 {
     mrpt::config::CConfigFileMemory ini(R"(
@@ -340,5 +420,8 @@ TEST(CVisualLandmarksMap, RejectsImpossibleOptions)
     EXPECT_NE(errorOf("D0 = 0").find("D0: must be finite and > 0"), std::string::npos);
     EXPECT_NE(errorOf("p0 = nan").find("p0: must be finite and > 0"), std::string::npos);
     EXPECT_NE(errorOf("grid_cell_size = -2").find("grid_cell_size"), std::string::npos);
+    EXPECT_NE(errorOf("joint_association = true\nassociate_by_identity = true")
+                  .find("associate_by_identity: cannot be combined with joint_association"),
+              std::string::npos);
     EXPECT_EQ(errorOf("E0 = 0.7"), "");
 }

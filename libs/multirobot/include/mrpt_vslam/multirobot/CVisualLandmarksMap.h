@@ -73,6 +73,10 @@ public:
         /// Associate the points of one frame jointly (associateJointly(), ours) instead of
         /// one by one (associate(), the paper's Alg. 1).
         bool joint_association = false;
+        /// Known correspondences: a measurement with an identity (TLandmarkMeasurement::
+        /// identity ≥ 0) goes to the landmark that identity started, whatever its D, or starts
+        /// it; measurements without one go through the gate. Not with joint_association.
+        bool associate_by_identity = false;
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                 const std::string& section) override;
@@ -119,10 +123,12 @@ public:
     };
     /** The landmark the measurement is associated with (steps 2-3), or nullopt for "new".
      *  Landmarks listed in `excluded` (e.g. already taken by another point of the same
-     *  frame) are passed over. */
+     *  frame) are passed over. With associate_by_identity and `identity` ≥ 0, the landmark of
+     *  that identity instead (ungated), or nullopt if there is none yet. */
     std::optional<TAssociation> associate(const TMapMeasurement& m,
                                           const TMeasurementCandidates& candidates,
-                                          const std::vector<uint32_t>* excluded = nullptr) const;
+                                          const std::vector<uint32_t>* excluded = nullptr,
+                                          int64_t identity = -1) const;
     /** The associations of all points of one frame and robot at once (ours, doc/multirobot.md
      *  §3): the assignment of the points to distinct landmarks, or to new ones, of largest
      *  likelihood, N(v; 0, Z) per pair inside the gates (D ≤ D0, E ≤ E0) and p0 per new

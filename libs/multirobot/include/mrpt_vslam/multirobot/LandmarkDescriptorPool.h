@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -27,7 +28,10 @@ struct TLandmarkCandidate {
  *
  *  The search also bounds the distance between a candidate's creation position and the
  *  measured point (a spatial index instead of a scan of all landmarks); the caller chooses a
- *  radius that covers the spread of the particles and the Mahalanobis gate. */
+ *  radius that covers the spread of the particles and the Mahalanobis gate.
+ *
+ *  With known correspondences (CVisualLandmarksMap's associate_by_identity) the pool also
+ *  records which landmark id each identity started, so that all particles use that one. */
 class LandmarkDescriptorPool {
 public:
     using TDescriptor = core::USurfDescriptor::TDescriptor;
@@ -52,6 +56,16 @@ public:
     void findCandidates(const Eigen::Vector3d& center, double radius, const TDescriptor& query,
                         double max_E, std::vector<TLandmarkCandidate>& out) const;
 
+    /// The landmark the first reading of this identity started (known correspondences), if any.
+    std::optional<uint32_t> landmarkOfIdentity(int64_t identity) const;
+    /// Records that landmark `id` stands for `identity` (the first one recorded stays).
+    void setLandmarkOfIdentity(int64_t identity, uint32_t id)
+    {
+        m_identities.emplace(identity, id);
+    }
+    /// Every (identity, landmark id) recorded, by increasing identity.
+    std::vector<std::pair<int64_t, uint32_t>> identities() const;
+
     /// (d_a − d_b)(d_a − d_b)^T (Eq. 16).
     static float squaredDistance(const TDescriptor& a, const TDescriptor& b);
 
@@ -67,6 +81,7 @@ private:
     std::vector<Eigen::Vector3d> m_positions;
     std::vector<bool> m_used;
     std::unordered_map<int64_t, std::vector<uint32_t>> m_grid;
+    std::unordered_map<int64_t, uint32_t> m_identities;
 };
 
 }  // namespace mrpt_vslam::multirobot

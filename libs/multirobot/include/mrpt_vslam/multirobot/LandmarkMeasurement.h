@@ -23,8 +23,11 @@ struct TLandmarkMeasurement {
     core::USurfDescriptor::TDescriptor d{};       ///< U-SURF descriptor d_t
     double depth = 0;      ///< distance along the optical axis or range [m]: B-selection key
     /// Front-end track, or the landmark's identity in range-bearing data that keeps it (−1:
-    /// hidden). Diagnostics only (association errors); never used to associate.
+    /// hidden). Diagnostics (association errors).
     int64_t track_id = -1;
+    /// The landmark's identity where the data gives one (range-bearing `landmarkID` ≥ 0), else
+    /// −1: associates only with `associate_by_identity` (known correspondences).
+    int64_t identity = -1;
 };
 
 /** The same measurement in the map frame for one particle's robot pose x:
