@@ -5,9 +5,10 @@
 #      (robots 1-3, 1, 2, 3, 1-2 and 1-5; landmark ids hidden, and robots 1-3 once more with ids
 #      kept, to count wrong associations: the filter reads them only in 3c);
 #   2. multirobot-vslam (mrclam.ini), robots 1-3 jointly, several seeds: per-robot ATE vs
-#      odometry, landmarks mapped once within 0.5 m, extra landmarks, wrong associations, run time;
+#      odometry, the particle's map and the map along its path (landmarks matched within 0.5 m,
+#      extra landmarks), wrong associations, run time;
 #   3. the same filter on each robot alone, on 2 and 5 robots, and on robots 1-3 without the
-#      readings of robots;
+#      readings of robots (the particles' own maps);
 #   3b. robots 1-3 with known poses (the Vicon poses as odometry) and three gates D0: what the
 #      association alone makes of the readings;
 #   3c. robots 1-3 with known correspondences (associate_by_identity): the filter's paths when
@@ -48,7 +49,9 @@ import r1-omni 1 0 --keep-ids
 
 # run DIR RAWLOG ROBOTS [options...]: one multirobot-vslam run and its evaluation (robot Rn reads
 # as id n; READINGS_OF_ROBOTS=no drops those readings); prints
-# "est_1 odo_1 ... | once duplicated extra fused wrong total_s"
+# "est_1 odo_1 ... | once duplicated extra fused wrong total_s particle_map matched estimated
+# error_mean" (the last four: the particle's own map, "-" without map_along_path, and vslam-eval's
+# one-to-one matching of the output map within 0.5 m)
 run() {
   local dir="$1" rawlog="$2" robots="$3"; shift 3
   local ids="${robots//R/}"
@@ -66,15 +69,17 @@ run() {
   total=$(json map_landmarks)
   echo "$rmse| $(json true_landmarks_mapped_once) $(json true_landmarks_duplicated)" \
     "$((total - mapped)) $(json fused_measurements) $(json fused_with_another_identity)" \
-    "$(json total_s | awk '{printf "%.1f", $1}')"
+    "$(json total_s | awk '{printf "%.1f", $1}') $(json particle_map_landmarks)" \
+    "$(sed -n 's/^landmarks: *[0-9]* true, \([0-9]*\) estimated: \([0-9]*\) matched.*error mean \([0-9.]*\) m.*/\2 \1 \3/p' \
+      "$dir/summary.txt")"
 }
 
 # --- 2. robots 1-3 jointly ----------------------------------------------------------------------
 echo
 echo "### Robots 1-3 jointly (mrclam.ini), identities hidden"
 echo
-echo "| seed | R1 RMSE [m] | R1 odometry [m] | R2 RMSE [m] | R2 odometry [m] | R3 RMSE [m] | R3 odometry [m] | landmarks mapped once (of 15) | duplicated | extra | fused readings | of another identity | run [s] |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| seed | R1 RMSE [m] | R1 odometry [m] | R2 RMSE [m] | R2 odometry [m] | R3 RMSE [m] | R3 odometry [m] | particle's map landmarks | map along the path: landmarks | true landmarks matched one-to-one within 0.5 m (mean error) | extra | fused readings | of another identity | run [s] |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 : > "$OUT/joint.txt"
 for seed in $SEEDS; do
   res=$(run "$OUT/r123-seed$seed" "$OUT/data/r123-ids.rawlog" "R1 R2 R3" --seed "$seed")
@@ -87,8 +92,9 @@ for seed in $SEEDS; do
     done
   fi
   read -r -a v <<< "${res%%|*}"
-  read -r once dup extra fused wrong t <<< "${res##*|}"
-  echo "| $seed | ${v[0]} | ${v[1]} | ${v[2]} | ${v[3]} | ${v[4]} | ${v[5]} | $once | $dup | $extra | $fused | $wrong | $t |"
+  read -r _ _ _ fused wrong t particle matched total err <<< "${res##*|}"
+  echo "| $seed | ${v[0]} | ${v[1]} | ${v[2]} | ${v[3]} | ${v[4]} | ${v[5]} | $particle | $total |" \
+    "$matched ($err m) | $((total - matched)) | $fused | $wrong | $t |"
   echo "${v[0]} ${v[2]} ${v[4]}" >> "$OUT/joint.txt"
 done
 awk '{a += $1; b += $2; c += $3; n++} END {printf "mean over seeds: R1 %.3f m, R2 %.3f m, R3 %.3f m (team mean %.3f m)\n", a / n, b / n, c / n, (a + b + c) / (3 * n)}' "$OUT/joint.txt"
@@ -103,7 +109,9 @@ team() {  # team NAME RAWLOG ROBOTS
   local name="$1" rawlog="$2" robots="$3"
   : > "$OUT/team.tmp"
   for seed in $SEEDS; do
-    res=$(run "$OUT/$name-seed$seed" "$rawlog" "$robots" --seed "$seed")
+    # the particles' own maps: map_along_path's count threshold is set for robots 1-3
+    res=$(run "$OUT/$name-seed$seed" "$rawlog" "$robots" --seed "$seed" \
+      --set MultiRobotVSLAM.map_along_path=false)
     echo "$res" >> "$OUT/team.tmp"
   done
   local k=0
@@ -137,7 +145,8 @@ for d0 in 11.34 30 50; do
       --set ParticleFilter.sampleSize=100 --set MotionModel.a1=0.01 --set MotionModel.a2=0.001 \
       --set MotionModel.a3=0.01 --set MotionModel.a4=0.01 --set MotionModel.minStdXY=0.0005 \
       --set MotionModel.minStdPHI_deg=0.05 \
-      --set "MappingApplication_visualLandmarksMap_00_insertOpts.D0=$d0")
+      --set "MappingApplication_visualLandmarksMap_00_insertOpts.D0=$d0" \
+      --set MultiRobotVSLAM.map_along_path=false)
     # vslam-eval's one-to-one (Hungarian) matching within 0.5 m (run's --landmark-cutoff):
     # "landmarks: 15 true, N estimated: K matched"
     echo "${res%%|*} $(awk '/^landmarks:/ {print $4, $6}' "$dir/summary.txt")"
@@ -156,7 +165,8 @@ echo "|---|---|---|---|---|---|---|"
 for seed in $SEEDS; do
   dir="$OUT/r123-identity-seed$seed"
   res=$(run "$dir" "$OUT/data/r123-ids.rawlog" "R1 R2 R3" --seed "$seed" \
-    --set MappingApplication_visualLandmarksMap_00_insertOpts.associate_by_identity=true)
+    --set MappingApplication_visualLandmarksMap_00_insertOpts.associate_by_identity=true \
+    --set MultiRobotVSLAM.map_along_path=false)
   read -r -a v <<< "${res%%|*}"
   read -r -a w <<< "${res##*|}"
   echo "| $seed | ${v[0]} | ${v[2]} | ${v[4]} | $(awk '/^landmarks:/ {print $4 " | " $6}' \

@@ -10,6 +10,7 @@
 #include <mrpt_vslam/test/ScratchFolder.h>
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <string>
 #include <utility>
 
@@ -44,8 +45,8 @@ TEST(MultiRobotVSLAMOnMrclam, RobotReadingsKeepTheTeamFarBelowOdometry)
         const TCommandResult r = mrpt_vslam::test::runCommand(
             std::string(MRPT_VSLAM_BIN_DIR "/multirobot-vslam " MRPT_VSLAM_SOURCE_DIR
                         "/share/mrpt-vslam/config/multirobot-vslam/mrclam.ini '") +
-                rawlog + "' -q --seed 1 --set ParticleFilter.sampleSize=500 --out '" + out +
-                "' " + options,
+                rawlog + "' -q --seed 1 --set ParticleFilter.sampleSize=500 "
+                "--set MultiRobotVSLAM.map_along_path=false --out '" + out + "' " + options,
             scratch.path() / (name + ".log"));
         EXPECT_EQ(r.exit_code, 0) << r.out;
         return out;
@@ -70,7 +71,8 @@ TEST(MultiRobotVSLAMOnMrclam, RobotReadingsKeepTheTeamFarBelowOdometry)
     EXPECT_EQ(run["counts"]["robot_readings"].get<int>(), 300);  // R1-R3 reading each other in 300 s
     EXPECT_EQ(mrpt_vslam::test::readJson(without + "/run.json")["counts"]["robot_readings"].get<int>(),
               0);
-    // every true landmark the robots saw is in the map (within 0.5 m), identities unread
+    // every true landmark the robots saw is in the particle's map (within 0.5 m), identities
+    // unread
     EXPECT_GE(run["results"]["landmark_merging"]["true_landmarks_mapped"].get<int>(), 10);
     EXPECT_FALSE(run["results"].contains("association_by_identity"));
 }
@@ -95,7 +97,7 @@ TEST(MultiRobotVSLAMOnMrclam, KnownCorrespondencesMapEachLandmarkOnce)
                     "/share/mrpt-vslam/config/multirobot-vslam/mrclam.ini '") +
             rawlog + "' -q --seed 1 --set ParticleFilter.sampleSize=500 --set "
             "MappingApplication_visualLandmarksMap_00_insertOpts.associate_by_identity=true "
-            "--out '" + out + "'",
+            "--set MultiRobotVSLAM.map_along_path=false --out '" + out + "'",
         scratch.path() / "run.log");
     ASSERT_EQ(r.exit_code, 0) << r.out;
     const auto run = mrpt_vslam::test::readJson(out + "/run.json");
@@ -110,4 +112,42 @@ TEST(MultiRobotVSLAMOnMrclam, KnownCorrespondencesMapEachLandmarkOnce)
     EXPECT_EQ(merging["map_landmarks_without_true_landmark"].get<int>(), 0);
     const auto [est, odo] = teamMeans(out);
     EXPECT_LT(est, 0.4 * odo);
+}
+
+TEST(MultiRobotVSLAMOnMrclam, MapAlongThePathHoldsEachLandmarkOnce)
+{
+    // identities hidden, map_along_path as shipped but with the count threshold scaled to the
+    // 300 s window (posts get 120-370 readings here, a third of the whole dataset's): each of
+    // the 15 posts matched one-to-one within 0.5 m and at most 2 extra landmarks, where the
+    // particle's own map holds 27-36. Measured with seeds 1-2: 17 and 16 landmarks, 15 matched.
+    mrpt_vslam::test::ScratchFolder scratch("mrclam-along-path");
+    const std::string rawlog = scratch.file("w300.rawlog");
+    const TCommandResult import = mrpt_vslam::test::runCommand(
+        std::string(MRPT_VSLAM_BIN_DIR "/mrclam2rawlog '") + MRPT_VSLAM_MRCLAM_DIR +
+            "' --robots 1,2,3 --end 300 --command-delay 0.2 --keep-robot-measurements -q --out '" +
+            rawlog + "'",
+        scratch.path() / "import.log");
+    ASSERT_EQ(import.exit_code, 0) << import.out;
+    for (const char* seed : {"1", "2"}) {
+        const std::string out = scratch.file(std::string("run") + seed);
+        const TCommandResult r = mrpt_vslam::test::runCommand(
+            std::string(MRPT_VSLAM_BIN_DIR "/multirobot-vslam " MRPT_VSLAM_SOURCE_DIR
+                        "/share/mrpt-vslam/config/multirobot-vslam/mrclam.ini '") +
+                rawlog + "' -q --seed " + seed + " --set ParticleFilter.sampleSize=500 "
+                "--set MultiRobotVSLAM.map_along_path_min_times_seen=50 --out '" + out + "'",
+            scratch.path() / (std::string("run") + seed + ".log"));
+        ASSERT_EQ(r.exit_code, 0) << r.out;
+        const TCommandResult eval = mrpt_vslam::test::runCommand(
+            std::string(MRPT_VSLAM_BIN_DIR "/vslam-eval '") + out + "' --landmark-cutoff 0.5",
+            scratch.path() / (std::string("eval") + seed + ".log"));
+        ASSERT_EQ(eval.exit_code, 0) << eval.out;
+        const auto landmarks = mrpt_vslam::test::readJson(out + "/metrics.json")["landmarks"];
+        EXPECT_EQ(landmarks["matched"].get<int>(), 15) << "seed " << seed;
+        EXPECT_LE(landmarks["estimated_landmarks"].get<int>(), 17) << "seed " << seed;
+        const auto run = mrpt_vslam::test::readJson(out + "/run.json");
+        EXPECT_GT(run["counts"]["particle_map_landmarks"].get<int>(),
+                  landmarks["estimated_landmarks"].get<int>() + 8)
+            << "seed " << seed;
+        EXPECT_TRUE(std::filesystem::exists(out + "/particle_map.txt"));
+    }
 }

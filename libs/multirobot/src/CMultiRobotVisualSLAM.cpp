@@ -107,6 +107,9 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
     initial_std_phi = mrpt::DEG2RAD(
         cfg.read_double(section, "initial_std_phi_deg", mrpt::RAD2DEG(initial_std_phi)));
     MRPT_LOAD_CONFIG_VAR(resample_per_robot, bool, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(map_along_path, bool, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(map_along_path_D0, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(map_along_path_min_times_seen, uint64_t, cfg, section);
 
     requireKey(!robots.empty() && robots.size() <= 32, section, "robots",
                "must name 1 to 32 robots");
@@ -132,6 +135,7 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
     requireKey(min_motion_std_phi > 0, section, "min_motion_std_phi_deg", "must be > 0");
     requireKey(initial_std_xy >= 0, section, "initial_std_xy", "must be >= 0");
     requireKey(initial_std_phi >= 0, section, "initial_std_phi_deg", "must be >= 0");
+    requireKey(map_along_path_D0 > 0, section, "map_along_path_D0", "must be > 0");
 }
 
 void CMultiRobotVisualSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
@@ -156,6 +160,9 @@ void CMultiRobotVisualSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     cfg.write(section, "initial_std_xy", initial_std_xy);
     cfg.write(section, "initial_std_phi_deg", mrpt::RAD2DEG(initial_std_phi));
     cfg.write(section, "resample_per_robot", resample_per_robot);
+    cfg.write(section, "map_along_path", map_along_path);
+    cfg.write(section, "map_along_path_D0", map_along_path_D0);
+    cfg.write(section, "map_along_path_min_times_seen", map_along_path_min_times_seen);
 }
 
 CMultiRobotVisualSLAM::CMultiRobotVisualSLAM(const CVisualLandmarksMap& map_template,
@@ -199,6 +206,8 @@ void CMultiRobotVisualSLAM::reset(const std::vector<TPose2D>& start_poses, doubl
         d.map = m_template;
         d.accumulated_log_w = 0;
     }
+    m_fusedFrames.clear();
+    m_steps = 0;
 }
 
 const TTeamParticle& CMultiRobotVisualSLAM::bestParticle() const
@@ -218,6 +227,36 @@ std::vector<std::pair<double, TPose2D>> CMultiRobotVisualSLAM::pathOf(const TTea
         path.emplace_back(n->timestamp, n->poses.at(robot));
     std::reverse(path.begin(), path.end());
     return path;
+}
+
+CVisualLandmarksMap CMultiRobotVisualSLAM::mapAlongPath(const TTeamParticle& p) const
+{
+    if (!options.map_along_path)
+        throw std::logic_error("mapAlongPath() needs options.map_along_path before reset()");
+    std::vector<const TTeamPathNode*> nodes;  // nodes[s]: the poses after step s
+    for (const TTeamPathNode* n = p.path.get(); n; n = n->previous.get()) nodes.push_back(n);
+    std::reverse(nodes.begin(), nodes.end());
+
+    CVisualLandmarksMap map(
+        std::make_shared<LandmarkDescriptorPool>(m_template.insertionOptions.grid_cell_size));
+    map.insertionOptions = m_template.insertionOptions;
+    map.insertionOptions.D0 = options.map_along_path_D0;
+    map.renderOptions = m_template.renderOptions;
+    map.genericMapParams = m_template.genericMapParams;
+    std::vector<TMapMeasurement> in_map;
+    std::vector<TMeasurementCandidates> candidates;
+    for (const auto& f : m_fusedFrames) {
+        const TPlanarTransform pose(nodes.at(f.step)->poses.at(f.robot));
+        in_map.resize(f.z.size());
+        candidates.resize(f.z.size());
+        for (size_t j = 0; j < f.z.size(); j++) {
+            in_map[j] = toMapFrame(f.z[j], pose);
+            candidates[j] = map.findCandidates(f.z[j], in_map[j]);
+        }
+        map.fuseFrame(f.z, in_map, candidates, static_cast<unsigned>(f.robot), true);
+    }
+    map.removeLandmarksSeenLessThan(options.map_along_path_min_times_seen);
+    return map;
 }
 
 CMultiRobotVisualSLAM::TMotionGaussian CMultiRobotVisualSLAM::motionOf(
@@ -358,19 +397,13 @@ std::vector<TPose2D> CMultiRobotVisualSLAM::posesOf(size_t k) const
 void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandmarkMeasurement>& z)
 {
     auto candidates = searchCandidates(posesOf(k), 0, 0, z);
-    const bool joint = m_template.insertionOptions.joint_association;
-    const auto robot = static_cast<unsigned>(k);
     std::vector<TMapMeasurement> in_map(z.size());
-    std::vector<std::optional<CVisualLandmarksMap::TAssociation>> assoc;
     // Alg. 1 lines 18-46, particle by particle so that its landmarks stay in the cache
     for (auto& p : m_particles) {
         const TPlanarTransform pose(p.d->poses[k]);
         for (size_t j = 0; j < z.size(); j++) in_map[j] = toMapFrame(z[j], pose);
-        if (joint) assoc = p.d->map.associateJointly(in_map, candidates);
-        for (size_t j = 0; j < z.size(); j++) {
-            const TFusionResult r =
-                joint ? p.d->map.fuseAs(z[j], in_map[j], candidates[j], robot, assoc[j])
-                      : p.d->map.fuse(z[j], in_map[j], candidates[j], robot);
+        for (const TFusionResult& r :
+             p.d->map.fuseFrame(z, in_map, candidates, static_cast<unsigned>(k), false)) {
             p.log_w += r.log_w;  // line 44 and line 11: the product over the team
             p.d->accumulated_log_w += r.log_w;
             (r.created ? lastStepStats.created : lastStepStats.associated)++;
@@ -497,6 +530,7 @@ void CMultiRobotVisualSLAM::runStep(
         const auto readings =
             observation ? robotReadingsOf(k, *observation) : std::vector<TRobotReading>();
         lastStepStats.robot_readings += readings.size();
+        if (options.map_along_path && !z.empty()) m_fusedFrames.push_back({m_steps + 1, k, z});
         if (optimal && !(z.empty() && readings.empty())) {
             proposeAndFuse(k, motion, z, readings);
         } else {
@@ -510,6 +544,7 @@ void CMultiRobotVisualSLAM::runStep(
     }
     for (auto& p : m_particles)
         p.d->path = std::make_shared<const TTeamPathNode>(timestamp, p.d->poses, p.d->path);
+    m_steps++;
 }
 
 void CMultiRobotVisualSLAM::prediction_and_update_pfStandardProposal(

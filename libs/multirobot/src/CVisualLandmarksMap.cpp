@@ -203,6 +203,37 @@ TFusionResult CVisualLandmarksMap::fuseAs(const TLandmarkMeasurement& m,
     return r;
 }
 
+std::vector<TFusionResult> CVisualLandmarksMap::fuseFrame(
+    const std::vector<TLandmarkMeasurement>& z, const std::vector<TMapMeasurement>& in_map,
+    std::vector<TMeasurementCandidates>& candidates, unsigned robot, bool distinct)
+{
+    std::vector<TFusionResult> results(z.size());
+    if (insertionOptions.joint_association) {
+        const auto assoc = associateJointly(in_map, candidates);
+        for (size_t j = 0; j < z.size(); j++)
+            results[j] = fuseAs(z[j], in_map[j], candidates[j], robot, assoc[j]);
+        return results;
+    }
+    std::vector<uint32_t> taken;
+    for (size_t j = 0; j < z.size(); j++) {
+        const auto a = associate(in_map[j], candidates[j], distinct ? &taken : nullptr,
+                                 z[j].identity);
+        if (a) taken.push_back(a->id);
+        results[j] = fuseAs(z[j], in_map[j], candidates[j], robot, a);
+    }
+    return results;
+}
+
+size_t CVisualLandmarksMap::removeLandmarksSeenLessThan(unsigned min_times_seen)
+{
+    std::vector<uint32_t> rare;
+    m_store.forEach([&](uint32_t id, const TVisualLandmark& lm) {
+        if (lm.times_seen < min_times_seen) rare.push_back(id);
+    });
+    for (const uint32_t id : rare) m_store.erase(id);
+    return rare.size();
+}
+
 bool CVisualLandmarksMap::isEmpty() const { return m_store.empty(); }
 
 void CVisualLandmarksMap::internal_clear() { m_store.clear(); }

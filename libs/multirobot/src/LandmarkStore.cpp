@@ -30,6 +30,13 @@ void LandmarkStore::insert(uint32_t id, const TVisualLandmark& landmark)
     block.items[id % kBlockSize] = landmark;
 }
 
+void LandmarkStore::erase(uint32_t id)
+{
+    if (!find(id)) return;
+    writableBlock(id / kBlockSize).present &= ~(1u << (id % kBlockSize));
+    m_count--;
+}
+
 void LandmarkStore::clear()
 {
     m_blocks.clear();

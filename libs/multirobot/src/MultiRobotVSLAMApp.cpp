@@ -77,15 +77,18 @@ struct MultiRobotVSLAMApp::Impl {
     void findGroundTruth();
     /// Stereo images → landmarks where images are the input; counts the landmark inputs.
     void prepareFrame(mrpt::obs::CSensoryFrame& sf);
-    void drawBestParticle(mrpt::opengl::COpenGLScene& scene) const;
+    /// The best particle's paths and `map` (its own, or the one made along its path).
+    void drawBestParticle(mrpt::opengl::COpenGLScene& scene, const CVisualLandmarksMap& map) const;
     void writeOutputs(MultiRobotVSLAMApp& app, const core::RunTimer& timer);
     /** Where measurements carry identities (range-bearing data imported with kept ids): of the
-     *  measurements fused into the best particle's landmarks, how many had another identity
-     *  than the one that created the landmark, and how many identities have several
-     *  landmarks; as JSON, empty without identities. */
-    std::string identityAssociationJson() const;
-    /// Merged vs duplicated landmarks against the true ones (doc/multirobot.md), as JSON.
-    std::string landmarkMergingJson(const core::LandmarkFile& truth) const;
+     *  measurements fused into the landmarks of `map`, how many had another identity than the
+     *  one that created the landmark, and how many identities have several landmarks; as
+     *  JSON, empty without identities. */
+    static std::string identityAssociationJson(const CVisualLandmarksMap& map);
+    /// Merged vs duplicated landmarks of `map` against the true ones (doc/multirobot.md), as
+    /// JSON.
+    std::string landmarkMergingJson(const CVisualLandmarksMap& map,
+                                    const core::LandmarkFile& truth) const;
 };
 
 MultiRobotVSLAMApp::MultiRobotVSLAMApp(core::AppArguments args) : m_impl(std::make_unique<Impl>())
@@ -236,11 +239,12 @@ void MultiRobotVSLAMApp::initialize()
     if (d.args.gui) d.window = std::make_unique<core::LiveView>("multirobot-vslam");
 }
 
-void MultiRobotVSLAMApp::Impl::drawBestParticle(mrpt::opengl::COpenGLScene& scene) const
+void MultiRobotVSLAMApp::Impl::drawBestParticle(mrpt::opengl::COpenGLScene& scene,
+                                               const CVisualLandmarksMap& map) const
 {
     const auto& best = filter->bestParticle();
     scene.insert(mrpt::opengl::CGridPlaneXY::Create(-15, 15, -10, 10, 0, 1));
-    scene.insert(best.map.getVisualization());
+    scene.insert(map.getVisualization());
     for (size_t k = 0; k < filter->robotCount(); k++) {
         core::TumTrajectory path;
         for (const auto& [t, p] : CMultiRobotVisualSLAM::pathOf(best, k)) path.push_back(t, to3D(p));
@@ -291,7 +295,10 @@ void MultiRobotVSLAMApp::run()
         d.measurements += d.filter->lastStepStats.measurements;
         d.robotReadings += d.filter->lastStepStats.robot_readings;
         progress.update(++d.steps);
-        if (d.window) d.window->show([&](auto& scene) { d.drawBestParticle(scene); });
+        if (d.window)
+            d.window->show([&](auto& scene) {
+                d.drawBestParticle(scene, d.filter->bestParticle().map);
+            });
     }
     progress.finish(d.steps);
     std::string odoLabels;
@@ -312,14 +319,14 @@ void MultiRobotVSLAMApp::run()
     d.writeOutputs(*this, timer);
 }
 
-std::string MultiRobotVSLAMApp::Impl::landmarkMergingJson(const core::LandmarkFile& truth) const
+std::string MultiRobotVSLAMApp::Impl::landmarkMergingJson(const CVisualLandmarksMap& map,
+                                                         const core::LandmarkFile& truth) const
 {
     // each map landmark goes to its nearest true landmark within gt_match_radius
-    const auto& best = filter->bestParticle();
     std::vector<size_t> count(truth.landmarks.size(), 0);
     std::vector<uint32_t> robotsOf(truth.landmarks.size(), 0), bitsOfOne(truth.landmarks.size(), 0);
     size_t unmatched = 0, severalRobots = 0;
-    best.map.landmarks().forEach([&](uint32_t, const TVisualLandmark& lm) {
+    map.landmarks().forEach([&](uint32_t, const TVisualLandmark& lm) {
         if (std::bitset<32>(lm.seen_by).count() > 1) severalRobots++;
         double bestD = gtMatchRadius;
         std::optional<size_t> g;
@@ -347,7 +354,7 @@ std::string MultiRobotVSLAMApp::Impl::landmarkMergingJson(const core::LandmarkFi
         else byTeamDuplicated++;
     }
     std::ostringstream j;
-    j << "{\"match_radius_m\": " << gtMatchRadius << ", \"map_landmarks\": " << best.map.size()
+    j << "{\"match_radius_m\": " << gtMatchRadius << ", \"map_landmarks\": " << map.size()
       << ", \"map_landmarks_seen_by_several_robots\": " << severalRobots
       << ", \"map_landmarks_without_true_landmark\": " << unmatched
       << ", \"true_landmarks\": " << truth.landmarks.size()
@@ -359,11 +366,11 @@ std::string MultiRobotVSLAMApp::Impl::landmarkMergingJson(const core::LandmarkFi
     return j.str();
 }
 
-std::string MultiRobotVSLAMApp::Impl::identityAssociationJson() const
+std::string MultiRobotVSLAMApp::Impl::identityAssociationJson(const CVisualLandmarksMap& map)
 {
     size_t fused = 0, conflicts = 0, landmarks = 0;
     std::map<int64_t, size_t> landmarksOf;
-    filter->bestParticle().map.landmarks().forEach([&](uint32_t, const TVisualLandmark& lm) {
+    map.landmarks().forEach([&](uint32_t, const TVisualLandmark& lm) {
         if (lm.identity < 0) return;
         landmarks++;
         landmarksOf[lm.identity]++;
@@ -393,10 +400,20 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
         app.odometryPaths[k].save(out.file("odometry_path_" + r + ".tum"),
                                   "multirobot-vslam: dead reckoning of " + r);
     }
-    core::saveFinalMap(best.map, app.outDir);
+    // the output map: the best particle's own, or the one made along its final path
+    std::optional<CVisualLandmarksMap> alongPath;
+    double alongPathSeconds = 0;
+    if (filterOptions.map_along_path) {
+        const core::RunTimer rebuild;
+        alongPath = filter->mapAlongPath(best);
+        alongPathSeconds = rebuild.elapsedSeconds();
+        best.map.saveMetricMapRepresentationToFile(out.file("particle_map"));
+    }
+    const CVisualLandmarksMap& map = alongPath ? *alongPath : best.map;
+    core::saveFinalMap(map, app.outDir);
 
     mrpt::opengl::COpenGLScene scene;
-    drawBestParticle(scene);
+    drawBestParticle(scene, map);
     for (size_t k = 0; k < app.robots.size(); k++) {
         scene.insert(core::trajectoryAsLines(app.odometryPaths[k], {0.9f, 0.1f, 0.1f},
                                              "odometry " + app.robots[k]));
@@ -425,10 +442,15 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
     report.setCount("measurements", static_cast<double>(measurements));
     report.setCount("robot_readings", static_cast<double>(robotReadings));
     report.setCount("particles", static_cast<double>(filter->particlesCount()));
-    report.setCount("landmarks", static_cast<double>(best.map.size()));
+    report.setCount("landmarks", static_cast<double>(map.size()));
+    if (alongPath) {
+        report.setCount("particle_map_landmarks", static_cast<double>(best.map.size()));
+        report.setResult("map_along_path_s", alongPathSeconds);
+    }
     report.setTiming(timer);
-    if (trueLandmarks) report.setResultJson("landmark_merging", landmarkMergingJson(*trueLandmarks));
-    if (const auto a = identityAssociationJson(); !a.empty())
+    if (trueLandmarks)
+        report.setResultJson("landmark_merging", landmarkMergingJson(map, *trueLandmarks));
+    if (const auto a = identityAssociationJson(map); !a.empty())
         report.setResultJson("association_by_identity", a);
     bool anyGroundTruth = false;
     for (const auto& g : groundTruth) anyGroundTruth = anyGroundTruth || g.has_value();

@@ -114,6 +114,48 @@ TEST(CMultiRobotVisualSLAM, ResamplingAfterEachRobotResetsWeightsBetweenRobots)
     }
 }
 
+// With one particle and the filter's own gate, the map made again along the particle's path
+// is the particle's map: same landmarks, means, covariances and counts (a pose taken from the
+// wrong step of the path would move them); the count threshold then removes exactly the
+// landmarks seen fewer times.
+TEST(CMultiRobotVisualSLAM, MapAlongPathWithTheFiltersGateIsTheParticlesMap)
+{
+    SyntheticTeamWorld::TParams wp;
+    wp.landmarks = 300;
+    SyntheticTeamWorld world(wp);
+    CMultiRobotVisualSLAM filter(CVisualLandmarksMap(), 1, 7);
+    EXPECT_THROW(filter.mapAlongPath(TTeamParticle()), std::logic_error);
+    filter.options.map_along_path = true;
+    filter.options.map_along_path_D0 = CVisualLandmarksMap().insertionOptions.D0;
+    filter.reset(world.startPoses(), world.time);
+    auto pf = standardFilter();
+    mrpt::obs::CActionCollection acts;
+    mrpt::obs::CSensoryFrame sf;
+    for (int i = 0; i < 30; i++) {
+        world.step(acts, sf);
+        if (i % 3 == 1) sf.eraseByLabel("R2_LANDMARKS");  // steps where one robot sees nothing
+        pf.executeOn(filter, &acts, &sf);
+    }
+    const auto& p = filter.bestParticle();
+    const CVisualLandmarksMap rebuilt = filter.mapAlongPath(p);
+    ASSERT_GT(p.map.size(), 20u);
+    ASSERT_EQ(rebuilt.size(), p.map.size());
+    size_t seen_thrice = 0;
+    p.map.landmarks().forEach([&](uint32_t id, const TVisualLandmark& lm) {
+        const TVisualLandmark* r = rebuilt.landmark(id);
+        ASSERT_NE(r, nullptr) << id;
+        EXPECT_LT((r->mean - lm.mean).norm(), 1e-9) << id;
+        EXPECT_LT((r->cov - lm.cov).norm(), 1e-12) << id;
+        EXPECT_EQ(r->times_seen, lm.times_seen) << id;
+        EXPECT_EQ(r->seen_by, lm.seen_by) << id;
+        seen_thrice += lm.times_seen >= 3 ? 1 : 0;
+    });
+    ASSERT_GT(seen_thrice, 0u);
+    ASSERT_LT(seen_thrice, p.map.size());
+    filter.options.map_along_path_min_times_seen = 3;
+    EXPECT_EQ(filter.mapAlongPath(p).size(), seen_thrice);
+}
+
 TEST(CMultiRobotVisualSLAM, TwoRobotsBeatOdometryAndMergeSharedLandmarks)
 {
     SyntheticTeamWorld::TParams wp;

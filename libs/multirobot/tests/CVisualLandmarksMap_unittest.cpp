@@ -102,6 +102,49 @@ TEST(CVisualLandmarksMap, DifferentDescriptorAtTheSamePlaceIsANewLandmark)
     EXPECT_TRUE(lm->cov.isApprox(Eigen::Matrix3d::Identity() * 0.0025));
 }
 
+TEST(CVisualLandmarksMap, AFrameTakesALandmarkOnceWhenDistinct)
+{
+    // two points of one frame with the landmark's descriptor, both inside its gate: fused one
+    // after the other both update it; with `distinct` the second is not offered it and starts
+    // a landmark of its own
+    for (const bool distinct : {false, true}) {
+        CVisualLandmarksMap map;
+        const uint32_t a = map.addLandmark(landmarkAt({2, 0, 1}, 0.1), unitDescriptor(1));
+        const std::vector<TLandmarkMeasurement> z{measurement({2, 0.01, 1}, 0.05, 1),
+                                                  measurement({2, 0.05, 1}, 0.05, 1)};
+        std::vector<TMapMeasurement> in_map;
+        std::vector<TMeasurementCandidates> candidates;
+        for (const auto& m : z) {
+            in_map.push_back(toMapFrame(m, {0, 0, 0}));
+            candidates.push_back(map.findCandidates(m, in_map.back()));
+        }
+        const auto r = map.fuseFrame(z, in_map, candidates, 0, distinct);
+        ASSERT_EQ(r.size(), 2u);
+        EXPECT_FALSE(r[0].created);
+        EXPECT_EQ(r[0].id, a);
+        EXPECT_EQ(r[1].created, distinct);
+        EXPECT_EQ(r[1].id == a, !distinct);
+        EXPECT_EQ(map.size(), distinct ? 2u : 1u);
+        EXPECT_EQ(map.landmarks().find(a)->times_seen, distinct ? 2u : 3u);
+    }
+}
+
+TEST(CVisualLandmarksMap, RemovesTheLandmarksSeenLessThanAsked)
+{
+    CVisualLandmarksMap map;
+    std::vector<uint32_t> ids;
+    for (unsigned n = 1; n <= 6; n++) {
+        TVisualLandmark lm = landmarkAt({static_cast<double>(n), 0, 1}, 0.1);
+        lm.times_seen = n;
+        ids.push_back(map.addLandmark(lm, unitDescriptor(static_cast<int>(n))));
+    }
+    EXPECT_EQ(map.removeLandmarksSeenLessThan(1), 0u);
+    EXPECT_EQ(map.removeLandmarksSeenLessThan(4), 3u);
+    EXPECT_EQ(map.size(), 3u);
+    for (size_t i = 0; i < ids.size(); i++)
+        EXPECT_EQ(map.landmark(ids[i]) != nullptr, i + 1 >= 4) << "seen " << i + 1 << " times";
+}
+
 TEST(CVisualLandmarksMap, KnownCorrespondencesFollowTheIdentityNotTheGate)
 {
     // associate_by_identity: a reading of identity 7 far outside the gate of 7's landmark goes

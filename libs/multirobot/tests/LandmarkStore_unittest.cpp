@@ -18,7 +18,7 @@ TVisualLandmark landmark(double x)
 }
 }  // namespace
 
-TEST(LandmarkStore, MatchesAStdMapUnderRandomInsertsAndUpdates)
+TEST(LandmarkStore, MatchesAStdMapUnderRandomInsertsUpdatesAndErases)
 {
     std::mt19937 gen(3);
     LandmarkStore store;
@@ -26,7 +26,10 @@ TEST(LandmarkStore, MatchesAStdMapUnderRandomInsertsAndUpdates)
     for (int i = 0; i < 3000; i++) {
         const uint32_t id = gen() % 400;
         const double x = static_cast<double>(gen() % 1000);
-        if (reference.count(id) && gen() % 2) {
+        if (reference.count(id) && gen() % 5 == 0) {
+            store.erase(id);
+            reference.erase(id);
+        } else if (reference.count(id) && gen() % 2) {
             store.modify(id).mean.x() = x;
             reference[id] = x;
         } else if (!reference.count(id)) {

@@ -91,6 +91,11 @@ public:
         /// Resample (if N_eff < BETA) after each robot's measurements too (ours; paper: once
         /// per step). Pays off with 3 robots (doc/multirobot.md).
         bool resample_per_robot = false;
+        /// Keep every measurement the filter fuses, for mapAlongPath() (ours).
+        bool map_along_path = false;
+        /// mapAlongPath(): D0 of its gate, and the fewest measurements a landmark of it needs.
+        double map_along_path_D0 = 30;
+        unsigned int map_along_path_min_times_seen = 1;
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                 const std::string& section) override;
@@ -122,6 +127,15 @@ public:
     /// One robot's path in a particle, oldest first: (timestamp, pose).
     static std::vector<std::pair<double, mrpt::math::TPose2D>> pathOf(const TTeamParticle& p,
                                                                        size_t robot);
+    /** The map of every measurement fused since reset(), made again along the final path of
+     *  particle `p` (ours; mapping with known poses, doc/multirobot.md §3): frame by frame in
+     *  the order of the run, each robot's measurements at that particle's pose of the step,
+     *  fused by CVisualLandmarksMap::fuseFrame() (distinct landmarks per frame) with the
+     *  filter's insertion options but D0 = options.map_along_path_D0; then the landmarks seen
+     *  fewer than options.map_along_path_min_times_seen times are removed. The poses do not
+     *  move, so a wrong association here costs the map only, not the paths, and the gate can
+     *  be wider than the filter's. \pre options.map_along_path since reset() */
+    CVisualLandmarksMap mapAlongPath(const TTeamParticle& p) const;
 
 protected:
     void prediction_and_update_pfStandardProposal(
@@ -173,6 +187,15 @@ private:
     void proposeAndFuse(size_t k, const TMotionGaussian& motion,
                         const std::vector<TLandmarkMeasurement>& z,
                         const std::vector<TRobotReading>& readings);
+
+    /// A robot's measurements of one step, kept for mapAlongPath(): `step` indexes the path
+    /// node of that step (0: the start poses).
+    struct TFusedFrame {
+        size_t step, robot;
+        std::vector<TLandmarkMeasurement> z;
+    };
+    std::vector<TFusedFrame> m_fusedFrames;
+    size_t m_steps = 0;  ///< since reset()
 
     CVisualLandmarksMap m_template;  ///< empty; shares the particles' descriptor pool
     mrpt::random::CRandomGenerator m_rng;

@@ -150,6 +150,19 @@ public:
     TFusionResult fuseAs(const TLandmarkMeasurement& m, const TMapMeasurement& in_map,
                          TMeasurementCandidates& candidates, unsigned robot,
                          const std::optional<TAssociation>& a);
+    /** Alg. 1 lines 18-46 for the measurements of one frame of one robot: fuse() each, or
+     *  with joint_association fuseAs() the associations of associateJointly(). `candidates`
+     *  (one per measurement) are searched before the frame is fused, so two points of one
+     *  frame never become one landmark; with `distinct`, a landmark one point of the frame
+     *  updated is not offered to the next ones either (the optimal proposal's rule).
+     *  Returns one result per measurement. */
+    std::vector<TFusionResult> fuseFrame(const std::vector<TLandmarkMeasurement>& z,
+                                         const std::vector<TMapMeasurement>& in_map,
+                                         std::vector<TMeasurementCandidates>& candidates,
+                                         unsigned robot, bool distinct);
+    /// Removes the landmarks fused from fewer than `min_times_seen` measurements; returns how
+    /// many it removed.
+    size_t removeLandmarksSeenLessThan(unsigned min_times_seen);
     /// @}
 
     /// @name CMetricMap interface

@@ -35,6 +35,8 @@ public:
     TVisualLandmark& modify(uint32_t id);
     /// Adds (or replaces) the landmark `id`.
     void insert(uint32_t id, const TVisualLandmark& landmark);
+    /// Removes the landmark `id` if this store holds it.
+    void erase(uint32_t id);
     /// Removes every landmark.
     void clear();
 
