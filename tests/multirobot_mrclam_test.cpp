@@ -14,9 +14,38 @@
 #include <string>
 #include <utility>
 
+using mrpt_vslam::test::ScratchFolder;
 using mrpt_vslam::test::TCommandResult;
 
 namespace {
+/// The first 300 s of robots 1-3 imported with the robots' readings of each other (plus
+/// `options`) into `<scratch>/w300.rawlog`.
+std::string importWindow(const ScratchFolder& scratch, const std::string& options = "")
+{
+    const std::string rawlog = scratch.file("w300.rawlog");
+    const TCommandResult import = mrpt_vslam::test::runCommand(
+        std::string(MRPT_VSLAM_BIN_DIR "/mrclam2rawlog '") + MRPT_VSLAM_MRCLAM_DIR +
+            "' --robots 1,2,3 --end 300 --command-delay 0.2 --keep-robot-measurements -q " +
+            options + " --out '" + rawlog + "'",
+        scratch.path() / "import.log");
+    EXPECT_EQ(import.exit_code, 0) << import.out;
+    return rawlog;
+}
+
+/// One run of mrclam.ini with M = 500 (plus `options`) into `<scratch>/<name>`.
+std::string runMrclam(const ScratchFolder& scratch, const std::string& rawlog,
+                      const std::string& name, const std::string& options)
+{
+    const std::string out = scratch.file(name);
+    const TCommandResult r = mrpt_vslam::test::runCommand(
+        std::string(MRPT_VSLAM_BIN_DIR "/multirobot-vslam " MRPT_VSLAM_SOURCE_DIR
+                    "/share/mrpt-vslam/config/multirobot-vslam/mrclam.ini '") +
+            rawlog + "' -q --set ParticleFilter.sampleSize=500 --out '" + out + "' " + options,
+        scratch.path() / (name + ".log"));
+    EXPECT_EQ(r.exit_code, 0) << r.out;
+    return out;
+}
+
 /// Team mean of the estimate's and of the odometry's position RMSE of a run folder.
 std::pair<double, double> teamMeans(const std::string& out)
 {
@@ -32,24 +61,12 @@ std::pair<double, double> teamMeans(const std::string& out)
 
 TEST(MultiRobotVSLAMOnMrclam, RobotReadingsKeepTheTeamFarBelowOdometry)
 {
-    mrpt_vslam::test::ScratchFolder scratch("mrclam-team");
-    const std::string rawlog = scratch.file("w300.rawlog");
-    const TCommandResult import = mrpt_vslam::test::runCommand(
-        std::string(MRPT_VSLAM_BIN_DIR "/mrclam2rawlog '") + MRPT_VSLAM_MRCLAM_DIR +
-            "' --robots 1,2,3 --end 300 --command-delay 0.2 --keep-robot-measurements -q --out '" +
-            rawlog + "'",
-        scratch.path() / "import.log");
-    ASSERT_EQ(import.exit_code, 0) << import.out;
+    ScratchFolder scratch("mrclam-team");
+    const std::string rawlog = importWindow(scratch);
+    // the particle's own map: map_along_path is checked below
     const auto runFilter = [&](const std::string& name, const std::string& options) {
-        const std::string out = scratch.file(name);
-        const TCommandResult r = mrpt_vslam::test::runCommand(
-            std::string(MRPT_VSLAM_BIN_DIR "/multirobot-vslam " MRPT_VSLAM_SOURCE_DIR
-                        "/share/mrpt-vslam/config/multirobot-vslam/mrclam.ini '") +
-                rawlog + "' -q --seed 1 --set ParticleFilter.sampleSize=500 "
-                "--set MultiRobotVSLAM.map_along_path=false --out '" + out + "' " + options,
-            scratch.path() / (name + ".log"));
-        EXPECT_EQ(r.exit_code, 0) << r.out;
-        return out;
+        return runMrclam(scratch, rawlog, name,
+                         "--seed 1 --set MultiRobotVSLAM.map_along_path=false " + options);
     };
     const std::string shipped = runFilter("shipped", "");
     const std::string noRpr = "--set MultiRobotVSLAM.resample_per_robot=false ";
@@ -83,23 +100,11 @@ TEST(MultiRobotVSLAMOnMrclam, KnownCorrespondencesMapEachLandmarkOnce)
     // fused reading of its own identity, each landmark within 0.5 m of its post. Measured with
     // seeds 1-3: all 15 identities, 3549 readings fused, team mean 0.19-0.25 m against
     // odometry 0.88 m
-    mrpt_vslam::test::ScratchFolder scratch("mrclam-identities");
-    const std::string rawlog = scratch.file("w300.rawlog");
-    const TCommandResult import = mrpt_vslam::test::runCommand(
-        std::string(MRPT_VSLAM_BIN_DIR "/mrclam2rawlog '") + MRPT_VSLAM_MRCLAM_DIR +
-            "' --robots 1,2,3 --end 300 --command-delay 0.2 --keep-robot-measurements --keep-ids"
-            " -q --out '" + rawlog + "'",
-        scratch.path() / "import.log");
-    ASSERT_EQ(import.exit_code, 0) << import.out;
-    const std::string out = scratch.file("run");
-    const TCommandResult r = mrpt_vslam::test::runCommand(
-        std::string(MRPT_VSLAM_BIN_DIR "/multirobot-vslam " MRPT_VSLAM_SOURCE_DIR
-                    "/share/mrpt-vslam/config/multirobot-vslam/mrclam.ini '") +
-            rawlog + "' -q --seed 1 --set ParticleFilter.sampleSize=500 --set "
-            "MappingApplication_visualLandmarksMap_00_insertOpts.associate_by_identity=true "
-            "--set MultiRobotVSLAM.map_along_path=false --out '" + out + "'",
-        scratch.path() / "run.log");
-    ASSERT_EQ(r.exit_code, 0) << r.out;
+    ScratchFolder scratch("mrclam-identities");
+    const std::string out = runMrclam(
+        scratch, importWindow(scratch, "--keep-ids"), "run",
+        "--seed 1 --set MappingApplication_visualLandmarksMap_00_insertOpts.associate_by_identity="
+        "true --set MultiRobotVSLAM.map_along_path=false");
     const auto run = mrpt_vslam::test::readJson(out + "/run.json");
     const auto& ids = run["results"]["association_by_identity"];
     EXPECT_EQ(ids["identities"].get<int>(), 15);
@@ -120,26 +125,15 @@ TEST(MultiRobotVSLAMOnMrclam, MapAlongThePathHoldsEachLandmarkOnce)
     // 300 s window (posts get 120-370 readings here, a third of the whole dataset's): each of
     // the 15 posts matched one-to-one within 0.5 m and at most 2 extra landmarks, where the
     // particle's own map holds 27-36. Measured with seeds 1-2: 17 and 16 landmarks, 15 matched.
-    mrpt_vslam::test::ScratchFolder scratch("mrclam-along-path");
-    const std::string rawlog = scratch.file("w300.rawlog");
-    const TCommandResult import = mrpt_vslam::test::runCommand(
-        std::string(MRPT_VSLAM_BIN_DIR "/mrclam2rawlog '") + MRPT_VSLAM_MRCLAM_DIR +
-            "' --robots 1,2,3 --end 300 --command-delay 0.2 --keep-robot-measurements -q --out '" +
-            rawlog + "'",
-        scratch.path() / "import.log");
-    ASSERT_EQ(import.exit_code, 0) << import.out;
-    for (const char* seed : {"1", "2"}) {
-        const std::string out = scratch.file(std::string("run") + seed);
-        const TCommandResult r = mrpt_vslam::test::runCommand(
-            std::string(MRPT_VSLAM_BIN_DIR "/multirobot-vslam " MRPT_VSLAM_SOURCE_DIR
-                        "/share/mrpt-vslam/config/multirobot-vslam/mrclam.ini '") +
-                rawlog + "' -q --seed " + seed + " --set ParticleFilter.sampleSize=500 "
-                "--set MultiRobotVSLAM.map_along_path_min_times_seen=50 --out '" + out + "'",
-            scratch.path() / (std::string("run") + seed + ".log"));
-        ASSERT_EQ(r.exit_code, 0) << r.out;
+    ScratchFolder scratch("mrclam-along-path");
+    const std::string rawlog = importWindow(scratch);
+    for (const std::string seed : {"1", "2"}) {
+        const std::string out =
+            runMrclam(scratch, rawlog, "run" + seed,
+                      "--seed " + seed + " --set MultiRobotVSLAM.map_along_path_min_times_seen=50");
         const TCommandResult eval = mrpt_vslam::test::runCommand(
             std::string(MRPT_VSLAM_BIN_DIR "/vslam-eval '") + out + "' --landmark-cutoff 0.5",
-            scratch.path() / (std::string("eval") + seed + ".log"));
+            scratch.path() / ("eval" + seed + ".log"));
         ASSERT_EQ(eval.exit_code, 0) << eval.out;
         const auto landmarks = mrpt_vslam::test::readJson(out + "/metrics.json")["landmarks"];
         EXPECT_EQ(landmarks["matched"].get<int>(), 15) << "seed " << seed;
