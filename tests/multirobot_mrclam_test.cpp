@@ -5,6 +5,7 @@
 // window per-robot resampling alone keeps R1 (0.29-0.36 m team mean without the readings of
 // robots), so their effect is checked without it: team mean 0.22 m with them, 0.66 m without.
 #include <gtest/gtest.h>
+#include <mrpt_vslam/core/RunEvaluation.h>
 #include <mrpt_vslam/test/RunCommand.h>
 #include <mrpt_vslam/test/RunFiles.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
@@ -131,16 +132,18 @@ TEST(MultiRobotVSLAMOnMrclam, MapAlongThePathHoldsEachLandmarkOnce)
         const std::string out =
             runMrclam(scratch, rawlog, "run" + seed,
                       "--seed " + seed + " --set MultiRobotVSLAM.map_along_path_min_times_seen=50");
-        const TCommandResult eval = mrpt_vslam::test::runCommand(
-            std::string(MRPT_VSLAM_BIN_DIR "/vslam-eval '") + out + "' --landmark-cutoff 0.5",
-            scratch.path() / ("eval" + seed + ".log"));
-        ASSERT_EQ(eval.exit_code, 0) << eval.out;
-        const auto landmarks = mrpt_vslam::test::readJson(out + "/metrics.json")["landmarks"];
-        EXPECT_EQ(landmarks["matched"].get<int>(), 15) << "seed " << seed;
-        EXPECT_LE(landmarks["estimated_landmarks"].get<int>(), 17) << "seed " << seed;
+        // vslam-eval's one-to-one matching, within 0.5 m
+        mrpt_vslam::core::TEvalParams params;
+        params.run_dir = out;
+        params.landmark_cutoff = 0.5;
+        const auto metrics = mrpt_vslam::core::evaluateRun(
+            mrpt_vslam::core::resolveInputs(params), params).landmarks;
+        ASSERT_TRUE(metrics.has_value());
+        EXPECT_EQ(metrics->num_matched, 15u) << "seed " << seed;
+        EXPECT_LE(metrics->num_estimated, 17u) << "seed " << seed;
         const auto run = mrpt_vslam::test::readJson(out + "/run.json");
-        EXPECT_GT(run["counts"]["particle_map_landmarks"].get<int>(),
-                  landmarks["estimated_landmarks"].get<int>() + 8)
+        EXPECT_GT(run["counts"]["particle_map_landmarks"].get<size_t>(),
+                  metrics->num_estimated + 8)
             << "seed " << seed;
         EXPECT_TRUE(std::filesystem::exists(out + "/particle_map.txt"));
     }
