@@ -134,7 +134,14 @@ TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
     EXPECT_NE(ids.out.find("robot_reading_ids: must give one id per robot"), std::string::npos)
         << ids.out;
 
-    for (const auto* r : {&missing, &corrupt, &unknown, &impossible, &ids}) {
+    const TCommandResult rarelySeen =
+        run(cfg + kData + "team2.rawlog -q --set MultiRobotVSLAM.map_along_path_min_times_seen=-1 "
+            "--out " + out("e6"));
+    EXPECT_NE(rarelySeen.exit_code, 0);
+    EXPECT_NE(rarelySeen.out.find("map_along_path_min_times_seen: must be >= 1"), std::string::npos)
+        << rarelySeen.out;
+
+    for (const auto* r : {&missing, &corrupt, &unknown, &impossible, &ids, &rarelySeen}) {
         size_t lines = 0;
         for (const char c : r->out) lines += c == '\n';
         EXPECT_EQ(lines, 1u) << r->out;

@@ -109,7 +109,10 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
     MRPT_LOAD_CONFIG_VAR(resample_per_robot, bool, cfg, section);
     MRPT_LOAD_CONFIG_VAR(map_along_path, bool, cfg, section);
     MRPT_LOAD_CONFIG_VAR(map_along_path_D0, double, cfg, section);
-    MRPT_LOAD_CONFIG_VAR(map_along_path_min_times_seen, uint64_t, cfg, section);
+    const int min_seen = cfg.read_int(section, "map_along_path_min_times_seen",
+                                      static_cast<int>(map_along_path_min_times_seen));
+    requireKey(min_seen >= 1, section, "map_along_path_min_times_seen", "must be >= 1");
+    map_along_path_min_times_seen = static_cast<unsigned int>(min_seen);
 
     requireKey(!robots.empty() && robots.size() <= 32, section, "robots",
                "must name 1 to 32 robots");
