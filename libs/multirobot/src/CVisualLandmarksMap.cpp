@@ -218,7 +218,7 @@ std::vector<TFusionResult> CVisualLandmarksMap::fuseFrame(
     for (size_t j = 0; j < z.size(); j++) {
         const auto a = associate(in_map[j], candidates[j], distinct ? &taken : nullptr,
                                  z[j].identity);
-        if (a) taken.push_back(a->id);
+        if (a && distinct) taken.push_back(a->id);
         results[j] = fuseAs(z[j], in_map[j], candidates[j], robot, a);
     }
     return results;
