@@ -4,11 +4,11 @@
 #   1. import with mrclam2rawlog, commands delayed 0.2 s, the robots' readings of each other kept
 #      (robots 1-3, 1, 2, 3, 1-2 and 1-5; landmark ids hidden, and robots 1-3 once more with ids
 #      kept, to count wrong associations: the filter reads them only in 3c);
-#   2. multirobot-vslam (mrclam.ini), robots 1-3 jointly, several seeds: per-robot ATE vs
-#      odometry, the particle's map and the map along its path (landmarks matched within 0.5 m,
-#      extra landmarks), wrong associations, run time;
-#   3. the same filter on each robot alone, on 2 and 5 robots, and on robots 1-3 without the
-#      readings of robots (the particles' own maps);
+#   2. multirobot-vslam (mrclam.ini), robots 1-3 jointly, several seeds: per-robot ATE of the
+#      smoothed paths and of the filter's vs odometry, the particle's map and the output map
+#      (landmarks matched within 0.5 m, extra landmarks), wrong associations, run time;
+#   3. the filter alone (no smoothing, the particles' own maps) on each robot alone, on 2 and 5
+#      robots, on robots 1-3, and on robots 1-3 without the readings of robots;
 #   3b. robots 1-3 with known poses (the Vicon poses as odometry) and three gates D0: what the
 #      association alone makes of the readings;
 #   3c. robots 1-3 with known correspondences (associate_by_identity): the filter's paths when
@@ -75,11 +75,21 @@ run() {
 }
 
 # --- 2. robots 1-3 jointly ----------------------------------------------------------------------
+# filter_rmse DIR RAWLOG: the position RMSE of each filter_path_R<n>.tum (the best particle's
+# paths before smoothing)
+filter_rmse() {
+  local dir="$1" rawlog="$2" f
+  for f in "$dir"/filter_path_R*.tum; do
+    local r="${f##*filter_path_}"; r="${r%.tum}"
+    "$BIN/vslam-eval" --estimate "$f" --ground-truth "${rawlog%.rawlog}.groundtruth_$r.tum" \
+      --out "$dir/filter-$r" | awk '/ATE RMSE/ {printf "%s ", $4; exit}'
+  done
+}
 echo
 echo "### Robots 1-3 jointly (mrclam.ini), identities hidden"
 echo
-echo "| seed | R1 RMSE [m] | R1 odometry [m] | R2 RMSE [m] | R2 odometry [m] | R3 RMSE [m] | R3 odometry [m] | particle's map landmarks | map along the path: landmarks | true landmarks matched one-to-one within 0.5 m (mean error) | extra | fused readings | of another identity | run [s] |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| seed | R1 smoothed [m] | R1 filter [m] | R1 odometry [m] | R2 smoothed [m] | R2 filter [m] | R2 odometry [m] | R3 smoothed [m] | R3 filter [m] | R3 odometry [m] | particle's map landmarks | output map landmarks | true landmarks matched one-to-one within 0.5 m (mean error) | extra | fused readings | of another identity | run [s] |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 : > "$OUT/joint.txt"
 for seed in $SEEDS; do
   res=$(run "$OUT/r123-seed$seed" "$OUT/data/r123-ids.rawlog" "R1 R2 R3" --seed "$seed")
@@ -93,11 +103,14 @@ for seed in $SEEDS; do
   fi
   read -r -a v <<< "${res%%|*}"
   read -r _ _ _ fused wrong t particle matched total err <<< "${res##*|}"
-  echo "| $seed | ${v[0]} | ${v[1]} | ${v[2]} | ${v[3]} | ${v[4]} | ${v[5]} | $particle | $total |" \
-    "$matched ($err m) | $((total - matched)) | $fused | $wrong | $t |"
-  echo "${v[0]} ${v[2]} ${v[4]}" >> "$OUT/joint.txt"
+  read -r -a f <<< "$(filter_rmse "$OUT/r123-seed$seed" "$OUT/data/r123-ids.rawlog")"
+  echo "| $seed | ${v[0]} | ${f[0]} | ${v[1]} | ${v[2]} | ${f[1]} | ${v[3]} | ${v[4]} | ${f[2]} |" \
+    "${v[5]} | $particle | $total | $matched ($err m) | $((total - matched)) | $fused | $wrong |" \
+    "$t |"
+  echo "${v[0]} ${v[2]} ${v[4]} ${f[0]} ${f[1]} ${f[2]}" >> "$OUT/joint.txt"
 done
-awk '{a += $1; b += $2; c += $3; n++} END {printf "mean over seeds: R1 %.3f m, R2 %.3f m, R3 %.3f m (team mean %.3f m)\n", a / n, b / n, c / n, (a + b + c) / (3 * n)}' "$OUT/joint.txt"
+awk '{a += $1; b += $2; c += $3; d += $4; e += $5; f += $6; n++; m = $1; if ($2 > m) m = $2; if ($3 > m) m = $3; if (m <= 0.25) ok++}
+  END {printf "mean over seeds, smoothed: R1 %.3f m, R2 %.3f m, R3 %.3f m (team mean %.3f m), every robot within 0.25 m on %d of %d seeds; filter: R1 %.3f m, R2 %.3f m, R3 %.3f m\n", a / n, b / n, c / n, (a + b + c) / (3 * n), ok, n, d / n, e / n, f / n}' "$OUT/joint.txt"
 
 # --- 3. each robot alone, 2 and 5 robots --------------------------------------------------------
 echo
@@ -109,9 +122,10 @@ team() {  # team NAME RAWLOG ROBOTS
   local name="$1" rawlog="$2" robots="$3"
   : > "$OUT/team.tmp"
   for seed in $SEEDS; do
-    # the particles' own maps: map_along_path's count threshold is set for robots 1-3
+    # the filter alone: map_along_path's count threshold is set for robots 1-3 over the whole
+    # dataset, and the smoothing needs it
     res=$(run "$OUT/$name-seed$seed" "$rawlog" "$robots" --seed "$seed" \
-      --set MultiRobotVSLAM.map_along_path=false)
+      --set MultiRobotVSLAM.map_along_path=false --set MultiRobotVSLAM.smooth_paths=false)
     echo "$res" >> "$OUT/team.tmp"
   done
   local k=0
@@ -126,6 +140,7 @@ team "R1 alone" "$OUT/data/r1.rawlog" "R1"
 team "R2 alone" "$OUT/data/r2.rawlog" "R2"
 team "R3 alone" "$OUT/data/r3.rawlog" "R3"
 team "R1-R2" "$OUT/data/r12.rawlog" "R1 R2"
+team "R1-R3" "$OUT/data/r123.rawlog" "R1 R2 R3"
 team "R1-R5" "$OUT/data/r12345.rawlog" "R1 R2 R3 R4 R5"
 READINGS_OF_ROBOTS=no team "R1-R3, readings of robots unused" "$OUT/data/r123.rawlog" "R1 R2 R3"
 
@@ -146,7 +161,7 @@ for d0 in 11.34 30 50; do
       --set MotionModel.a3=0.01 --set MotionModel.a4=0.01 --set MotionModel.minStdXY=0.0005 \
       --set MotionModel.minStdPHI_deg=0.05 \
       --set "MappingApplication_visualLandmarksMap_00_insertOpts.D0=$d0" \
-      --set MultiRobotVSLAM.map_along_path=false)
+      --set MultiRobotVSLAM.map_along_path=false --set MultiRobotVSLAM.smooth_paths=false)
     # vslam-eval's one-to-one (Hungarian) matching within 0.5 m (run's --landmark-cutoff):
     # "landmarks: 15 true, N estimated: K matched"
     echo "${res%%|*} $(awk '/^landmarks:/ {print $4, $6}' "$dir/summary.txt")"
@@ -166,7 +181,7 @@ for seed in $SEEDS; do
   dir="$OUT/r123-identity-seed$seed"
   res=$(run "$dir" "$OUT/data/r123-ids.rawlog" "R1 R2 R3" --seed "$seed" \
     --set MappingApplication_visualLandmarksMap_00_insertOpts.associate_by_identity=true \
-    --set MultiRobotVSLAM.map_along_path=false)
+    --set MultiRobotVSLAM.map_along_path=false --set MultiRobotVSLAM.smooth_paths=false)
   read -r -a v <<< "${res%%|*}"
   read -r -a w <<< "${res##*|}"
   echo "| $seed | ${v[0]} | ${v[2]} | ${v[4]} | $(awk '/^landmarks:/ {print $4 " | " $6}' \

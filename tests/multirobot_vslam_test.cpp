@@ -141,7 +141,22 @@ TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
     EXPECT_NE(rarelySeen.out.find("map_along_path_min_times_seen: must be >= 1"), std::string::npos)
         << rarelySeen.out;
 
-    for (const auto* r : {&missing, &corrupt, &unknown, &impossible, &ids, &rarelySeen}) {
+    const TCommandResult smoothing =
+        run(cfg + kData + "team2.rawlog -q --set MultiRobotVSLAM.smooth_paths=true --out " +
+            out("e7"));
+    EXPECT_NE(smoothing.exit_code, 0);
+    EXPECT_NE(smoothing.out.find("smooth_paths: needs map_along_path = true"), std::string::npos)
+        << smoothing.out;
+
+    const TCommandResult rounds =
+        run(cfg + kData + "team2.rawlog -q --set MultiRobotVSLAM.smooth_paths_rounds=0 --out " +
+            out("e8"));
+    EXPECT_NE(rounds.exit_code, 0);
+    EXPECT_NE(rounds.out.find("smooth_paths_rounds: must be >= 1"), std::string::npos)
+        << rounds.out;
+
+    for (const auto* r :
+         {&missing, &corrupt, &unknown, &impossible, &ids, &rarelySeen, &smoothing, &rounds}) {
         size_t lines = 0;
         for (const char c : r->out) lines += c == '\n';
         EXPECT_EQ(lines, 1u) << r->out;

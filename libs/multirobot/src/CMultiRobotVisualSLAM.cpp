@@ -113,6 +113,14 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
                                       static_cast<int>(map_along_path_min_times_seen));
     requireKey(min_seen >= 1, section, "map_along_path_min_times_seen", "must be >= 1");
     map_along_path_min_times_seen = static_cast<unsigned int>(min_seen);
+    MRPT_LOAD_CONFIG_VAR(smooth_paths, bool, cfg, section);
+    const int rounds = cfg.read_int(section, "smooth_paths_rounds",
+                                    static_cast<int>(smooth_paths_rounds));
+    requireKey(rounds >= 1, section, "smooth_paths_rounds", "must be >= 1");
+    smooth_paths_rounds = static_cast<unsigned int>(rounds);
+    MRPT_LOAD_CONFIG_VAR(smooth_paths_huber, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(smooth_paths_odometry_scale_std, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(smooth_paths_motion_cov_factor, double, cfg, section);
 
     requireKey(!robots.empty() && robots.size() <= 32, section, "robots",
                "must name 1 to 32 robots");
@@ -139,6 +147,13 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
     requireKey(initial_std_xy >= 0, section, "initial_std_xy", "must be >= 0");
     requireKey(initial_std_phi >= 0, section, "initial_std_phi_deg", "must be >= 0");
     requireKey(map_along_path_D0 > 0, section, "map_along_path_D0", "must be > 0");
+    requireKey(!smooth_paths || map_along_path, section, "smooth_paths",
+               "needs map_along_path = true");
+    requireKey(smooth_paths_huber >= 0, section, "smooth_paths_huber", "must be >= 0");
+    requireKey(smooth_paths_odometry_scale_std >= 0, section, "smooth_paths_odometry_scale_std",
+               "must be >= 0");
+    requireKey(smooth_paths_motion_cov_factor > 0, section, "smooth_paths_motion_cov_factor",
+               "must be > 0");
 }
 
 void CMultiRobotVisualSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
@@ -166,6 +181,11 @@ void CMultiRobotVisualSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     cfg.write(section, "map_along_path", map_along_path);
     cfg.write(section, "map_along_path_D0", map_along_path_D0);
     cfg.write(section, "map_along_path_min_times_seen", map_along_path_min_times_seen);
+    cfg.write(section, "smooth_paths", smooth_paths);
+    cfg.write(section, "smooth_paths_rounds", smooth_paths_rounds);
+    cfg.write(section, "smooth_paths_huber", smooth_paths_huber);
+    cfg.write(section, "smooth_paths_odometry_scale_std", smooth_paths_odometry_scale_std);
+    cfg.write(section, "smooth_paths_motion_cov_factor", smooth_paths_motion_cov_factor);
 }
 
 CMultiRobotVisualSLAM::CMultiRobotVisualSLAM(const CVisualLandmarksMap& map_template,
@@ -210,6 +230,8 @@ void CMultiRobotVisualSLAM::reset(const std::vector<TPose2D>& start_poses, doubl
         d.accumulated_log_w = 0;
     }
     m_fusedFrames.clear();
+    m_motions.clear();
+    m_startPoses = start_poses;
     m_steps = 0;
 }
 
@@ -230,36 +252,6 @@ std::vector<std::pair<double, TPose2D>> CMultiRobotVisualSLAM::pathOf(const TTea
         path.emplace_back(n->timestamp, n->poses.at(robot));
     std::reverse(path.begin(), path.end());
     return path;
-}
-
-CVisualLandmarksMap CMultiRobotVisualSLAM::mapAlongPath(const TTeamParticle& p) const
-{
-    if (!options.map_along_path)
-        throw std::logic_error("mapAlongPath() needs options.map_along_path before reset()");
-    std::vector<const TTeamPathNode*> nodes;  // nodes[s]: the poses after step s
-    for (const TTeamPathNode* n = p.path.get(); n; n = n->previous.get()) nodes.push_back(n);
-    std::reverse(nodes.begin(), nodes.end());
-
-    CVisualLandmarksMap map(
-        std::make_shared<LandmarkDescriptorPool>(m_template.insertionOptions.grid_cell_size));
-    map.insertionOptions = m_template.insertionOptions;
-    map.insertionOptions.D0 = options.map_along_path_D0;
-    map.renderOptions = m_template.renderOptions;
-    map.genericMapParams = m_template.genericMapParams;
-    std::vector<TMapMeasurement> in_map;
-    std::vector<TMeasurementCandidates> candidates;
-    for (const auto& f : m_fusedFrames) {
-        const TPlanarTransform pose(nodes.at(f.step)->poses.at(f.robot));
-        in_map.resize(f.z.size());
-        candidates.resize(f.z.size());
-        for (size_t j = 0; j < f.z.size(); j++) {
-            in_map[j] = toMapFrame(f.z[j], pose);
-            candidates[j] = map.findCandidates(f.z[j], in_map[j]);
-        }
-        map.fuseFrame(f.z, in_map, candidates, static_cast<unsigned>(f.robot), true);
-    }
-    map.removeLandmarksSeenLessThan(options.map_along_path_min_times_seen);
-    return map;
 }
 
 CMultiRobotVisualSLAM::TMotionGaussian CMultiRobotVisualSLAM::motionOf(
@@ -533,7 +525,12 @@ void CMultiRobotVisualSLAM::runStep(
         const auto readings =
             observation ? robotReadingsOf(k, *observation) : std::vector<TRobotReading>();
         lastStepStats.robot_readings += readings.size();
-        if (options.map_along_path && !z.empty()) m_fusedFrames.push_back({m_steps + 1, k, z});
+        if (options.map_along_path) {
+            if (k == 0) m_motions.emplace_back();
+            m_motions.back().push_back(motion);
+            if (!z.empty() || !readings.empty())
+                m_fusedFrames.push_back({m_steps + 1, k, z, readings});
+        }
         if (optimal && !(z.empty() && readings.empty())) {
             proposeAndFuse(k, motion, z, readings);
         } else {

@@ -77,8 +77,16 @@ struct MultiRobotVSLAMApp::Impl {
     void findGroundTruth();
     /// Stereo images → landmarks where images are the input; counts the landmark inputs.
     void prepareFrame(mrpt::obs::CSensoryFrame& sf);
-    /// The best particle's paths and `map` (its own, or the one made along its path).
-    void drawBestParticle(mrpt::opengl::COpenGLScene& scene, const CVisualLandmarksMap& map) const;
+    /// With smooth_paths: the result of CMultiRobotVisualSLAM::smoothPaths() and its time.
+    std::optional<CMultiRobotVisualSLAM::TSmoothedTeam> smoothed;
+    double smoothingSeconds = 0;
+    std::vector<core::TumTrajectory> filterPaths;  ///< the best particle's, when smoothed
+
+    /// One robot's path of the best particle.
+    core::TumTrajectory bestParticlePath(size_t robot) const;
+    /// `paths` (one per robot) and `map`.
+    void drawTeam(mrpt::opengl::COpenGLScene& scene, const CVisualLandmarksMap& map,
+                  const std::vector<core::TumTrajectory>& paths) const;
     void writeOutputs(MultiRobotVSLAMApp& app, const core::RunTimer& timer);
     /** Where measurements carry identities (range-bearing data imported with kept ids): of the
      *  measurements fused into the landmarks of `map`, how many had another identity than the
@@ -239,18 +247,31 @@ void MultiRobotVSLAMApp::initialize()
     if (d.args.gui) d.window = std::make_unique<core::LiveView>("multirobot-vslam");
 }
 
-void MultiRobotVSLAMApp::Impl::drawBestParticle(mrpt::opengl::COpenGLScene& scene,
-                                               const CVisualLandmarksMap& map) const
+namespace {
+/// A path of (timestamp, pose) as a trajectory, one pose per timestamp (the first kept).
+core::TumTrajectory asTrajectory(const std::vector<std::pair<double, mrpt::math::TPose2D>>& path)
 {
-    const auto& best = filter->bestParticle();
+    core::TumTrajectory t;
+    for (const auto& [time, p] : path)
+        if (t.empty() || time > t.timestamps.back()) t.push_back(time, to3D(p));
+    return t;
+}
+}  // namespace
+
+core::TumTrajectory MultiRobotVSLAMApp::Impl::bestParticlePath(size_t robot) const
+{
+    return asTrajectory(CMultiRobotVisualSLAM::pathOf(filter->bestParticle(), robot));
+}
+
+void MultiRobotVSLAMApp::Impl::drawTeam(mrpt::opengl::COpenGLScene& scene,
+                                       const CVisualLandmarksMap& map,
+                                       const std::vector<core::TumTrajectory>& paths) const
+{
     scene.insert(mrpt::opengl::CGridPlaneXY::Create(-15, 15, -10, 10, 0, 1));
     scene.insert(map.getVisualization());
-    for (size_t k = 0; k < filter->robotCount(); k++) {
-        core::TumTrajectory path;
-        for (const auto& [t, p] : CMultiRobotVisualSLAM::pathOf(best, k)) path.push_back(t, to3D(p));
-        scene.insert(core::trajectoryAsLines(path, robotColour(k),
+    for (size_t k = 0; k < paths.size(); k++)
+        scene.insert(core::trajectoryAsLines(paths[k], robotColour(k),
                                              "estimate " + filterOptions.robots[k]));
-    }
 }
 
 void MultiRobotVSLAMApp::run()
@@ -297,7 +318,9 @@ void MultiRobotVSLAMApp::run()
         progress.update(++d.steps);
         if (d.window)
             d.window->show([&](auto& scene) {
-                d.drawBestParticle(scene, d.filter->bestParticle().map);
+                std::vector<core::TumTrajectory> paths;
+                for (size_t k = 0; k < robots.size(); k++) paths.push_back(d.bestParticlePath(k));
+                d.drawTeam(scene, d.filter->bestParticle().map, paths);
             });
     }
     progress.finish(d.steps);
@@ -312,10 +335,15 @@ void MultiRobotVSLAMApp::run()
     if (d.measurements == 0)
         throw std::runtime_error(d.rawlog + ": no landmark measurements for robots " + odoLabels +
                                  "; the rawlog has: " + reader.summary().describe());
-    for (size_t k = 0; k < robots.size(); k++)
-        for (const auto& [t, p] : CMultiRobotVisualSLAM::pathOf(d.filter->bestParticle(), k))
-            if (estimatedPaths[k].empty() || t > estimatedPaths[k].timestamps.back())
-                estimatedPaths[k].push_back(t, to3D(p));
+    for (size_t k = 0; k < robots.size(); k++) estimatedPaths[k] = d.bestParticlePath(k);
+    if (d.filterOptions.smooth_paths) {
+        const core::RunTimer smoothing;
+        d.smoothed = d.filter->smoothPaths(d.filter->bestParticle());
+        d.smoothingSeconds = smoothing.elapsedSeconds();
+        d.filterPaths = estimatedPaths;
+        for (size_t k = 0; k < robots.size(); k++)
+            estimatedPaths[k] = asTrajectory(d.smoothed->paths[k]);
+    }
     d.writeOutputs(*this, timer);
 }
 
@@ -396,14 +424,24 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
     for (size_t k = 0; k < app.robots.size(); k++) {
         const std::string& r = app.robots[k];
         app.estimatedPaths[k].save(out.file("estimated_path_" + r + ".tum"),
-                                   "multirobot-vslam: best particle's path of " + r);
+                                   "multirobot-vslam: " +
+                                       std::string(smoothed ? "smoothed" : "best particle's") +
+                                       " path of " + r);
         app.odometryPaths[k].save(out.file("odometry_path_" + r + ".tum"),
                                   "multirobot-vslam: dead reckoning of " + r);
+        if (smoothed)
+            filterPaths[k].save(out.file("filter_path_" + r + ".tum"),
+                                "multirobot-vslam: best particle's path of " + r +
+                                    ", before smoothing");
     }
-    // the output map: the best particle's own, or the one made along its final path
+    // the output map: the best particle's own, or the one made along its final path, or
+    // along the smoothed paths
     std::optional<CVisualLandmarksMap> alongPath;
     double alongPathSeconds = 0;
-    if (filterOptions.map_along_path) {
+    if (smoothed) {
+        alongPath = smoothed->map;
+        best.map.saveMetricMapRepresentationToFile(out.file("particle_map"));
+    } else if (filterOptions.map_along_path) {
         const core::RunTimer rebuild;
         alongPath = filter->mapAlongPath(best);
         alongPathSeconds = rebuild.elapsedSeconds();
@@ -413,7 +451,7 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
     core::saveFinalMap(map, app.outDir);
 
     mrpt::opengl::COpenGLScene scene;
-    drawBestParticle(scene, map);
+    drawTeam(scene, map, app.estimatedPaths);
     for (size_t k = 0; k < app.robots.size(); k++) {
         scene.insert(core::trajectoryAsLines(app.odometryPaths[k], {0.9f, 0.1f, 0.1f},
                                              "odometry " + app.robots[k]));
@@ -445,7 +483,21 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
     report.setCount("landmarks", static_cast<double>(map.size()));
     if (alongPath) {
         report.setCount("particle_map_landmarks", static_cast<double>(best.map.size()));
-        report.setResult("map_along_path_s", alongPathSeconds);
+        if (!smoothed) report.setResult("map_along_path_s", alongPathSeconds);
+    }
+    if (smoothed) {
+        report.setResult("smoothing_s", smoothingSeconds);
+        report.setCount("smoothing_iterations", static_cast<double>(smoothed->iterations));
+        report.setCount("smoothing_outlier_readings",
+                        static_cast<double>(smoothed->outlier_readings));
+        if (!smoothed->odometry_scales.empty()) {
+            std::ostringstream j;
+            for (size_t k = 0; k < app.robots.size(); k++)
+                j << (k ? ", " : "{") << "\"" << app.robots[k] << "\": ["
+                  << smoothed->odometry_scales[k][0] << ", " << smoothed->odometry_scales[k][1]
+                  << "]";
+            report.setResultJson("smoothing_odometry_scales", j.str() + "}");
+        }
     }
     report.setTiming(timer);
     if (trueLandmarks)

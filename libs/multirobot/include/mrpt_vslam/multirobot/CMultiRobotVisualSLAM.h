@@ -9,6 +9,7 @@
 #include <mrpt_vslam/core/ParticleFilterDataImpl.h>
 #include <mrpt_vslam/multirobot/TeamParticle.h>
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -91,11 +92,21 @@ public:
         /// Resample (if N_eff < BETA) after each robot's measurements too (ours; paper: once
         /// per step). Pays off with 3 robots (doc/multirobot.md).
         bool resample_per_robot = false;
-        /// Keep every measurement the filter fuses, for mapAlongPath() (ours).
+        /// Keep every measurement and odometry increment, for mapAlongPath() and
+        /// smoothPaths() (ours).
         bool map_along_path = false;
         /// mapAlongPath(): D0 of its gate, and the fewest measurements a landmark of it needs.
         double map_along_path_D0 = 30;
         unsigned int map_along_path_min_times_seen = 1;
+        /// smoothPaths() as the result (needs map_along_path): rounds of mapping along the
+        /// path and least squares, and the Huber threshold [σ] of its readings (0: none).
+        bool smooth_paths = false;
+        unsigned int smooth_paths_rounds = 2;
+        double smooth_paths_huber = 3;
+        /// smoothPaths(): σ of the prior N(1, σ²) on each robot's odometry scales (distance,
+        /// turn; 0: no scales), and the factor on the odometry covariance.
+        double smooth_paths_odometry_scale_std = 0;
+        double smooth_paths_motion_cov_factor = 1;
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                 const std::string& section) override;
@@ -136,6 +147,28 @@ public:
      *  move, so a wrong association here costs the map only, not the paths, and the gate can
      *  be wider than the filter's. \pre options.map_along_path since reset() */
     CVisualLandmarksMap mapAlongPath(const TTeamParticle& p) const;
+
+    /// The team's paths and map after smoothPaths().
+    struct TSmoothedTeam {
+        /// one per robot, oldest first, as pathOf()
+        std::vector<std::vector<std::pair<double, mrpt::math::TPose2D>>> paths;
+        CVisualLandmarksMap map;  ///< mapped along `paths` as mapAlongPath() maps
+        size_t iterations = 0;        ///< least-squares iterations, all rounds
+        size_t outlier_readings = 0;  ///< beyond the Huber threshold after the last round
+        /// per robot (distance, turn), with smooth_paths_odometry_scale_std > 0
+        std::vector<Eigen::Vector2d> odometry_scales;
+    };
+    /** The most probable paths given every odometry increment and reading since reset() and
+     *  the associations of the map along particle `p`'s path (ours; doc/multirobot.md §3):
+     *  options.smooth_paths_rounds times, map along the current paths (mapAlongPath()'s rules,
+     *  the landmarks below the count threshold left out), then solve the
+     *  PlanarPoseLandmarkGraph of the start poses (the first robot's fixed, the others with
+     *  initial_std_*), the odometry Gaussians (covariance × smooth_paths_motion_cov_factor;
+     *  with smooth_paths_odometry_scale_std, scaled by one distance and one turn scale per
+     *  robot, estimated with the rest), the readings of the mapped landmarks and of the other
+     *  robots (Huber); finally map along the result. \pre options.map_along_path since
+     *  reset() */
+    TSmoothedTeam smoothPaths(const TTeamParticle& p) const;
 
 protected:
     void prediction_and_update_pfStandardProposal(
@@ -193,9 +226,21 @@ private:
     struct TFusedFrame {
         size_t step, robot;
         std::vector<TLandmarkMeasurement> z;
+        std::vector<TRobotReading> readings;
     };
     std::vector<TFusedFrame> m_fusedFrames;
+    /// With map_along_path: each step's odometry Gaussians, [step − 1][robot].
+    std::vector<std::vector<TMotionGaussian>> m_motions;
+    std::vector<mrpt::math::TPose2D> m_startPoses;
     size_t m_steps = 0;  ///< since reset()
+
+    /// A particle's team poses per path node, [step][robot] (0: the start poses).
+    using TTeamPath = std::vector<std::vector<mrpt::math::TPose2D>>;
+    static TTeamPath teamPathOf(const TTeamParticle& p);
+    /// mapAlongPath() along `path`; `ids` (if given) gets, per fused frame and measurement,
+    /// the landmark it went to, or std::nullopt if that landmark was removed.
+    CVisualLandmarksMap mapAlong(const TTeamPath& path,
+                                 std::vector<std::vector<std::optional<uint32_t>>>* ids) const;
 
     CVisualLandmarksMap m_template;  ///< empty; shares the particles' descriptor pool
     mrpt::random::CRandomGenerator m_rng;
