@@ -8,6 +8,8 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace fs = std::filesystem;
 using mrpt_vslam::test::TCommandResult;
@@ -120,46 +122,25 @@ TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
     EXPECT_EQ(unknown.exit_code, 2);
     EXPECT_NE(unknown.out.find("bogus_key"), std::string::npos) << unknown.out;
 
-    const TCommandResult impossible = run(
-        cfg + kData + "team2.rawlog -q --set MultiRobotVSLAM.max_observations_per_robot=0 --out " +
-        out("e4"));
-    EXPECT_NE(impossible.exit_code, 0);
-    EXPECT_NE(impossible.out.find("max_observations_per_robot"), std::string::npos)
-        << impossible.out;
-
-    const TCommandResult ids = run(cfg + kData +
-                                   "team2.rawlog -q --set MultiRobotVSLAM.robot_reading_ids=7 --out " +
-                                   out("e5"));
-    EXPECT_NE(ids.exit_code, 0);
-    EXPECT_NE(ids.out.find("robot_reading_ids: must give one id per robot"), std::string::npos)
-        << ids.out;
-
-    const TCommandResult rarelySeen =
-        run(cfg + kData + "team2.rawlog -q --set MultiRobotVSLAM.map_along_path_min_times_seen=-1 "
-            "--out " + out("e6"));
-    EXPECT_NE(rarelySeen.exit_code, 0);
-    EXPECT_NE(rarelySeen.out.find("map_along_path_min_times_seen: must be >= 1"), std::string::npos)
-        << rarelySeen.out;
-
-    const TCommandResult smoothing =
-        run(cfg + kData + "team2.rawlog -q --set MultiRobotVSLAM.smooth_paths=true --out " +
-            out("e7"));
-    EXPECT_NE(smoothing.exit_code, 0);
-    EXPECT_NE(smoothing.out.find("smooth_paths: needs map_along_path = true"), std::string::npos)
-        << smoothing.out;
-
-    const TCommandResult rounds =
-        run(cfg + kData + "team2.rawlog -q --set MultiRobotVSLAM.smooth_paths_rounds=0 --out " +
-            out("e8"));
-    EXPECT_NE(rounds.exit_code, 0);
-    EXPECT_NE(rounds.out.find("smooth_paths_rounds: must be >= 1"), std::string::npos)
-        << rounds.out;
-
-    for (const auto* r :
-         {&missing, &corrupt, &unknown, &impossible, &ids, &rarelySeen, &smoothing, &rounds}) {
+    // impossible parameters: a non-zero exit and one line naming the key and the problem
+    const std::vector<std::pair<std::string, std::string>> impossible = {
+        {"max_observations_per_robot=0", "max_observations_per_robot: must be >= 1"},
+        {"robot_reading_ids=7", "robot_reading_ids: must give one id per robot"},
+        {"map_along_path_min_times_seen=-1", "map_along_path_min_times_seen: must be >= 1"},
+        {"smooth_paths=true", "smooth_paths: needs map_along_path = true"},
+        {"smooth_paths_rounds=0", "smooth_paths_rounds: must be >= 1"}};
+    std::vector<TCommandResult> results = {missing, corrupt, unknown};
+    for (size_t i = 0; i < impossible.size(); i++) {
+        const auto& [setting, message] = impossible[i];
+        results.push_back(run(cfg + kData + "team2.rawlog -q --set MultiRobotVSLAM." + setting +
+                              " --out " + out("e" + std::to_string(4 + i))));
+        EXPECT_NE(results.back().exit_code, 0) << setting;
+        EXPECT_NE(results.back().out.find(message), std::string::npos) << results.back().out;
+    }
+    for (const auto& r : results) {
         size_t lines = 0;
-        for (const char c : r->out) lines += c == '\n';
-        EXPECT_EQ(lines, 1u) << r->out;
+        for (const char c : r.out) lines += c == '\n';
+        EXPECT_EQ(lines, 1u) << r.out;
     }
     EXPECT_EQ(run("--help").exit_code, 0);
 }
