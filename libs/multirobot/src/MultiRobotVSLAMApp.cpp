@@ -438,16 +438,14 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
     // along the smoothed paths
     std::optional<CVisualLandmarksMap> alongPath;
     double alongPathSeconds = 0;
-    if (smoothed) {
-        alongPath = smoothed->map;
-        best.map.saveMetricMapRepresentationToFile(out.file("particle_map"));
-    } else if (filterOptions.map_along_path) {
+    if (filterOptions.map_along_path && !smoothed) {
         const core::RunTimer rebuild;
         alongPath = filter->mapAlongPath(best);
         alongPathSeconds = rebuild.elapsedSeconds();
-        best.map.saveMetricMapRepresentationToFile(out.file("particle_map"));
     }
-    const CVisualLandmarksMap& map = alongPath ? *alongPath : best.map;
+    if (filterOptions.map_along_path)
+        best.map.saveMetricMapRepresentationToFile(out.file("particle_map"));
+    const CVisualLandmarksMap& map = smoothed ? smoothed->map : alongPath ? *alongPath : best.map;
     core::saveFinalMap(map, app.outDir);
 
     mrpt::opengl::COpenGLScene scene;
@@ -481,10 +479,9 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
     report.setCount("robot_readings", static_cast<double>(robotReadings));
     report.setCount("particles", static_cast<double>(filter->particlesCount()));
     report.setCount("landmarks", static_cast<double>(map.size()));
-    if (alongPath) {
+    if (filterOptions.map_along_path)
         report.setCount("particle_map_landmarks", static_cast<double>(best.map.size()));
-        if (!smoothed) report.setResult("map_along_path_s", alongPathSeconds);
-    }
+    if (alongPath) report.setResult("map_along_path_s", alongPathSeconds);
     if (smoothed) {
         report.setResult("smoothing_s", smoothingSeconds);
         report.setCount("smoothing_iterations", static_cast<double>(smoothed->iterations));
