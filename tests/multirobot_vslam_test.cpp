@@ -128,7 +128,9 @@ TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
         {"robot_reading_ids=7", "robot_reading_ids: must give one id per robot"},
         {"map_along_path_min_times_seen=-1", "map_along_path_min_times_seen: must be >= 1"},
         {"smooth_paths=true", "smooth_paths: needs map_along_path = true"},
-        {"smooth_paths_rounds=0", "smooth_paths_rounds: must be >= 1"}};
+        {"smooth_paths_rounds=0", "smooth_paths_rounds: must be >= 1"},
+        {"smooth_paths_reanchor_gap=-1", "smooth_paths_reanchor_gap: must be >= 0"},
+        {"smooth_paths_reanchor_gain=1", "smooth_paths_reanchor_gain: must be in (0, 1)"}};
     std::vector<TCommandResult> results = {missing, corrupt, unknown};
     for (size_t i = 0; i < impossible.size(); i++) {
         const auto& [setting, message] = impossible[i];

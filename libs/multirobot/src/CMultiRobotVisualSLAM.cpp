@@ -121,6 +121,8 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
     MRPT_LOAD_CONFIG_VAR(smooth_paths_huber, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(smooth_paths_odometry_scale_std, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(smooth_paths_motion_cov_factor, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(smooth_paths_reanchor_gap, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(smooth_paths_reanchor_gain, double, cfg, section);
 
     requireKey(!robots.empty() && robots.size() <= 32, section, "robots",
                "must name 1 to 32 robots");
@@ -154,6 +156,10 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
                "must be >= 0");
     requireKey(smooth_paths_motion_cov_factor > 0, section, "smooth_paths_motion_cov_factor",
                "must be > 0");
+    requireKey(smooth_paths_reanchor_gap >= 0, section, "smooth_paths_reanchor_gap",
+               "must be >= 0");
+    requireKey(smooth_paths_reanchor_gain > 0 && smooth_paths_reanchor_gain < 1, section,
+               "smooth_paths_reanchor_gain", "must be in (0, 1)");
 }
 
 void CMultiRobotVisualSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
@@ -186,6 +192,8 @@ void CMultiRobotVisualSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     cfg.write(section, "smooth_paths_huber", smooth_paths_huber);
     cfg.write(section, "smooth_paths_odometry_scale_std", smooth_paths_odometry_scale_std);
     cfg.write(section, "smooth_paths_motion_cov_factor", smooth_paths_motion_cov_factor);
+    cfg.write(section, "smooth_paths_reanchor_gap", smooth_paths_reanchor_gap);
+    cfg.write(section, "smooth_paths_reanchor_gain", smooth_paths_reanchor_gain);
 }
 
 CMultiRobotVisualSLAM::CMultiRobotVisualSLAM(const CVisualLandmarksMap& map_template,

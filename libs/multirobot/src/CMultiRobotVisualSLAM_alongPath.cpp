@@ -3,6 +3,8 @@
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
 #include <mrpt_vslam/multirobot/PlanarPoseLandmarkGraph.h>
 
+#include <Eigen/Cholesky>
+
 #include <algorithm>
 #include <map>
 #include <stdexcept>
@@ -19,8 +21,7 @@ CMultiRobotVisualSLAM::TTeamPath CMultiRobotVisualSLAM::teamPathOf(const TTeamPa
     return path;
 }
 
-CVisualLandmarksMap CMultiRobotVisualSLAM::mapAlong(
-    const TTeamPath& path, std::vector<std::vector<std::optional<uint32_t>>>* ids) const
+CVisualLandmarksMap CMultiRobotVisualSLAM::mapAlong(const TTeamPath& path, TFrameIds* ids) const
 {
     CVisualLandmarksMap map(
         std::make_shared<LandmarkDescriptorPool>(m_template.insertionOptions.grid_cell_size));
@@ -61,6 +62,78 @@ CVisualLandmarksMap CMultiRobotVisualSLAM::mapAlongPath(const TTeamParticle& p) 
     return mapAlong(teamPathOf(p), nullptr);
 }
 
+double CMultiRobotVisualSLAM::supportedFraction(const std::vector<size_t>& frames,
+                                                const TTeamPath& path,
+                                                const CVisualLandmarksMap& map,
+                                                const TFrameIds& ids) const
+{
+    std::map<uint32_t, uint32_t> inside;  // readings of each landmark from `frames`
+    size_t n = 0, fit = 0;
+    for (const size_t f : frames)
+        for (const auto& id : ids[f]) {
+            n++;
+            if (id) inside[*id]++;
+        }
+    for (const size_t f : frames) {
+        const TFusedFrame& frame = m_fusedFrames[f];
+        const TPlanarTransform pose(path.at(frame.step).at(frame.robot));
+        for (size_t j = 0; j < frame.z.size(); j++) {
+            const auto& id = ids[f][j];
+            if (!id) continue;
+            const TVisualLandmark* lm = map.landmarks().find(*id);
+            if (lm->times_seen <= inside[*id]) continue;
+            const TMapMeasurement w = toMapFrame(frame.z[j], pose);
+            const Eigen::Vector2d v = (w.z - lm->mean).head<2>();
+            const Eigen::Matrix2d S = (w.R + lm->cov).topLeftCorner<2, 2>();
+            if (v.dot(S.ldlt().solve(v)) < 9.21) fit++;
+        }
+    }
+    return n ? static_cast<double>(fit) / static_cast<double>(n) : 0;
+}
+
+size_t CMultiRobotVisualSLAM::reanchorAfterGaps(TTeamPath& path, const std::vector<double>& times,
+                                                const std::vector<Eigen::Vector2d>& scales,
+                                                CVisualLandmarksMap& map, TFrameIds& ids) const
+{
+    size_t moved = 0;
+    for (size_t k = 0; k < robotCount(); k++) {
+        std::vector<size_t> frames;  // robot k's, with landmark readings
+        for (size_t f = 0; f < m_fusedFrames.size(); f++)
+            if (m_fusedFrames[f].robot == k && !m_fusedFrames[f].z.empty()) frames.push_back(f);
+        auto stepOf = [&](size_t i) { return m_fusedFrames[frames[i]].step; };
+        size_t i = 1;
+        while (i < frames.size()) {
+            const size_t before = stepOf(i - 1);
+            size_t j = i + 1;  // the part: frames [i, j)
+            while (j < frames.size() && times[stepOf(j)] - times[stepOf(j - 1)] <=
+                                            options.smooth_paths_reanchor_gap)
+                j++;
+            if (times[stepOf(i)] - times[before] > options.smooth_paths_reanchor_gap) {
+                const std::vector<size_t> part(frames.begin() + i, frames.begin() + j);
+                TTeamPath candidate = path;
+                for (size_t s = before + 1; s <= stepOf(j - 1); s++) {
+                    const auto& u = m_motions[s - 1][k].mean;
+                    candidate[s][k] = candidate[s - 1][k] +
+                                      (scales.empty() ? u : PlanarPoseLandmarkGraph::scaled(
+                                                                u, scales[k]));
+                }
+                TFrameIds candidateIds;
+                CVisualLandmarksMap candidateMap = mapAlong(candidate, &candidateIds);
+                if (supportedFraction(part, candidate, candidateMap, candidateIds) >
+                    supportedFraction(part, path, map, ids) +
+                        options.smooth_paths_reanchor_gain) {
+                    path = std::move(candidate);
+                    map = std::move(candidateMap);
+                    ids = std::move(candidateIds);
+                    moved++;
+                }
+            }
+            i = j;
+        }
+    }
+    return moved;
+}
+
 CMultiRobotVisualSLAM::TSmoothedTeam CMultiRobotVisualSLAM::smoothPaths(
     const TTeamParticle& p) const
 {
@@ -81,9 +154,13 @@ CMultiRobotVisualSLAM::TSmoothedTeam CMultiRobotVisualSLAM::smoothPaths(
 
     TSmoothedTeam result;
     result.odometry_scales.assign(scaleStd > 0 ? K : 0, Eigen::Vector2d(1, 1));
-    std::vector<std::vector<std::optional<uint32_t>>> ids;
+    std::vector<double> times;
+    for (const auto& [t, pose] : pathOf(p, 0)) times.push_back(t);
+    TFrameIds ids;
     for (unsigned round = 0; round < options.smooth_paths_rounds; round++) {
-        const CVisualLandmarksMap map = mapAlong(path, &ids);
+        CVisualLandmarksMap map = mapAlong(path, &ids);
+        if (options.smooth_paths_reanchor_gap > 0)
+            result.reanchored += reanchorAfterGaps(path, times, result.odometry_scales, map, ids);
         PlanarPoseLandmarkGraph graph;
         for (const auto& poses : path)
             for (const auto& x : poses) graph.addPose(x);

@@ -487,6 +487,7 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
         report.setCount("smoothing_iterations", static_cast<double>(smoothed->iterations));
         report.setCount("smoothing_outlier_readings",
                         static_cast<double>(smoothed->outlier_readings));
+        report.setCount("smoothing_reanchored", static_cast<double>(smoothed->reanchored));
         if (!smoothed->odometry_scales.empty()) {
             std::ostringstream j;
             for (size_t k = 0; k < app.robots.size(); k++)

@@ -87,9 +87,7 @@ void PlanarPoseLandmarkGraph::addOdometry(size_t from, size_t to, const TPose2D&
 
 TPose2D PlanarPoseLandmarkGraph::scaledIncrement(const TOdometry& f) const
 {
-    if (!f.scale) return f.increment;
-    const Eigen::Vector2d& s = m_scales[*f.scale];
-    return {s[0] * f.increment.x, s[0] * f.increment.y, s[1] * f.increment.phi};
+    return f.scale ? scaled(f.increment, m_scales[*f.scale]) : f.increment;
 }
 
 void PlanarPoseLandmarkGraph::addPointReading(size_t pose, size_t point, const Eigen::Vector2d& z,

@@ -207,3 +207,56 @@ TEST(CMultiRobotVisualSLAM, TwoRobotsBeatOdometryAndMergeSharedLandmarks)
     EXPECT_LT(duplicated, merged / 10 + 2);
     EXPECT_LT(far, best.map.size() / 10);
 }
+
+// reanchorAfterGaps() through smoothPaths(), from particles whose paths are the true ones: R2
+// sees nothing for 15 s; its part after that gap, displaced by 0.4 m and 20 deg, is put back
+// onto its odometry, and the true paths are left alone. (With descriptors least squares alone
+// recovers the part here too; the case it does not, readings gone to wrong landmarks on the
+// MRCLAM data, is in doc/real-data.md.)
+TEST(CMultiRobotVisualSLAM, SmoothingReanchorsAPartDisplacedAfterAGap)
+{
+    SyntheticTeamWorld::TParams wp;
+    wp.landmarks = 300;
+    SyntheticTeamWorld world(wp);
+    CMultiRobotVisualSLAM filter(CVisualLandmarksMap(), 1, 5);  // records frames and odometry
+    filter.options.map_along_path = true;
+    filter.options.map_along_path_min_times_seen = 3;
+    filter.options.smooth_paths = true;
+    filter.reset(world.startPoses(), world.time);
+    auto pf = standardFilter();
+    mrpt::obs::CActionCollection acts;
+    mrpt::obs::CSensoryFrame sf;
+    const size_t steps = 60, gapFrom = 20, gapTo = 35;  // R2 blind in steps [gapFrom, gapTo)
+    TTeamParticle truth, displaced;
+    truth.path = displaced.path =
+        std::make_shared<const TTeamPathNode>(world.time, world.startPoses(), nullptr);
+    const mrpt::poses::CPose2D by(0.3, -0.3, 20 * M_PI / 180);
+    mrpt::poses::CPose2D at;  // R2's true pose after the gap
+    for (size_t i = 1; i <= steps; i++) {
+        world.step(acts, sf);
+        if (i >= gapFrom && i < gapTo) sf.eraseByLabel("R2_LANDMARKS");
+        pf.executeOn(filter, &acts, &sf);
+        truth.path = std::make_shared<const TTeamPathNode>(world.time, world.truth, truth.path);
+        auto poses = world.truth;
+        if (i == gapTo) at = mrpt::poses::CPose2D(poses[1]);
+        if (i >= gapTo) poses[1] = (at + by + (mrpt::poses::CPose2D(poses[1]) - at)).asTPose();
+        displaced.path = std::make_shared<const TTeamPathNode>(world.time, poses, displaced.path);
+    }
+    // R2's error after the gap
+    auto errorAfterGap = [&](const CMultiRobotVisualSLAM::TSmoothedTeam& s) {
+        const auto t = CMultiRobotVisualSLAM::pathOf(truth, 1);
+        double se = 0;
+        for (size_t i = gapTo; i <= steps; i++)
+            se += std::pow(positionError(s.paths[1][i].second, t[i].second), 2);
+        return std::sqrt(se / static_cast<double>(steps + 1 - gapTo));
+    };
+    const auto plain = filter.smoothPaths(displaced);
+    filter.options.smooth_paths_reanchor_gap = 10;
+    const auto reanchored = filter.smoothPaths(displaced);
+    const auto undisplaced = filter.smoothPaths(truth);
+    EXPECT_EQ(plain.reanchored, 0u);
+    EXPECT_EQ(reanchored.reanchored, 1u);
+    EXPECT_EQ(undisplaced.reanchored, 0u);
+    EXPECT_LT(errorAfterGap(undisplaced), 0.2);
+    EXPECT_LT(errorAfterGap(reanchored), errorAfterGap(undisplaced) + 0.01);
+}

@@ -107,6 +107,12 @@ public:
         /// turn; 0: no scales), and the factor on the odometry covariance.
         double smooth_paths_odometry_scale_std = 0;
         double smooth_paths_motion_cov_factor = 1;
+        /// smoothPaths(): a robot's readings more than this apart [s] (0: never) split its
+        /// path; each round, a part after such a gap is moved onto the robot's odometry from the
+        /// part before when that raises the fraction of its readings that fit a landmark also
+        /// read outside it by more than smooth_paths_reanchor_gain (reanchorAfterGaps()).
+        double smooth_paths_reanchor_gap = 0;
+        double smooth_paths_reanchor_gain = 0.1;
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                 const std::string& section) override;
@@ -155,6 +161,7 @@ public:
         CVisualLandmarksMap map;  ///< mapped along `paths` as mapAlongPath() maps
         size_t iterations = 0;        ///< least-squares iterations, all rounds
         size_t outlier_readings = 0;  ///< beyond the Huber threshold after the last round
+        size_t reanchored = 0;        ///< parts of paths reanchorAfterGaps() moved, all rounds
         /// per robot (distance, turn), with smooth_paths_odometry_scale_std > 0
         std::vector<Eigen::Vector2d> odometry_scales;
     };
@@ -239,8 +246,22 @@ private:
     static TTeamPath teamPathOf(const TTeamParticle& p);
     /// mapAlongPath() along `path`; `ids` (if given) gets, per fused frame and measurement,
     /// the landmark it went to, or std::nullopt if that landmark was removed.
-    CVisualLandmarksMap mapAlong(const TTeamPath& path,
-                                 std::vector<std::vector<std::optional<uint32_t>>>* ids) const;
+    using TFrameIds = std::vector<std::vector<std::optional<uint32_t>>>;
+    CVisualLandmarksMap mapAlong(const TTeamPath& path, TFrameIds* ids) const;
+    /** Of the landmark readings in fused frames `frames` (one robot's), the fraction that fit
+     *  (squared Mahalanobis distance < 9.21, 99 % for 2 dof) a landmark of `map` (made along
+     *  `path`, `ids` its associations) that readings outside `frames` also went to. */
+    double supportedFraction(const std::vector<size_t>& frames, const TTeamPath& path,
+                             const CVisualLandmarksMap& map, const TFrameIds& ids) const;
+    /** Ours (doc/multirobot.md §3): per robot, its path split where its landmark readings are
+     *  more than options.smooth_paths_reanchor_gap apart; in the order of the run, each part
+     *  after a gap (the gap included) is replaced by the robot's odometry (scaled by `scales`,
+     *  if any) from the last pose before it, where that raises the part's supportedFraction()
+     *  by more than options.smooth_paths_reanchor_gain. `map` and `ids` follow `path`.
+     *  eturn how many parts moved */
+    size_t reanchorAfterGaps(TTeamPath& path, const std::vector<double>& times,
+                             const std::vector<Eigen::Vector2d>& scales, CVisualLandmarksMap& map,
+                             TFrameIds& ids) const;
 
     CVisualLandmarksMap m_template;  ///< empty; shares the particles' descriptor pool
     mrpt::random::CRandomGenerator m_rng;
