@@ -4,7 +4,6 @@
 #include <mrpt_vslam/multirobot/PlanarPoseLandmarkGraph.h>
 
 #include <Eigen/Cholesky>
-
 #include <algorithm>
 #include <map>
 #include <stdexcept>
@@ -95,6 +94,7 @@ size_t CMultiRobotVisualSLAM::reanchorAfterGaps(TTeamPath& path, const std::vect
                                                 const std::vector<Eigen::Vector2d>& scales,
                                                 CVisualLandmarksMap& map, TFrameIds& ids) const
 {
+    const double gap = options.smooth_paths_reanchor_gap, gain = options.smooth_paths_reanchor_gain;
     size_t moved = 0;
     for (size_t k = 0; k < robotCount(); k++) {
         std::vector<size_t> frames;  // robot k's, with landmark readings
@@ -105,30 +105,28 @@ size_t CMultiRobotVisualSLAM::reanchorAfterGaps(TTeamPath& path, const std::vect
         while (i < frames.size()) {
             const size_t before = stepOf(i - 1);
             size_t j = i + 1;  // the part: frames [i, j)
-            while (j < frames.size() && times[stepOf(j)] - times[stepOf(j - 1)] <=
-                                            options.smooth_paths_reanchor_gap)
-                j++;
-            if (times[stepOf(i)] - times[before] > options.smooth_paths_reanchor_gap) {
-                const std::vector<size_t> part(frames.begin() + i, frames.begin() + j);
-                TTeamPath candidate = path;
-                for (size_t s = before + 1; s <= stepOf(j - 1); s++) {
-                    const auto& u = m_motions[s - 1][k].mean;
-                    candidate[s][k] = candidate[s - 1][k] +
-                                      (scales.empty() ? u : PlanarPoseLandmarkGraph::scaled(
-                                                                u, scales[k]));
-                }
-                TFrameIds candidateIds;
-                CVisualLandmarksMap candidateMap = mapAlong(candidate, &candidateIds);
-                if (supportedFraction(part, candidate, candidateMap, candidateIds) >
-                    supportedFraction(part, path, map, ids) +
-                        options.smooth_paths_reanchor_gain) {
-                    path = std::move(candidate);
-                    map = std::move(candidateMap);
-                    ids = std::move(candidateIds);
-                    moved++;
-                }
-            }
+            while (j < frames.size() && times[stepOf(j)] - times[stepOf(j - 1)] <= gap) j++;
+            const std::vector<size_t> part(frames.begin() + i, frames.begin() + j);
+            const bool afterGap = times[stepOf(i)] - times[before] > gap;
             i = j;
+            if (!afterGap) continue;
+            const double current = supportedFraction(part, path, map, ids);
+            if (current + gain >= 1) continue;  // cannot gain enough
+            TTeamPath candidate = path;
+            for (size_t s = before + 1; s <= m_fusedFrames[part.back()].step; s++) {
+                const auto& u = m_motions[s - 1][k].mean;
+                candidate[s][k] =
+                    candidate[s - 1][k] +
+                    (scales.empty() ? u : PlanarPoseLandmarkGraph::scaled(u, scales[k]));
+            }
+            TFrameIds candidateIds;
+            CVisualLandmarksMap candidateMap = mapAlong(candidate, &candidateIds);
+            if (supportedFraction(part, candidate, candidateMap, candidateIds) > current + gain) {
+                path = std::move(candidate);
+                map = std::move(candidateMap);
+                ids = std::move(candidateIds);
+                moved++;
+            }
         }
     }
     return moved;
