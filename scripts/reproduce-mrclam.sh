@@ -6,7 +6,8 @@
 #      kept, to count wrong associations: the filter reads them only in 3c);
 #   2. multirobot-vslam (mrclam.ini), robots 1-3 jointly, several seeds: per-robot ATE of the
 #      smoothed paths and of the filter's vs odometry, the particle's map and the output map
-#      (landmarks matched within 0.5 m, extra landmarks), wrong associations, run time;
+#      (landmarks matched within 0.5 m, extra landmarks), parts of paths reanchored, wrong
+#      associations, run time;
 #   3. the filter alone (no smoothing, the particles' own maps) on each robot alone, on 2 and 5
 #      robots, on robots 1-3, and on robots 1-3 without the readings of robots;
 #   3b. robots 1-3 with known poses (the Vicon poses as odometry) and three gates D0: what the
@@ -88,8 +89,8 @@ filter_rmse() {
 echo
 echo "### Robots 1-3 jointly (mrclam.ini), identities hidden"
 echo
-echo "| seed | R1 smoothed [m] | R1 filter [m] | R1 odometry [m] | R2 smoothed [m] | R2 filter [m] | R2 odometry [m] | R3 smoothed [m] | R3 filter [m] | R3 odometry [m] | particle's map landmarks | output map landmarks | true landmarks matched one-to-one within 0.5 m (mean error) | extra | fused readings | of another identity | run [s] |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| seed | R1 smoothed [m] | R1 filter [m] | R1 odometry [m] | R2 smoothed [m] | R2 filter [m] | R2 odometry [m] | R3 smoothed [m] | R3 filter [m] | R3 odometry [m] | particle's map landmarks | output map landmarks | true landmarks matched one-to-one within 0.5 m (mean error) | extra | parts reanchored | fused readings | of another identity | run [s] |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 : > "$OUT/joint.txt"
 for seed in $SEEDS; do
   res=$(run "$OUT/r123-seed$seed" "$OUT/data/r123-ids.rawlog" "R1 R2 R3" --seed "$seed")
@@ -104,9 +105,11 @@ for seed in $SEEDS; do
   read -r -a v <<< "${res%%|*}"
   read -r _ _ _ fused wrong t particle matched total err <<< "${res##*|}"
   read -r -a f <<< "$(filter_rmse "$OUT/r123-seed$seed" "$OUT/data/r123-ids.rawlog")"
+  reanchored=$(grep -o '"smoothing_reanchored": *[0-9]*' "$OUT/r123-seed$seed/run.json" |
+    awk '{print $2}')
   echo "| $seed | ${v[0]} | ${f[0]} | ${v[1]} | ${v[2]} | ${f[1]} | ${v[3]} | ${v[4]} | ${f[2]} |" \
-    "${v[5]} | $particle | $total | $matched ($err m) | $((total - matched)) | $fused | $wrong |" \
-    "$t |"
+    "${v[5]} | $particle | $total | $matched ($err m) | $((total - matched)) | $reanchored |" \
+    "$fused | $wrong | $t |"
   echo "${v[0]} ${v[2]} ${v[4]} ${f[0]} ${f[1]} ${f[2]}" >> "$OUT/joint.txt"
 done
 awk '{a += $1; b += $2; c += $3; d += $4; e += $5; f += $6; n++; m = $1; if ($2 > m) m = $2; if ($3 > m) m = $3; if (m <= 0.25) ok++}
