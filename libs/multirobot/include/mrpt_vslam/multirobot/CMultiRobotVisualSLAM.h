@@ -173,8 +173,8 @@ public:
      *  initial_std_*), the odometry Gaussians (covariance × smooth_paths_motion_cov_factor;
      *  with smooth_paths_odometry_scale_std, scaled by one distance and one turn scale per
      *  robot, estimated with the rest), the readings of the mapped landmarks and of the other
-     *  robots (Huber); finally map along the result. \pre options.map_along_path since
-     *  reset() */
+     *  robots (Huber); with smooth_paths_reanchor_gap, reanchorAfterGaps() after each
+     *  mapping; finally map along the result. \pre options.map_along_path since reset() */
     TSmoothedTeam smoothPaths(const TTeamParticle& p) const;
 
 protected:
@@ -258,7 +258,7 @@ private:
      *  after a gap (the gap included) is replaced by the robot's odometry (scaled by `scales`,
      *  if any) from the last pose before it, where that raises the part's supportedFraction()
      *  by more than options.smooth_paths_reanchor_gain. `map` and `ids` follow `path`.
-     *  eturn how many parts moved */
+     *  \return how many parts moved */
     size_t reanchorAfterGaps(TTeamPath& path, const std::vector<double>& times,
                              const std::vector<Eigen::Vector2d>& scales, CVisualLandmarksMap& map,
                              TFrameIds& ids) const;

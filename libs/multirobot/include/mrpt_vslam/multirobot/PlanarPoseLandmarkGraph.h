@@ -33,14 +33,14 @@ public:
     void addPosePrior(size_t pose, const mrpt::math::TPose2D& mean, const Eigen::Matrix3d& cov);
     void addOdometry(size_t from, size_t to, const mrpt::math::TPose2D& increment,
                      const Eigen::Matrix3d& cov);
+    /// The same, the increment scaled by odometry scale variable `scale`.
+    void addOdometry(size_t from, size_t to, const mrpt::math::TPose2D& increment,
+                     const Eigen::Matrix3d& cov, size_t scale);
     /// An odometry increment u scaled by s = (s_d, s_θ): (s_d u_x, s_d u_y, s_θ u_θ).
     static mrpt::math::TPose2D scaled(const mrpt::math::TPose2D& u, const Eigen::Vector2d& s)
     {
         return {s[0] * u.x, s[0] * u.y, s[1] * u.phi};
     }
-    /// The same, the increment scaled by odometry scale variable `scale`.
-    void addOdometry(size_t from, size_t to, const mrpt::math::TPose2D& increment,
-                     const Eigen::Matrix3d& cov, size_t scale);
     /// `z`: the point as seen from `pose`, in its frame; `cov` its 2×2 covariance.
     void addPointReading(size_t pose, size_t point, const Eigen::Vector2d& z,
                          const Eigen::Matrix2d& cov);
