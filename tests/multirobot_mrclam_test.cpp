@@ -52,6 +52,22 @@ std::string runMrclam(const ScratchFolder& scratch, const std::string& rawlog,
     return out;
 }
 
+/// vslam-eval's evaluation of a run folder, in-process: the output map matched one-to-one to the
+/// true landmarks within 0.5 m, and the path errors.
+mrpt_vslam::core::TEvalParams evalParamsOf(const std::string& out)
+{
+    mrpt_vslam::core::TEvalParams params;
+    params.run_dir = out;
+    params.landmark_cutoff = 0.5;
+    return params;
+}
+
+mrpt_vslam::core::TEvalResult evaluate(const std::string& out)
+{
+    const auto params = evalParamsOf(out);
+    return mrpt_vslam::core::evaluateRun(mrpt_vslam::core::resolveInputs(params), params);
+}
+
 /// Team mean of the estimate's and of the odometry's position RMSE of a run folder.
 std::pair<double, double> teamMeans(const std::string& out)
 {
@@ -141,12 +157,7 @@ TEST(MultiRobotVSLAMOnMrclam, SmoothedPathsAndTheMapAlongThemMeetTheTargets)
         const std::string out =
             runMrclam(scratch, rawlog, "run" + seed,
                       "--seed " + seed + " --set MultiRobotVSLAM.map_along_path_min_times_seen=50");
-        // vslam-eval's one-to-one matching, within 0.5 m, and its path errors
-        mrpt_vslam::core::TEvalParams params;
-        params.run_dir = out;
-        params.landmark_cutoff = 0.5;
-        const auto result =
-            mrpt_vslam::core::evaluateRun(mrpt_vslam::core::resolveInputs(params), params);
+        const auto result = evaluate(out);
         ASSERT_TRUE(result.landmarks.has_value());
         EXPECT_EQ(result.landmarks->num_matched, 15u) << "seed " << seed;
         EXPECT_LE(result.landmarks->num_estimated, 17u) << "seed " << seed;
@@ -162,7 +173,7 @@ TEST(MultiRobotVSLAMOnMrclam, SmoothedPathsAndTheMapAlongThemMeetTheTargets)
             mrpt_vslam::core::TEvalInputs filter;
             filter.robots.push_back({r, out + "/filter_path_" + r + ".tum", "",
                                      prefix + ".groundtruth_" + r + ".tum"});
-            const double filtered = mrpt_vslam::core::evaluateRun(filter, params)
+            const double filtered = mrpt_vslam::core::evaluateRun(filter, evalParamsOf(out))
                                         .robots.at(0).estimate.unaligned.ate_rmse;
             const double smoothed = robot.estimate.unaligned.ate_rmse;
             EXPECT_LT(smoothed, 0.15) << r << " seed " << seed;
@@ -190,11 +201,7 @@ TEST(MultiRobotVSLAMOnMrclam, ReanchoringBringsARobotBackAfterAGap)
                 scratch, rawlog, "run" + seed + "-" + gap,
                 "--seed " + seed + " --set MultiRobotVSLAM.map_along_path_min_times_seen=50" +
                     " --set MultiRobotVSLAM.smooth_paths_reanchor_gap=" + gap);
-            mrpt_vslam::core::TEvalParams params;
-            params.run_dir = out;
-            params.landmark_cutoff = 0.5;
-            const auto result =
-                mrpt_vslam::core::evaluateRun(mrpt_vslam::core::resolveInputs(params), params);
+            const auto result = evaluate(out);
             for (const auto& robot : result.robots)
                 if (robot.files.robot == "R2") r2[gap] = robot.estimate.unaligned.ate_rmse;
             ASSERT_EQ(r2.count(gap), 1u);
