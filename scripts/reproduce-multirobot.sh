@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Paper 003, Sec. 6 on the shipped office-team datasets (doc/multirobot.md):
+# Gil et al. 2010, Sec. 6 on the shipped office-team datasets (doc/multirobot.md):
 #   1. Fig. 3 / Fig. 6: 2 robots (M = 500, B = 8) and 3 robots (M = 3000, B = 20), several seeds:
 #      per-robot RMSE vs odometry, merged vs duplicated shared landmarks, step time; paths.png and
 #      errors.png of each run (vslam-eval);

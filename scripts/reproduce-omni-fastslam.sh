@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Paper 000, Sec. IV on the shipped sports-hall dataset: the default run (Table I equivalent and
-# errors over time, Fig. 6) and 10 seeds with Hungarian vs maximum-likelihood association
-# (Fig. 7/8). Writes every run folder, metrics.json and plots under out/reproduce-omni-fastslam/
-# (or $OUT) and prints a markdown table of the seeds. Builds first (scripts/setup.sh).
+# Gamallo et al. 2013, Sec. IV on the shipped sports-hall dataset: the default run (Table I
+# equivalent and errors over time, Fig. 6) and 10 seeds with Hungarian vs maximum-likelihood
+# association (Fig. 7/8). Writes every run folder, metrics.json and plots under
+# out/reproduce-omni-fastslam/ (or $OUT) and prints a markdown table of the seeds. Builds first
+# (scripts/setup.sh).
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 source "$REPO_DIR/scripts/setup.sh"

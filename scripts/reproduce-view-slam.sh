@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Paper 004 on simulated omni-views sequences (doc/view-slam.md §5): the traditional and the
-# information-based view initialization side by side on the same sequences and seeds:
+# Valiente et al. 2015 on simulated omni-views sequences (doc/view-slam.md §5): the traditional and
+# the information-based view initialization side by side on the same sequences and seeds:
 #   - trajectory RMSE in x, y, position and heading, against odometry;
 #   - view position RMSE (each view against the true pose of its image);
 #   - uncertainty sqrt(trace P_vv) (mean and final), robot NEES (mean, share of frames inside the

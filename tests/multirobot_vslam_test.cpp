@@ -38,7 +38,7 @@ mrpt_vslam::test::ScratchFolder* MultiRobotVSLAMApp::s_scratch = nullptr;
 
 // The shipped 40-step stereo sequence through the built-in front-end: both robots within
 // 0.15 m RMS of the truth (odometry is still good this early: 0.06-0.15 m), shared landmarks
-// mostly merged, every BRIEF §4 output written, and the seed recorded.
+// mostly merged, every run-folder output written, and the seed recorded.
 TEST_F(MultiRobotVSLAMApp, StereoShortSequenceIsAccurate)
 {
     const TCommandResult r = run(kConfigs + "office-team-2.ini " + kData +
@@ -82,7 +82,7 @@ TEST_F(MultiRobotVSLAMApp, PreExtractedInputMatchesStereoInput)
 }
 
 // The shipped 2-robot dataset (200 steps, M = 500, B = 8, the optimal proposal of
-// office-team-2.ini), seeds 1-3: the bounds on every seed and robot, RMSE <= 0.20 m and
+// office-team-2.ini), seeds 1-3: the accuracy targets on every seed and robot, RMSE <= 0.20 m and
 // <= 40 % of odometry (measured: at most 0.154 m and 38 % over seeds 1-5, doc/multirobot.md).
 TEST_F(MultiRobotVSLAMApp, TeamOfTwoMeetsTheAccuracyBoundsOnEverySeed)
 {

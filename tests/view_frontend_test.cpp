@@ -1,6 +1,6 @@
-// The omni front-end of the view SLAM (paper 004) on images rendered from the shipped omni-views
-// world: feature extraction, matching restricted to the predicted area and the observation
-// (φ, β) with its noise R, on pairs of poses 0.3-1.5 m apart with unrelated headings.
+// The omni front-end of the view SLAM (Valiente et al. 2015) on images rendered from the shipped
+// omni-views world: feature extraction, matching restricted to the predicted area and the
+// observation (φ, β) with its noise R, on pairs of poses 0.3-1.5 m apart with unrelated headings.
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/core/bits_math.h>

@@ -38,7 +38,7 @@ mrpt_vslam::test::ScratchFolder* ViewSLAMApp::s_scratch = nullptr;
 
 // Both policies on the 40-frame sequence (6 m along the corridor): the estimate beats dead
 // reckoning, the robot NEES stays inside the 95 % bounds on most frames, the views lie near the
-// true poses of their images, and every output of BRIEF §4 is written.
+// true poses of their images, and every output of the run folder is written.
 TEST_F(ViewSLAMApp, ShortSequenceIsAccurateAndConsistentWithBothPolicies)
 {
     for (const std::string policy : {"traditional", "information"}) {

@@ -1,5 +1,5 @@
 // multirobot-vslam: one Rao-Blackwellized particle filter over a robot team's paths and a shared
-// map of 3D visual landmarks (paper 003).
+// map of 3D visual landmarks (Gil et al. 2010).
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/UsageError.h>

@@ -1,4 +1,5 @@
-// omni-fastslam: FastSLAM 2.0 with an upward fisheye camera and ceiling lights (paper 000).
+// omni-fastslam: FastSLAM 2.0 with an upward fisheye camera and ceiling lights
+// (Gamallo et al. 2013).
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/UsageError.h>

@@ -1,4 +1,4 @@
-// stereo-frontend: the stereo front-end of the multi-robot visual SLAM (paper 003), as a
+// stereo-frontend: the stereo front-end of the multi-robot visual SLAM (Gil et al. 2010), as a
 // rawlog-to-rawlog filter (see doc/stereo-frontend.md).
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/UsageError.h>

@@ -1,5 +1,5 @@
 // view-slam: view-based omnidirectional EKF SLAM with information-based view initialization
-// (paper 004).
+// (Valiente et al. 2015).
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/UsageError.h>

@@ -30,9 +30,9 @@ BENCHMARK(BM_HungarianSquare)
     ->Unit(benchmark::kMicrosecond)
     ->Complexity();
 
-// Data association shape of paper 000: N_z measurements × (N landmarks + N_z new-landmark
-// columns). Costs are −log-likelihoods of gated pairs (others forbidden); column N + l holds the
-// new-landmark cost of measurement l only. Args: N_z, N.
+// Data association shape of Gamallo et al. 2013: N_z measurements × (N landmarks + N_z
+// new-landmark columns). Costs are −log-likelihoods of gated pairs (others forbidden); column
+// N + l holds the new-landmark cost of measurement l only. Args: N_z, N.
 void BM_HungarianDataAssociation(benchmark::State& state)
 {
     const auto n_z = static_cast<Eigen::Index>(state.range(0));

@@ -1,5 +1,5 @@
-// One step of the multi-robot visual SLAM filter (paper 003, Alg. 1 lines 5-15) on the
-// synthetic team world, for the (M, B, K) of the issue: (500, 8, 2), (1500, 20, 2),
+// One step of the multi-robot visual SLAM filter (Gil et al. 2010, Alg. 1 lines 5-15) on the
+// synthetic team world, for the (M, B, K) of doc/multirobot.md: (500, 8, 2), (1500, 20, 2),
 // (3000, 20, 3), the last also with resampling after each robot (R = 1, as office-team-3.ini);
 // O = 0 the paper's proposal (pfStandardProposal), O = 1 pfOptimalProposal (office-team-2.ini).
 // The map is first built over 60 steps; the timed steps continue the run.

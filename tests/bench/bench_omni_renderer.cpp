@@ -1,5 +1,6 @@
-// One 640×480 omnidirectional image of the omni-views world (vslam-sim, paper 004): a ray per
-// pixel through the unified sphere model, nearest face, bilinear texture sample, pixel noise.
+// One 640×480 omnidirectional image of the omni-views world (vslam-sim, Valiente et al. 2015):
+// a ray per pixel through the unified sphere model, nearest face, bilinear texture sample,
+// pixel noise.
 #include <benchmark/benchmark.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt_vslam/sim/OmniViewsScenario.h>

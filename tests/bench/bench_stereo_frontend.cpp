@@ -1,4 +1,4 @@
-// One frame of the multi-robot stereo front-end (paper 003): Harris corners, stereo
+// One frame of the multi-robot stereo front-end (Gil et al. 2010): Harris corners, stereo
 // correspondence, U-SURF descriptors, R_t and tracking against the previous frame.
 #include <benchmark/benchmark.h>
 #include <mrpt/img/CImage.h>

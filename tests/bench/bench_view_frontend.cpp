@@ -1,7 +1,7 @@
-// The omni front-end of the view SLAM (paper 004) on rendered 640 × 480 images of the omni-views
-// world: feature extraction, matching (restricted to the predicted area or not), the whole
-// observation (matching, RANSAC, refinement and R), and one step: the current image's features
-// and the observations of 2 candidate views. Budget of a whole step: 50 ms on one core.
+// The omni front-end of the view SLAM (Valiente et al. 2015) on rendered 640 × 480 images of the
+// omni-views world: feature extraction, matching (restricted to the predicted area or not), the
+// whole observation (matching, RANSAC, refinement and R), and one step: the current image's
+// features and the observations of 2 candidate views. Budget of a whole step: 50 ms on one core.
 #include <benchmark/benchmark.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/core/bits_math.h>

@@ -1,5 +1,5 @@
-// One EKF step of view-based SLAM (paper 004): prediction, then one observation of a view
-// (ViewMapEKF::update, Joseph form in O(n²)), with N views in the state (3 + 3N).
+// One EKF step of view-based SLAM (Valiente et al. 2015): prediction, then one observation of a
+// view (ViewMapEKF::update, Joseph form in O(n²)), with N views in the state (3 + 3N).
 #include <benchmark/benchmark.h>
 #include <mrpt_vslam/viewmap/ViewMapEKF.h>
 

@@ -118,7 +118,7 @@ void FisheyeLookupTable::build()
         sin_phi[l] = std::sin(phis[l]);
     }
 
-    // Step 1 (paper 000, Sec. III-A): sample (φ, θ) and project with Eq. 1.
+    // Step 1 (Gamallo et al. 2013, Sec. III-A): sample (φ, θ) and project with Eq. 1.
     std::vector<TBounds> bounds(phi_ref.size());
     for (int k = 0; k <= n_theta; k++) {
         const double theta = k * m_delta_theta;

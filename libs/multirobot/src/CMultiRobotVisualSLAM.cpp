@@ -441,7 +441,7 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const TMotionGaussian& moti
         // Gaussian proposal p(x_t | x_{t-1}, u_t, z_t) by sequential EKF updates of the pose,
         // each measurement associated with the pose uncertainty so far in its gate; the
         // product of the marginals N(v; 0, Σ_l + R_w + H Σ Hᵀ) is the weight
-        // p(z_t | x_{t-1}, u_t, map) (FastSLAM 2.0, ours for paper 003)
+        // p(z_t | x_{t-1}, u_t, map) (FastSLAM 2.0, ours for Gil et al. 2010)
         Eigen::Matrix3d HS;
         // the point measured from the current mean, with H Σ Hᵀ added to its covariance
         const auto linearize = [&](const TLandmarkMeasurement& m) {

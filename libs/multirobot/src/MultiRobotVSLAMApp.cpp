@@ -149,8 +149,8 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
         throw usage("[ParticleFilter] adaptiveSampleSize is not supported (use 0)");
     if (pf.m_options.PF_algorithm != mrpt::bayes::CParticleFilter::pfStandardProposal &&
         pf.m_options.PF_algorithm != mrpt::bayes::CParticleFilter::pfOptimalProposal)
-        throw usage("[ParticleFilter] PF_algorithm must be pfStandardProposal (paper 003, Sec. 3.1) "
-                    "or pfOptimalProposal (FastSLAM 2.0 proposal per robot)");
+        throw usage("[ParticleFilter] PF_algorithm must be pfStandardProposal (Gil et al. 2010, "
+                    "Sec. 3.1) or pfOptimalProposal (FastSLAM 2.0 proposal per robot)");
 
     // Every particle's map comes from the .ini through MRPT's map registry.
     mrpt::maps::TSetOfMetricMapInitializers inits;

@@ -1,4 +1,5 @@
-// The omni-fastslam driver on the shipped dataset: outputs of BRIEF §4 and failures on bad input.
+// The omni-fastslam driver on the shipped dataset: the run folder's outputs and failures on bad
+// input.
 #include <gtest/gtest.h>
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>

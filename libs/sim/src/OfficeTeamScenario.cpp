@@ -18,7 +18,7 @@ namespace {
 
 /// Corners closer than this to the image border [px] do not count as seen.
 constexpr double kSeenMarginPx = 3;
-/// Frames in a row a corner must be seen to count as tracked (paper 003, Sec. 6: "Only the
+/// Frames in a row a corner must be seen to count as tracked (Gil et al. 2010, Sec. 6: "Only the
 /// observations found in 3 consecutive robot poses are integrated in the filter").
 constexpr int kTrackedFrames = 3;
 

@@ -13,7 +13,7 @@ TEST(CeilingLights, FourteenLightsOnTheGridOfTableI)
     layout.loadFromConfigFile(mrpt_vslam::sim::test::sportsHallConfig(), "Lights");
     const auto lights = layout.lights();
     ASSERT_EQ(lights.size(), 14u);
-    // id, x, y (paper 000, Table I; lights 1-4 at x = 4.5 m complete the grid)
+    // id, x, y (Gamallo et al. 2013, Table I; lights 1-4 at x = 4.5 m complete the grid)
     const double expected[14][3] = {
         {1, 4.5, -5.5},  {2, 4.5, -1},   {3, 4.5, 3.5},    {4, 4.5, 8},     {5, 13.5, -5.5},
         {6, 13.5, -1},   {7, 13.5, 3.5}, {8, 13.5, 8},     {9, 22.5, -5.5}, {10, 22.5, -1},

@@ -72,7 +72,7 @@ TEST(OfficeWorld, ShippedLayoutIsTheSeventeenByEightMetreOffice)
     EXPECT_EQ(w.doors.size(), 5u);
     EXPECT_EQ(w.boxes.size(), 13u);
     EXPECT_EQ(w.texture_seed, 2010u);
-    // The robots' start points (paper 003: R1 at the origin, R2 at (-4, 0)) are free.
+    // The robots' start points (Gil et al. 2010: R1 at the origin, R2 at (-4, 0)) are free.
     EXPECT_GT(w.clearance(0, 0), 1.0);
     EXPECT_GT(w.clearance(-4, 0), 1.0);
 }

@@ -39,7 +39,7 @@ TEST(WaypointTrajectory, RespectsSpeedLimitsOfThePaper)
         EXPECT_LE(turn, 0.52 + 1e-9) << "frame " << k;
         length += step;
     }
-    // Paper 000, Sec. IV: "over 85 m" with 320 frames at 1 Hz.
+    // Gamallo et al. 2013, Sec. IV: "over 85 m" with 320 frames at 1 Hz.
     EXPECT_GT(length, 85.0);
     EXPECT_LT(length, 96.0);
 }

@@ -146,19 +146,19 @@ COmniViewSLAM::TStepResult COmniViewSLAM::processStep(const mrpt::math::TPose2D&
     TStepResult result;
     TViewPolicyInputs in;
     in.ekf = &m_ekf;
-    // Step 1 (§1.3).
+    // Step 1.
     in.P_vv_previous = m_ekf.robotCovariance();
     m_ekf.predict(increment, Q);
     in.P_vv_predicted = m_ekf.robotCovariance();
     if (!image) return result;
 
-    // Step 2 (§2.1).
+    // Step 2.
     TViewFeatures features = m_extractor.extract(*image);
     result.features = features.size();
     in.features = &features;
     in.consistent.assign(features.size(), false);
 
-    // Steps 3-4 (§3.1, §3.2, §2.2, §2.4).
+    // Steps 3-4.
     for (const size_t view : candidateViews()) {
         TObservationRecord rec;
         rec.view = view;
@@ -182,7 +182,7 @@ COmniViewSLAM::TStepResult COmniViewSLAM::processStep(const mrpt::math::TPose2D&
         result.observations.push_back(rec);
     }
 
-    // Step 5 (§2.5, §4).
+    // Step 5.
     const auto robot = m_ekf.robotPose();
     for (size_t i = 0; i < m_ekf.viewCount(); i++) {
         const auto v = m_ekf.viewPose(i);

@@ -58,7 +58,7 @@ Eigen::Matrix3d rotZ(double angle)
 
 PlanarEssentialMatrix PlanarEssentialMatrix::fromMotion(double phi, double beta)
 {
-    // §2.2: e13 = sin φ, e23 = −cos φ, e31 = sin(β − φ), e32 = cos(β − φ); |e| = √2.
+    // e13 = sin φ, e23 = −cos φ, e31 = sin(β − φ), e32 = cos(β − φ); |e| = √2.
     const Eigen::Vector4d e(std::sin(phi), -std::cos(phi), std::sin(beta - phi),
                             std::cos(beta - phi));
     return PlanarEssentialMatrix(e / std::sqrt(2.0));
@@ -76,7 +76,7 @@ std::optional<PlanarEssentialMatrix> PlanarEssentialMatrix::fit(const Eigen::Mat
 {
     checkRaysAt(rays_v, rays_l, indices);
     if (indices.size() < 4) return std::nullopt;
-    // One row per match (§2.2): [p_v,x p_l,z, p_v,y p_l,z, p_v,z p_l,x, p_v,z p_l,y] · e = 0.
+    // One row per match: [p_v,x p_l,z, p_v,y p_l,z, p_v,z p_l,x, p_v,z p_l,y] · e = 0.
     Eigen::MatrixX4d A(indices.size(), 4);
     for (size_t i = 0; i < indices.size(); i++) {
         const auto pv = rays_v.col(Eigen::Index(indices[i]));
@@ -103,7 +103,7 @@ PlanarEssentialMatrix::PlanarEssentialMatrix(const Eigen::Vector4d& e) : m_e(e)
     m_E(1, 2) = e(1);
     m_E(2, 0) = e(2);
     m_E(2, 1) = e(3);
-    // §2.2: φ = atan2(e13, −e23), β = φ + atan2(e31, e32).
+    // φ = atan2(e13, −e23), β = φ + atan2(e31, e32).
     m_motion.phi = std::atan2(e(0), -e(1));
     m_motion.beta = mrpt::math::wrapToPi(m_motion.phi + std::atan2(e(2), e(3)));
     m_R = rotZ(m_motion.beta);
@@ -112,7 +112,7 @@ PlanarEssentialMatrix::PlanarEssentialMatrix(const Eigen::Vector4d& e) : m_e(e)
 
 int PlanarEssentialMatrix::depthSign(const Eigen::Vector3d& p_v, const Eigen::Vector3d& p_l) const
 {
-    // Least squares of [p_v, −R p_l] (λ_v, λ_l)ᵀ = t (§2.2); unit columns.
+    // Least squares of [p_v, −R p_l] (λ_v, λ_l)ᵀ = t; unit columns.
     const Eigen::Vector3d b = -m_R * p_l;
     const double ab = p_v.dot(b), det = 1 - ab * ab;
     if (!(det > 1e-12)) return 0;  // parallel rays: no depth

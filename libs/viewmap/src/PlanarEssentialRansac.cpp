@@ -13,11 +13,11 @@
 namespace mrpt_vslam::viewmap {
 namespace {
 
-constexpr size_t kSampleSize = 4;  // matches per minimal sample (§2.2)
+constexpr size_t kSampleSize = 4;  // matches per minimal sample
 constexpr int kMaxRefits = 10;     // bound on the refits of one local optimisation
 
 /** A model with its MSAC cost Σ min(r², τ²) and its inliers: the matches with r ≤ τ whose
- *  depths are not negative for the majority's direction of translation (§2.2 cheirality). */
+ *  depths are not negative for the majority's direction of translation (cheirality). */
 struct THypothesis {
     PlanarEssentialMatrix essential;
     double cost = 0;

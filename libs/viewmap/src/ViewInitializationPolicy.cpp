@@ -156,7 +156,7 @@ TViewDecision InformationViewPolicy::decide(const TViewPolicyInputs& in,
         for (const auto& o : in.observed) next.push_back({o.view, o.R * (n / n_next)});
         const Eigen::Matrix3d P_next = in.ekf->robotCovarianceAfterUpdates(
             next, in.P_vv_predicted - in.P_vv_previous);
-        // Step 4: gain minus loss (the 2πe terms cancel), reconstruction §4.2 (c).
+        // Step 4: gain minus loss (the 2πe terms cancel), doc/view-slam.md §4.2.
         d.information_balance =
             0.5 * std::log(in.ekf->robotCovariance().determinant() / P_next.determinant());
         m_deficits = d.information_balance < -m_options.information_deficit ? m_deficits + 1 : 0;

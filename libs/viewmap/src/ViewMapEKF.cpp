@@ -74,7 +74,7 @@ void ViewMapEKF::predict(const TPose2D& increment, const Eigen::Matrix3d& Q)
 {
     requireFinite(increment, "ViewMapEKF::predict: increment");
     requireCovariance(Q, false, "ViewMapEKF::predict: Q");
-    // §1.3: f(x_v, u) and its Jacobians F_x, F_u at the prior heading.
+    // f(x_v, u) and its Jacobians F_x, F_u at the prior heading.
     const double c = std::cos(m_x(2)), s = std::sin(m_x(2));
     const double dx = increment.x, dy = increment.y;
     Eigen::Matrix3d F_x, F_u;
@@ -83,7 +83,7 @@ void ViewMapEKF::predict(const TPose2D& increment, const Eigen::Matrix3d& Q)
     m_x(0) += dx * c - dy * s;
     m_x(1) += dx * s + dy * c;
     m_x(2) = wrapToPi(m_x(2) + increment.phi);
-    // §1.3, block-wise in O(N): P_vv, then P_vl ← F_x P_vl and its transpose; P_ll unchanged.
+    // Block-wise in O(N): P_vv, then P_vl ← F_x P_vl and its transpose; P_ll unchanged.
     const Eigen::Matrix3d P_vv =
         F_x * m_P.topLeftCorner<3, 3>() * F_x.transpose() + F_u * Q * F_u.transpose();
     m_P.topLeftCorner<3, 3>() = 0.5 * (P_vv + P_vv.transpose());
@@ -97,7 +97,7 @@ size_t ViewMapEKF::addView()
     const Eigen::Index n = m_x.size();
     m_x.conservativeResize(n + 3);
     m_x.tail<3>() = m_x.head<3>();
-    // §2.5: x_new = x_v (G = I₃), so the new row and column are copies of the robot's.
+    // x_new = x_v (G = I₃), so the new row and column are copies of the robot's.
     m_P.conservativeResize(n + 3, n + 3);
     m_P.bottomLeftCorner(3, n) = m_P.topLeftCorner(3, n);
     m_P.topRightCorner(n, 3) = m_P.topLeftCorner(n, 3);
@@ -138,7 +138,7 @@ ViewMapEKF::TUpdateResult ViewMapEKF::update(size_t view, const TViewObservation
 
 ViewMapEKF::TObservationTerms ViewMapEKF::observationTerms(size_t view) const
 {
-    // §2.3-2.4: H = [H_v 0 … H_l … 0] has six non-zero columns, so P Hᵀ (n × 2) needs only the
+    // H = [H_v 0 … H_l … 0] has six non-zero columns, so P Hᵀ (n × 2) needs only the
     // robot's and the view's columns of P, and H P Hᵀ only their rows of P Hᵀ.
     const Eigen::Index l = viewOffset(view);
     const TPose2D robot = robotPose(), landmark = viewPose(view);

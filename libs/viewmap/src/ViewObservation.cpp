@@ -25,7 +25,7 @@ TViewObservation predictViewObservation(const mrpt::math::TPose2D& robot,
                                         const mrpt::math::TPose2D& view)
 {
     squaredBaseline(robot, view);
-    // §2.3, h(x_v, x_l).
+    // h(x_v, x_l).
     TViewObservation z;
     z.phi = mrpt::math::wrapToPi(std::atan2(view.y - robot.y, view.x - robot.x) - robot.phi);
     z.beta = mrpt::math::wrapToPi(view.phi - robot.phi);
@@ -37,7 +37,7 @@ TViewObservationJacobians viewObservationJacobians(const mrpt::math::TPose2D& ro
 {
     const double q = squaredBaseline(robot, view);
     const double dx = view.x - robot.x, dy = view.y - robot.y;
-    // §2.3, H_v and H_l.
+    // H_v and H_l.
     TViewObservationJacobians J;
     J.H_v << dy / q, -dx / q, -1, 0, 0, -1;
     J.H_l << -dy / q, dx / q, 0, 0, 0, 1;

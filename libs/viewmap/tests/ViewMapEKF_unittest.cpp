@@ -203,7 +203,7 @@ TEST(ViewMapEKF, AddViewClonesTheRobotExactly)
         EXPECT_TRUE(bitIdentical(x.head(n), x0));
         EXPECT_TRUE(bitIdentical(x.tail(3), x0.head(3)));
         EXPECT_TRUE(bitIdentical(P.topLeftCorner(n, n), P0));
-        // §2.5: P_ll = P_vv, P_lv = P_vv, P_l,lj = P_v,lj (and the transposed blocks).
+        // Cloning: P_ll = P_vv, P_lv = P_vv, P_l,lj = P_v,lj (and the transposed blocks).
         const double scale = maxAbs(P0);
         max_rel = std::max({max_rel, maxAbs(P.block(n, n, 3, 3) - P0.topLeftCorner(3, 3)) / scale,
                             maxAbs(P.block(n, 0, 3, n) - P0.topRows(3)) / scale,

@@ -14,7 +14,8 @@
 
 namespace mrpt_vslam::core {
 
-/** Filter steps (odometry action + sensory frame) from a rawlog in either format (BRIEF §3):
+/** Filter steps (odometry action + sensory frame) from a rawlog in either format
+ *  (doc/data-formats.md):
  *  - format #1: each `CActionCollection` with the `CSensoryFrame` that follows it;
  *  - format #2 (observation-only): `CObservationOdometry` readings give the odometry, and every
  *    group of observations with the same timestamp that holds one of `step_labels` becomes a

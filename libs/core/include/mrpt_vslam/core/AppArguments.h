@@ -9,7 +9,7 @@
 
 namespace mrpt_vslam::core {
 
-/** The command line shared by the driver apps (BRIEF §4, doc/app-conventions.md):
+/** The command line shared by the driver apps (doc/app-conventions.md):
  *  `APP CONFIG.ini [RAWLOG] [--out DIR] [--seed N] [--set SECTION.KEY=VALUE]...
  *   [--ground-truth NAME] [--quiet] [--gui] [--help] [--version]`.
  *
@@ -54,8 +54,8 @@ public:
      *  Throws UsageError "CONFIG: no rawlog given (...)" when neither is there. */
     std::string resolveRawlog(const CheckedConfigFile& cfg, const std::string& section) const;
 
-    /** Prefix `NAME` of the ground-truth files (BRIEF §3): `--ground-truth` if given, else the
-     *  rawlog's path without its `.rawlog` extension. */
+    /** Prefix `NAME` of the ground-truth files (doc/data-formats.md): `--ground-truth` if given,
+     *  else the rawlog's path without its `.rawlog` extension. */
     std::string groundTruthPrefix(const std::string& rawlog) const;
 
     /** Records this run's inputs in its report: the command line, the configuration (file and

@@ -7,7 +7,7 @@ namespace mrpt_vslam::core {
 
 /** Command-line parameters of vslam-eval (see README.md). */
 struct TEvalParams {
-    std::string run_dir;           ///< run folder (BRIEF §4), or empty with `estimate_file`
+    std::string run_dir;           ///< run folder, or empty with `estimate_file`
     std::string estimate_file;     ///< loose estimate TUM file
     std::string odometry_file;     ///< loose odometry TUM file (optional)
     std::string ground_truth;      ///< `NAME.rawlog`, prefix `NAME`, or a TUM file

@@ -9,7 +9,7 @@
 namespace mrpt_vslam::core {
 
 /** Inverse of the fisheye model (PajdlaBaksteinCamera, Eq. 1) by look-up table, as built in
- *  Gamallo et al. (paper 000, Sec. III-A):
+ *  Gamallo et al. (2013, Sec. III-A):
  *
  *   1. Sample φ ∈ [−π, π) and θ ∈ [0, max_theta] with steps δφ, δθ and project every sample with
  *      Eq. 1 to a pixel.

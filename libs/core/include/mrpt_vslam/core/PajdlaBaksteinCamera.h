@@ -7,7 +7,7 @@
 
 namespace mrpt_vslam::core {
 
-/** Fisheye projection of Bakstein & Pajdla (2002), as used by Gamallo et al. (paper 000, Eq. 1):
+/** Fisheye projection of Bakstein & Pajdla (2002), as used by Gamallo et al. (2013, Eq. 1):
  *
  *     r = a tan(θ / b) + c sin(θ / d)
  *     u = u0 + r cos φ

@@ -13,7 +13,7 @@
 
 namespace mrpt_vslam::core {
 
-/** How a rawlog stores its data (BRIEF §3). */
+/** How a rawlog stores its data (doc/data-formats.md). */
 enum class RawlogFormat {
     Empty,                   ///< no actions or observations (read yet)
     ActionObservationPairs,  ///< #1: CActionCollection, CSensoryFrame, ...

@@ -14,7 +14,7 @@
 
 namespace mrpt_vslam::core {
 
-/** @name Writing the MRPT files of a run folder (BRIEF §4)
+/** @name Writing the MRPT files of a run folder (doc/data-formats.md)
  *  Every function writes to `FILE.tmp` and renames it when complete, so a failed run never
  *  leaves a partial file under the final name.
  *  @{ */

@@ -10,9 +10,9 @@
 
 namespace mrpt_vslam::core {
 
-/** The ground truth and the start pose of a single-robot run (BRIEF §3, §4): the ground truth
- *  `NAME.groundtruth.tum` beside the rawlog (or named by `--ground-truth`), and the start pose
- *  from the config keys of one section: `initial_pose_from_ground_truth` (default true: the
+/** The ground truth and the start pose of a single-robot run (doc/data-formats.md): the ground
+ *  truth `NAME.groundtruth.tum` beside the rawlog (or named by `--ground-truth`), and the start
+ *  pose from the config keys of one section: `initial_pose_from_ground_truth` (default true: the
  *  first true pose when there is ground truth), else `initial_x`, `initial_y` [m],
  *  `initial_yaw_deg`.
  *

@@ -16,7 +16,7 @@
 
 namespace mrpt_vslam::multirobot {
 
-/** The Rao-Blackwellized particle filter of Gil et al. (paper 003, Alg. 1; doc/multirobot.md)
+/** The Rao-Blackwellized particle filter of Gil et al. (2010, Alg. 1; doc/multirobot.md)
  *  over the joint paths of K robots and one shared map of 3D visual landmarks, on MRPT's
  *  particle-filter framework: drive it with `mrpt::bayes::CParticleFilter::executeOn()`;
  *  resampling happens there when N_eff < BETA (Alg. 1 line 13). `pfStandardProposal` is the

@@ -30,7 +30,7 @@ struct TMeasurementCandidates {
 };
 
 /** One particle's map of 3D visual landmarks shared by a robot team (Gil et al., "Estimation
- *  of Visual Maps with a Robot Network Equipped with Vision Sensors", Sensors 2010, paper 003;
+ *  of Visual Maps with a Robot Network Equipped with Vision Sensors", Sensors 2010;
  *  doc/multirobot.md): per landmark the EKF (μ_j, Σ_j) and the U-SURF descriptor d_j (Eq. 5).
  *
  *  Fusing a measurement o = (z, d) taken from a robot pose x (fuse()):

@@ -14,9 +14,9 @@
 
 namespace mrpt_vslam::multirobot {
 
-/** One stereo observation o_t = (z_t, d_t) of paper 003 (Sec. 3), moved from the camera frame
- *  into the robot frame, which does not depend on the particle: the point and R_t rotated by the
- *  camera's pose on the robot. */
+/** One stereo observation o_t = (z_t, d_t) of Gil et al. 2010 (Sec. 3), moved from the camera
+ *  frame into the robot frame, which does not depend on the particle: the point and R_t rotated by
+ *  the camera's pose on the robot. */
 struct TLandmarkMeasurement {
     Eigen::Vector3d z = Eigen::Vector3d::Zero();  ///< point in the robot frame [m]
     Eigen::Matrix3d R = Eigen::Matrix3d::Zero();  ///< its covariance R_t in the robot frame [m²]

@@ -13,7 +13,7 @@ namespace mrpt_vslam::multirobot {
  *  (`<ROBOT>_ODOM`) and either pre-extracted landmarks (`<ROBOT>_LANDMARKS`) or stereo images
  *  (`<ROBOT>_STEREO`, turned into landmarks by one StereoFrontEnd per robot), runs
  *  CMultiRobotVisualSLAM through `CParticleFilter::executeOn()` and writes the run folder of
- *  BRIEF §4 with one estimated path per robot.
+ *  doc/data-formats.md ("Run outputs") with one estimated path per robot.
  *
  *  Steps of run(): load the config, open the rawlog and the ground truth, then per team step:
  *  (stereo → landmarks) → filter step → progress; at the end paths, map, scene, run.json and

@@ -25,7 +25,7 @@ struct TTeamPathNode {
     ~TTeamPathNode();
 };
 
-/** One particle of the team filter (paper 003, Eq. 5 and Table 1): the K robot poses, their
+/** One particle of the team filter (Gil et al. 2010, Eq. 5 and Table 1): the K robot poses, their
  *  paths and the map they share. */
 struct TTeamParticle {
     std::vector<mrpt::math::TPose2D> poses;      ///< x_t,<1:K>

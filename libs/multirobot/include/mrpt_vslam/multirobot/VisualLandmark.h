@@ -6,8 +6,8 @@
 
 namespace mrpt_vslam::multirobot {
 
-/** One landmark of a particle's map (paper 003, Eq. 3): the EKF of its 3D position in the map
- *  frame. Its descriptor d_j never changes after initialization, so it lives once in the
+/** One landmark of a particle's map (Gil et al. 2010, Eq. 3): the EKF of its 3D position in the
+ *  map frame. Its descriptor d_j never changes after initialization, so it lives once in the
  *  LandmarkDescriptorPool shared by all particles, under the landmark's id. */
 struct TVisualLandmark {
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();  ///< μ [m]

@@ -10,7 +10,7 @@ namespace mrpt_vslam::omni_fastslam {
 
 /** Bearing-only measurement model of an upward fisheye camera looking at ceiling lights
  *  (Gamallo, Mucientes & Regueiro, "A FastSLAM-based Algorithm for Omnidirectional Cameras",
- *  paper 000, Sec. III-A; doc/omni-fastslam.md Eq. M1-M4).
+ *  2013, Sec. III-A; doc/omni-fastslam.md Eq. M1-M4).
  *
  *  Conventions:
  *  - the robot pose is planar, x = (x, y, yaw), on the floor (z = 0);

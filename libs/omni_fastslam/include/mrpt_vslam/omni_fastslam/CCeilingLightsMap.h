@@ -18,7 +18,7 @@ namespace mrpt_vslam::omni_fastslam {
 
 /** One particle's map of ceiling lights for omnidirectional FastSLAM 2.0
  *  (Gamallo, Mucientes & Regueiro, "A FastSLAM-based Algorithm for Omnidirectional Cameras",
- *  paper 000; doc/omni-fastslam.md).
+ *  2013; doc/omni-fastslam.md).
  *
  *  Holds the landmarks B_j (3D Gaussian, counter i_j, type I/II) and the candidate landmarks C_j
  *  (their measurements with the robot poses, counter, cross-points). One insertion with a known

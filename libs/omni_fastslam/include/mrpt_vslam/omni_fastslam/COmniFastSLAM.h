@@ -48,7 +48,7 @@ struct TOmniFastSLAMParticle {
 };
 
 /** FastSLAM 2.0 for an omnidirectional camera and ceiling lights (Gamallo, Mucientes &
- *  Regueiro, paper 000; doc/omni-fastslam.md), on MRPT's particle-filter framework: drive it
+ *  Regueiro 2013; doc/omni-fastslam.md), on MRPT's particle-filter framework: drive it
  *  with `mrpt::bayes::CParticleFilter::executeOn()`; `pfOptimalProposal` runs the FastSLAM 2.0
  *  proposal below, `pfStandardProposal` samples the motion model only (FastSLAM 1.0).
  *

@@ -11,7 +11,7 @@
 
 namespace mrpt_vslam::omni_fastslam {
 
-/** Extracts ceiling-light measurements from an IR fisheye image (paper 000, Sec. III-A):
+/** Extracts ceiling-light measurements from an IR fisheye image (Gamallo et al. 2013, Sec. III-A):
  *
  *   1. threshold the 8-bit image (lights are the only bright objects behind the IR filter);
  *   2. connected components (OpenCV), blobs outside [min_blob_area, max_blob_area] rejected;

@@ -10,7 +10,8 @@
 
 namespace mrpt_vslam::omni_fastslam {
 
-/** One bearing-only measurement z = (φ, θ) with its noise covariance Q (paper 000, Sec. III-A). */
+/** One bearing-only measurement z = (φ, θ) with its noise covariance Q (Gamallo et al. 2013,
+ *  Sec. III-A). */
 struct TBearingMeasurement {
     Eigen::Vector2d z = Eigen::Vector2d::Zero();  ///< (φ, θ) [rad]
     Eigen::Matrix2d Q = Eigen::Matrix2d::Identity() * 3e-4;  ///< covariance of (φ, θ) [rad²]
@@ -33,7 +34,8 @@ enum class TLandmarkType : uint8_t { TypeI = 1, TypeII = 2 };
  *  likelihood (ML) method it is compared with (Sec. IV-A). */
 enum class TAssociationMethod : uint8_t { Hungarian = 0, ML = 1 };
 
-/** A map landmark B_j: a 3D Gaussian plus the detection counter i_j (paper 000, Sec. III). */
+/** A map landmark B_j: a 3D Gaussian plus the detection counter i_j (Gamallo et al.
+ *  2013, Sec. III). */
 struct TLightLandmark {
     int64_t id = -1;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();  ///< μ_j [m]

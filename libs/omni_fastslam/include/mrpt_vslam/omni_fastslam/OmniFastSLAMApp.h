@@ -12,7 +12,8 @@ namespace mrpt_vslam::omni_fastslam {
 
 /** The `omni-fastslam` driver: reads a rawlog of odometry actions with ceiling-light images
  *  (`OMNICAM`) or pre-extracted bearings (`OMNICAM_BEARINGS`), runs COmniFastSLAM through
- *  `CParticleFilter::executeOn()` and writes the run folder of BRIEF §4.
+ *  `CParticleFilter::executeOn()` and writes the run folder (doc/data-formats.md,
+ *  "Run outputs").
  *
  *  Steps of run(): load the config, open the rawlog and the ground truth, then per frame:
  *  (images → bearings) → filter step → progress; at the end save paths, map, scene, run.json

@@ -4,8 +4,8 @@
 
 namespace mrpt_vslam::omni_fastslam {
 
-/** The "cross-point" of two measurement rays (paper 000, Sec. III-F, Fig. 3): the 3D point
- *  closest to both rays, i.e. the midpoint of their common perpendicular
+/** The "cross-point" of two measurement rays (Gamallo et al. 2013, Sec. III-F, Fig. 3): the 3D
+ *  point closest to both rays, i.e. the midpoint of their common perpendicular
  *  (doc/omni-fastslam.md Eq. X1-X2).
  *
  *  Ray i is o_i + s_i d_i. The parameters s_i are in the units of d_i (metres for unit

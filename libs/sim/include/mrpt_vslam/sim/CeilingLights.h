@@ -10,14 +10,15 @@ namespace mrpt_vslam::sim {
 
 /** One ceiling light: a horizontal, downward-facing bright disk. */
 struct TCeilingLight {
-    int id = 0;                     ///< 1-based identifier (paper 000, Table I numbering)
+    int id = 0;                     ///< 1-based identifier (as in Table I of Gamallo et al. 2013)
     mrpt::math::TPoint3D position;  ///< [m] centre of the disk in the world frame
 };
 
-/** Ceiling lights laid out on a grid of columns (x) and rows (y), as in paper 000, Table I.
- *  Column i holds the first `column_rows[i]` rows (ascending y); ids run column by column,
- *  rows ascending within a column, from 1. Also holds when lights near the windows are washed
- *  out by daylight (paper 000, Sec. IV: "big windows ... occluding the landmarks near them"). */
+/** Ceiling lights laid out on a grid of columns (x) and rows (y), as in Gamallo et al. 2013,
+ *  Table I. Column i holds the first `column_rows[i]` rows (ascending y); ids run column by
+ *  column, rows ascending within a column, from 1. Also holds when lights near the windows are
+ *  washed out by daylight (Gamallo et al. 2013, Sec. IV: "big windows ... occluding the
+ *  landmarks near them"). */
 class CeilingLights : public mrpt::config::CLoadableOptions {
   public:
     /// @name Parameters (ini section [Lights])

@@ -26,8 +26,8 @@ struct TTumFile {
  *  noise, where LZ77 finds few repeats (about 12 % smaller for the office-team images). */
 enum class TPngCoding { Default, HuffmanOnly };
 
-/** Writes a simulated dataset for `DIR/NAME` (BRIEF §3): `NAME.rawlog` in either rawlog format
- *  (action/sensory-frame pairs through writeFrame(), or observation-only through
+/** Writes a simulated dataset for `DIR/NAME` (doc/data-formats.md): `NAME.rawlog` in either rawlog
+ *  format (action/sensory-frame pairs through writeFrame(), or observation-only through
  *  writeObservation()), PNG images in `NAME_Images/`, TUM files and `NAME.landmarks.txt`.
  *
  *  1. The constructor creates DIR and NAME_Images/ (removing the images of an earlier run whose

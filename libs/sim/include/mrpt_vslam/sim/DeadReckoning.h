@@ -8,7 +8,8 @@ namespace mrpt_vslam::sim {
 
 /** One robot's dead reckoning along its true path, frame by frame: the noisy odometry increment
  *  since the previous frame (OdometrySimulator), the odometry pose it integrates to, the
- *  ground-truth and odometry tracks (TUM files of BRIEF §3) and the true path length. */
+ *  ground-truth and odometry tracks (TUM files of doc/data-formats.md) and the true path
+ *  length. */
 class DeadReckoning {
   public:
     /// Starts at the true initial pose.

@@ -42,7 +42,8 @@ struct TFrameDetections {
 };
 
 /** Decides which lights the upward fisheye camera sees and simulates the bearings a blob
- *  detector would extract (paper 000, Sec. III-A: centroid (u, v) → (φ, θ) through Eq. 1).
+ *  detector would extract (Gamallo et al. 2013, Sec. III-A: centroid
+ *  (u, v) → (φ, θ) through Eq. 1).
  *
  *  1. A light is visible when its centre is within `max_light_theta` of the optical axis, its
  *     projection is inside the image and it is not washed out by the windows.

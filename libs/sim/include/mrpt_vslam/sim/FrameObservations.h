@@ -16,7 +16,7 @@
 
 namespace mrpt_vslam::sim {
 
-/// Sensor labels of the datasets (BRIEF §3).
+/// Sensor labels of the datasets (doc/data-formats.md).
 inline constexpr const char* kImageLabel = "OMNICAM";
 inline constexpr const char* kBearingsLabel = "OMNICAM_BEARINGS";
 inline constexpr const char* kGroundTruthLabel = "GROUND_TRUTH";

@@ -8,7 +8,7 @@
 
 namespace mrpt_vslam::sim {
 
-/** Renders the 8-bit IR fisheye image of one frame (paper 000, Sec. IV, Fig. 5a): dark
+/** Renders the 8-bit IR fisheye image of one frame (Gamallo et al. 2013, Sec. IV, Fig. 5a): dark
  *  background, ceiling lights as bright saturated blobs, spurious reflections, sparse noise.
  *
  *  1. Each light disk is rendered by inverse mapping: every pixel of its bounding box is split

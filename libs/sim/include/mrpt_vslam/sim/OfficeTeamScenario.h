@@ -24,7 +24,7 @@ struct TTeamStatistics {
     std::vector<double> path_length;  ///< [m] per robot, ground truth
 };
 
-/** The multi-robot experiment of paper 003 (Gil et al.), Sec. 6: two or three robots with a
+/** The multi-robot experiment of Gil et al. (2010), Sec. 6: two or three robots with a
  *  forward-looking stereo head (Videre STH-MDCS2) drive through an office-like 17 × 8 m area;
  *  robot R1 starts at the origin of the common frame, R2 at (−4, 0, 0°) ("The relative starting
  *  position of the other robot respect to this reference is (x, y, θ) = (−4, 0, 0)").

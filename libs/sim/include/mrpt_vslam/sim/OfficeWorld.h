@@ -41,11 +41,11 @@ struct TOfficeModel {
     core::LandmarkFile cornerLandmarks() const;
 };
 
-/** An office-like indoor area for the multi-robot experiment of paper 003 (Sec. 6: "a typical
- *  office indoor environment", 17 × 8 m): vertical walls on a polygonal room outline, doors in
- *  them, and boxes standing on the floor (partitions forming islands, cabinets, shelves, desks),
- *  plus floor and ceiling. Every face is a TexturedRectangle painted by TexturePainter; the
- *  textures depend only on `texture_seed` (the world is the same for every run seed).
+/** An office-like indoor area for the multi-robot experiment of Gil et al. 2010 (Sec. 6: "a
+ *  typical office indoor environment", 17 × 8 m): vertical walls on a polygonal room outline,
+ *  doors in them, and boxes standing on the floor (partitions forming islands, cabinets, shelves,
+ *  desks), plus floor and ceiling. Every face is a TexturedRectangle painted by TexturePainter;
+ *  the textures depend only on `texture_seed` (the world is the same for every run seed).
  *
  *  Faces in this order: room walls (outline order), then each box's sides (−y, +x, +y, −x) and
  *  top, then floor and ceiling. A face gets the texture of its kind, except that the parts of a

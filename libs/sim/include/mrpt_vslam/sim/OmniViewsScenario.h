@@ -14,7 +14,7 @@
 
 namespace mrpt_vslam::sim {
 
-/** The experiment of paper 004 (view-based omnidirectional EKF SLAM): one robot with an
+/** The experiment of Valiente et al. 2015 (view-based omnidirectional EKF SLAM): one robot with an
  *  upward-looking central omnidirectional camera (unified sphere model) drives through an
  *  indoor area of rooms along a corridor, with textured walls, furniture, floor and ceiling
  *  (OfficeWorld: the rooms' inner walls are full-height partitions with door gaps).

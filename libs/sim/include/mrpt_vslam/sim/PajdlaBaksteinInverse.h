@@ -7,7 +7,7 @@
 
 namespace mrpt_vslam::sim {
 
-/** Inverse of the fisheye model of paper 000, Eq. 1: pixel (u, v) → ray angles (φ, θ).
+/** Inverse of the fisheye model of Gamallo et al. 2013, Eq. 1: pixel (u, v) → ray angles (φ, θ).
  *
  *  φ = atan2(v/β − v0, u − u0), r = |(u − u0, v/β − v0)|, and θ solves r(θ) = r: a table of
  *  r(θ) on [0, max_theta] gives the bracket, two Newton steps refine it (error < 1e-9 rad).

@@ -28,7 +28,7 @@ struct TSimulationSummary {
     std::string details;
 };
 
-/** A simulated environment plus robot run that writes a dataset (BRIEF §3 layout).
+/** A simulated environment plus robot run that writes a dataset (layout: doc/data-formats.md).
  *
  *  1. Create it through createScenario(name).
  *  2. loadConfig() with the scenario's .ini (share/mrpt-vslam/config/vslam-sim/<name>.ini).

@@ -13,7 +13,7 @@
 
 namespace mrpt_vslam::sim {
 
-/** The experiment of paper 000 (Gamallo et al.), Sec. IV: a Pioneer 3-DX in a sports hall with
+/** The experiment of Gamallo et al. (2013), Sec. IV: a Pioneer 3-DX in a sports hall with
  *  14 ceiling lights 6.5 m high (Table I), an upward IR fisheye camera 1.8 m above the floor,
  *  320 images at 1 Hz over ~88 m, v ≤ 0.30 m/s, ω ≤ 0.52 rad/s, returning to the start at frames
  *  ~205, ~298 and ~318; big windows on one side wash out the lights near them for a while.

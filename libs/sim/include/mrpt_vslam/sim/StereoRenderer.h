@@ -25,7 +25,8 @@ struct TRenderedView {
 mrpt::img::CImage addPixelNoise(const TRenderedView& view, double noise_std,
                                 mrpt::random::CRandomGenerator& rng);
 
-/** A rectified stereo head (paper 003, Sec. 6: Videre STH-MDCS2) and the renderer of its images.
+/** A rectified stereo head (Gil et al. 2010, Sec. 6: Videre STH-MDCS2) and the renderer of its
+ *  images.
  *
  *  Both cameras are ideal pinholes with the same intrinsics (fx, fy, cx, cy; no distortion), in
  *  MRPT's camera frame (x right, y down, z forward); the right camera sits at (baseline, 0, 0) in

@@ -53,7 +53,8 @@ struct TPaintedTexture {
  *  corner_window in texels; an ideal right-angle corner of contrast c gives c, a straight edge or
  *  a corner covered by a later shape gives about the noise), and no other kept corner within
  *  `min_corner_separation` (both go). Posters overlap their shapes on purpose; checkerboards give
- *  repetitive corners on purpose (paper 003, Sec. 5: data association among similar landmarks). */
+ *  repetitive corners on purpose (Gil et al. 2010, Sec. 5: data association among similar
+ *  landmarks). */
 class TexturePainter : public mrpt::config::CLoadableOptions {
   public:
     /// @name Parameters (ini section [Textures])

@@ -20,18 +20,19 @@ class CImage;
 
 namespace mrpt_vslam::viewmap {
 
-/** View-based omnidirectional EKF SLAM (paper 004; method reconstruction §6, one pass per image):
+/** View-based omnidirectional EKF SLAM (Valiente et al. 2015; doc/view-slam.md §4, one pass per
+ *  image):
  *
- *   1. predict the robot pose with the odometry increment and its covariance (§1.3);
- *   2. extract the feature points of the omni image (§2.1, OmniFeatureExtractor);
+ *   1. predict the robot pose with the odometry increment and its covariance;
+ *   2. extract the feature points of the omni image (OmniFeatureExtractor);
  *   3. candidate views: the nearest ones within candidate_distance of the estimated robot
- *      position, not closer than min_baseline (φ is undefined on the view, §2.3), at most
- *      max_candidates (§3.1);
+ *      position, not closer than min_baseline (φ is undefined on the view), at most
+ *      max_candidates;
  *   4. for each, match in the uncertainty-driven area and estimate z = (φ, β) and R with the
- *      planar essential matrix (§2.2, §3.2, OmniViewObserver), then the χ²-gated EKF update
- *      (§2.4), nearest view first;
+ *      planar essential matrix (OmniViewObserver), then the χ²-gated EKF update,
+ *      nearest view first;
  *   5. the view-initialization policy decides whether to start a view at the robot pose
- *      (§2.5, §4; ViewInitializationPolicy); the view keeps this image's points.
+ *      (ViewInitializationPolicy); the view keeps this image's points.
  *  The view map (CViewMap) mirrors the EKF: syncMap() copies the estimates into it.
  *
  *  Usage: `COmniViewSLAM slam(opts, extractor, observer_opts, policy_opts, seed);`

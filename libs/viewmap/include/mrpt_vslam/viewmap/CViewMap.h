@@ -15,8 +15,8 @@
 namespace mrpt_vslam::viewmap {
 
 /** The map of view-based omnidirectional EKF SLAM (Valiente et al., "Information-based view
- *  initialization in visual SLAM with a single omnidirectional camera", RAS 2015, paper 004;
- *  method reconstruction §1.1): a set of views, each the planar pose where an omnidirectional
+ *  initialization in visual SLAM with a single omnidirectional camera", RAS 2015;
+ *  doc/view-slam.md §1): a set of views, each the planar pose where an omnidirectional
  *  image was taken plus that image's feature points.
  *
  *  The view poses are estimated by ViewMapEKF; this class is the MRPT-facing container the SLAM

@@ -13,8 +13,9 @@ class CRandomGenerator;
 namespace mrpt_vslam::viewmap {
 
 /** Existence probability of the current image's feature points, learnt by Gaussian-process
- *  regression (paper 004, abstract: "a Gaussian Process to infer an information distribution
- *  model from sensor data. This model represents feature points existence probabilities").
+ *  regression (Valiente et al. 2015, abstract: "a Gaussian Process to infer an information
+ *  distribution model from sensor data. This model represents feature points existence
+ *  probabilities").
  *
  *  [ours, doc/view-slam.md §4.2] The inputs are the points' unit rays in the robot frame (the
  *  chord between two rays is their angular distance, to first order); the target of a point is

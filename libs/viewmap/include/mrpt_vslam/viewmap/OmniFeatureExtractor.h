@@ -18,7 +18,7 @@ class CImage;
 
 namespace mrpt_vslam::viewmap {
 
-/** SURF-like feature points of an omnidirectional image (method reconstruction §2.1, §6 step 2;
+/** SURF-like feature points of an omnidirectional image (doc/view-slam.md §4.1, §4 step 2;
  *  the paper uses SURF): the fast-Hessian detector (core::FastHessianDetector) on the image as
  *  it is, each point lifted to its unit ray by the central camera model and turned into the
  *  robot frame, with a SURF descriptor whose orientation is the image of the vertical.

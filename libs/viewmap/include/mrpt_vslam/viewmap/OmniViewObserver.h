@@ -18,9 +18,9 @@ class CRandomGenerator;
 namespace mrpt_vslam::viewmap {
 
 /** The observation z = (φ, β) of a stored view from the current image, with its noise R
- *  (method reconstruction §2.2-2.4, §3.2, §6 step 4):
+ *  (doc/view-slam.md §4 step 4, §4.1; doc/core-features.md §4):
  *
- *   1. matching restricted to the predicted area (ViewFeatureMatcher, §3.2);
+ *   1. matching restricted to the predicted area (ViewFeatureMatcher);
  *   2. PlanarEssentialRansac on the unit rays of the matches: (φ, β), φ vs φ + π by cheirality;
  *   3. [ours] Gauss-Newton on the inliers' Sampson residuals r_k (PlanarEssentialMatrix::
  *      residual, signed by p_vᵀ E p_l) over the two parameters (φ, β) of

@@ -9,7 +9,7 @@
 
 namespace mrpt_vslam::viewmap {
 
-/** Essential matrix of a planar motion (method reconstruction §2.2). With p_v the unit ray of a
+/** Essential matrix of a planar motion (doc/core-features.md §4). With p_v the unit ray of a
  *  point in the current robot frame and p_l the unit ray of the same point in the stored view
  *  (z axis vertical in both):
  *
@@ -44,7 +44,7 @@ class PlanarEssentialMatrix {
     /// E of the motion (φ, β).
     static PlanarEssentialMatrix fromMotion(double phi, double beta);
 
-    /** Linear solve (§2.2) over the matches listed in `indices`: e is the right singular vector
+    /** Linear solve over the matches listed in `indices`: e is the right singular vector
      *  of the n × 4 system with the smallest singular value.
      *  \return nullopt with fewer than 4 matches or when the null space is not one-dimensional
      *  (all rays alike, zero baseline with exact data, all rays horizontal).

@@ -12,15 +12,15 @@ class CRandomGenerator;
 
 namespace mrpt_vslam::viewmap {
 
-/** Robust estimate of the observation (φ, β) of a stored view from matched unit rays (method
- *  reconstruction §2.2, step 4 of §6):
+/** Robust estimate of the observation (φ, β) of a stored view from matched unit rays
+ *  (doc/core-features.md §4, step 4 of doc/view-slam.md §4):
  *
  *   1. RANSAC (Fischler & Bolles 1981) over minimal samples of 4 matches, each solved with
  *      PlanarEssentialMatrix::fit(); degenerate samples are skipped.
  *   2. Each hypothesis is scored with the truncated quadratic cost Σ min(r², τ²) of MSAC (Torr &
  *      Zisserman 2000), r the Sampson residual on the sphere (PlanarEssentialMatrix::residual)
  *      and τ the inlier threshold. Its inliers are the matches with r ≤ τ whose depths are not
- *      negative for the direction of translation most of them agree on (cheirality, §2.2):
+ *      negative for the direction of translation most of them agree on (cheirality):
  *      wrong matches that happen to lie near their epipolar plane but behind the cameras drop
  *      out.
  *   3. Every new best hypothesis is refitted on its inliers while that lowers the cost (local

@@ -9,7 +9,7 @@
 
 namespace mrpt_vslam::viewmap {
 
-/** One view of the map (method reconstruction §1.1): the planar pose where an omnidirectional
+/** One view of the map (doc/view-slam.md §1): the planar pose where an omnidirectional
  *  image was taken, the uncertainty of that pose and the image's feature points. */
 struct TView {
     uint32_t id = 0;           ///< index of the view in its map (CViewMap::addView() sets it)

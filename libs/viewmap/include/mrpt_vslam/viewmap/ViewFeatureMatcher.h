@@ -13,7 +13,7 @@
 
 namespace mrpt_vslam::viewmap {
 
-/** Predicted observation of a stored view (method reconstruction §2.3) with its uncertainty:
+/** Predicted observation of a stored view (doc/core-features.md §4) with its uncertainty:
  *  ẑ = h(x_v, x_l) and S = H P Hᵀ from the EKF, without the observation noise R. */
 struct TPrediction {
     TViewObservation z;                           ///< ẑ = (φ̂, β̂) [rad]
@@ -21,7 +21,7 @@ struct TPrediction {
 };
 
 /** Where the points of a stored view can appear in the current image, given the prediction
- *  (method reconstruction §3.2; the "predicted area" of the captions of Figs 4-5 of Valiente et
+ *  (doc/view-slam.md §4.1; the "predicted area" of the captions of Figs 4-5 of Valiente et
  *  al., J. Robotics 2012): the point λ p_l (λ > 0) of the view, moved by a motion M_j drawn from
  *  N(ẑ, S), is seen from the robot in the direction of R_z(β_j) λ p_l + s t_j
  *  (t_j = (cos φ_j, sin φ_j, 0), s > 0 the unknown baseline). Over all depths these directions
@@ -143,8 +143,8 @@ class PredictedSearchArea {
     bool m_whole_sphere = false;
 };
 
-/** Data association of a stored view with the current image (method reconstruction §3.2, §6
- *  step 4): for each view point, the nearest current point by descriptor distance among those
+/** Data association of a stored view with the current image (doc/view-slam.md §4.1,
+ *  §4 step 4): for each view point, the nearest current point by descriptor distance among those
  *  with the same sign of the Laplacian (SURF's fast matching) inside the predicted area
  *  (PredictedSearchArea; or anywhere with restrict_search_area = false), accepted when
  *   - its distance is ≤ max_descriptor_distance,

@@ -9,7 +9,7 @@
 
 namespace mrpt_vslam::viewmap {
 
-/** The feature points of one omnidirectional image (method reconstruction §1.1): what a view
+/** The feature points of one omnidirectional image (doc/view-slam.md §1): what a view
  *  stores and what the current image is matched with. Point k has its pixel, its SURF scale,
  *  the sign of its Laplacian, its unit ray in the robot frame (x forward, z up) and its U-SURF
  *  descriptor; all arrays have size() entries. */

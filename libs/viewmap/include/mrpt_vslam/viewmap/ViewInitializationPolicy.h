@@ -59,13 +59,13 @@ struct TViewDecision {
     static const char* reasonName(TReason r);
 };
 
-/** When to start a new view (paper 004's subject). Two policies, chosen by the ini key
- *  `policy` of TOptions:
- *   - TraditionalViewPolicy: inlier count and distance thresholds (method reconstruction §4.1);
+/** When to start a new view (the subject of Valiente et al. 2015). Two policies, chosen by the ini
+ *  key `policy` of TOptions:
+ *   - TraditionalViewPolicy: inlier count and distance thresholds (doc/view-slam.md §4.2);
  *   - InformationViewPolicy: the paper's information-based initialization with a Gaussian
  *     process over feature existence (abstract; our criterion, doc/view-slam.md §4.2).
  *  Both keep a minimum spacing between views: no view closer than min_view_spacing to
- *  another, which also keeps φ observable (reconstruction §2.3). */
+ *  another, which also keeps φ observable (doc/view-slam.md §4, step 3). */
 class ViewInitializationPolicy {
   public:
     enum class TKind { Traditional, Information };
@@ -107,16 +107,16 @@ class ViewInitializationPolicy {
     TOptions m_options;
 };
 
-/** Reconstruction §4.1: a new view when the best observation has fewer than N_min inliers
- *  (none: no observation) or the robot is farther than D_max from every view. */
+/** doc/view-slam.md §4.2, traditional: a new view when the best observation has fewer than N_min
+ *  inliers (none: no observation) or the robot is farther than D_max from every view. */
 class TraditionalViewPolicy : public ViewInitializationPolicy {
   public:
     explicit TraditionalViewPolicy(const TOptions& options) : ViewInitializationPolicy(options) {}
     TViewDecision decide(const TViewPolicyInputs& in, mrpt::random::CRandomGenerator& rng) override;
 };
 
-/** Information-based view initialization (paper 004; the criterion is ours, doc/view-slam.md
- *  §4.2). Each step:
+/** Information-based view initialization (Valiente et al. 2015; the criterion is ours,
+ *  doc/view-slam.md §4.2). Each step:
  *   1. the GP existence model (FeatureExistenceModel) of the current points gives n⁻_t, the
  *      number of points that surely exist in the map's views; its trend, the mean decline per
  *      frame over the last k = trend_frames frames since the last view, predicts the next
@@ -126,8 +126,8 @@ class TraditionalViewPolicy : public ViewInitializationPolicy {
  *   3. information lost by motion: the next prediction is taken to add what the last one did,
  *      P̂⁻ = P_vv + (P_vv⁻ − P_vv,t−1); information gained: the hypothetical EKF update of
  *      P̂⁻ with all the observed views at once, each with its R̂, gives P̂⁺;
- *   4. the balance, gain minus loss, is ½ log det P_vv − ½ log det P̂⁺ (reconstruction
- *      §4.2 (c)); a view is started after K = deficit_frames consecutive frames whose balance
+ *   4. the balance, gain minus loss, is ½ log det P_vv − ½ log det P̂⁺ (doc/view-slam.md
+ *      §4.2, step 4); a view is started after K = deficit_frames consecutive frames whose balance
  *      is below −τ: the views in reach no longer make up for the motion, so the robot's
  *      uncertainty would grow without bound; also when n⁻_{t+1} < n_min (the views are about
  *      to be lost) or nothing is observed.

@@ -9,14 +9,14 @@
 
 namespace mrpt_vslam::viewmap {
 
-/** EKF of view-based SLAM (method reconstruction §1.2-1.3, §2.4-2.5) over the state
+/** EKF of view-based SLAM (doc/view-slam.md §3) over the state
  *  x = [x_v, x_l1, …, x_lN] (3 + 3N): the planar robot pose x_v = (x, y, θ) followed by the
  *  poses of the N views, with the full covariance P.
  *
  *   - predict(): odometry composes x_v; only P_vv and the cross blocks P_vl change, in O(N).
  *   - addView(): a new view at the current robot pose. It is a deterministic copy of x_v, so
  *     cloning the robot's row and column of P is the exact augmentation (G = I₃).
- *   - update(): one observation z = (φ, β) of a view (§2.3) with χ² gating on the NIS. The gain
+ *   - update(): one observation z = (φ, β) of a view with χ² gating on the NIS. The gain
  *     and the Joseph-form covariance use only the six non-zero columns of H, in O(n²).
  *
  *  Every θ of the state stays wrapped by mrpt::math::wrapToPi. P is kept exactly symmetric.
@@ -49,18 +49,18 @@ class ViewMapEKF {
     /// P_lili. \throw std::invalid_argument if i ≥ viewCount().
     Eigen::Matrix3d viewCovariance(size_t i) const;
 
-    /** Prediction (§1.3) with the odometry increment u = (Δx, Δy, Δθ), expressed in the robot
+    /** Prediction with the odometry increment u = (Δx, Δy, Δθ), expressed in the robot
      *  frame at t−1, of covariance Q: x_v ← x_v ⊕ u, P_vv ← F_x P_vv F_xᵀ + F_u Q F_uᵀ,
      *  P_vl ← F_x P_vl; the view blocks P_ll do not change.
      *  \throw std::invalid_argument for a non-finite u or a Q that is not symmetric PSD. */
     void predict(const mrpt::math::TPose2D& increment, const Eigen::Matrix3d& Q);
 
-    /** Augmentation (§2.5): appends a view at the current robot pose. Its block and its cross
+    /** Augmentation: appends a view at the current robot pose. Its block and its cross
      *  terms are copies of P_vv and of the robot's cross terms (x_l = x_v exactly).
      *  \return the index of the new view. */
     size_t addView();
 
-    /** EKF update (§2.4) with the observation z of view `view` and its covariance R.
+    /** EKF update with the observation z of view `view` and its covariance R.
      *  The update is rejected, leaving the filter unchanged, when NIS > gate (a χ²₂ threshold,
      *  e.g. 9.21 for 99 %; +∞ accepts everything).
      *  \throw std::invalid_argument for a bad view index, a non-finite z, an R that is not
@@ -71,12 +71,12 @@ class ViewMapEKF {
 
     /// Predicted observation of a view and its covariance without the sensor noise.
     struct TPredictedObservation {
-        TViewObservation z;                          ///< h(x_v, x_l) (§2.3)
+        TViewObservation z;                          ///< h(x_v, x_l)
         Eigen::Matrix2d HPHt = Eigen::Matrix2d::Zero();  ///< H P Hᵀ
     };
 
     /** h and H P Hᵀ of view `view` at the current estimate: the centre and the spread of the
-     *  area where its points can appear in the current image (§3.2).
+     *  area where its points can appear in the current image (doc/view-slam.md §4.1).
      *  \throw std::invalid_argument for a bad view index.
      *  \throw std::domain_error when the estimated robot stands on the view. */
     TPredictedObservation predictObservation(size_t view) const;
@@ -105,7 +105,7 @@ class ViewMapEKF {
     double robotNEES(const mrpt::math::TPose2D& truth) const;
 
   private:
-    /// The terms of an observation of view `view` (§2.3-2.4): h, the two non-zero blocks of H
+    /// The terms of an observation of view `view`: h, the two non-zero blocks of H
     /// and P Hᵀ over `rows` (all n rows, or only the robot's and the view's).
     struct TObservationTerms {
         TViewObservation h;
