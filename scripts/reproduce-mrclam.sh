@@ -19,14 +19,20 @@
 # Writes run folders (paths.png, errors.png, metrics.json, run.json), tables and plots under
 # out/reproduce-mrclam/ (or $OUT) and prints markdown tables. Builds first (scripts/setup.sh).
 # Takes about 30 min on one core (M = 2000 as shipped).
-# Environment: SEEDS (default 1 2 3 4 5), OUT, DATASET (default ../shared/datasets/utias-mrclam/dataset7).
+# Environment: MRPT_VSLAM_MRCLAM_DIR (required: the folder of dataset 7's .dat files, see
+# doc/real-data.md), SEEDS (default 1 2 3 4 5), OUT.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+DATASET="${MRPT_VSLAM_MRCLAM_DIR:-}"
+if [ ! -f "$DATASET/Barcodes.dat" ]; then
+  echo "reproduce-mrclam.sh: set MRPT_VSLAM_MRCLAM_DIR to the folder of UTIAS MRCLAM dataset 7" \
+    "(its .dat files; doc/real-data.md says where to get it)" >&2
+  exit 2
+fi
 source "$REPO_DIR/scripts/setup.sh"
 
 OUT="${OUT:-$REPO_DIR/out/reproduce-mrclam}"
 BIN="$BUILD_DIR/bin"
-DATASET="${DATASET:-$REPO_DIR/../shared/datasets/utias-mrclam/dataset7}"
 CONFIGS="$REPO_DIR/share/mrpt-vslam/config"
 SEEDS="${SEEDS:-1 2 3 4 5}"
 mkdir -p "$OUT/data"

@@ -1,5 +1,6 @@
 // Runs the built mrclam2rawlog binary like a user would: on a tiny dataset written here (numbers
-// checked against closed-form values), on the real UTIAS MRCLAM dataset 7, and on bad input.
+// checked against closed-form values), on bad input, and on the real UTIAS MRCLAM dataset 7 when
+// MRPT_VSLAM_MRCLAM_DIR names its folder (the OnFullDataset tests skip without it).
 #include <gtest/gtest.h>
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -11,6 +12,7 @@
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/core/RawlogReader.h>
 #include <mrpt_vslam/core/TumTrajectory.h>
+#include <mrpt_vslam/test/ExternalData.h>
 #include <mrpt_vslam/test/RawlogInfo.h>
 #include <mrpt_vslam/test/RunCommand.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
@@ -523,10 +525,11 @@ struct TExpectedCounts {
  *  exactly on the tiny dataset. */
 constexpr double kMaxDeadReckoningError[3] = {4.0, 1.0, 1.0};
 
-TEST(Mrclam2rawlogDataset7, FirstTwoMinutesOfRobots1To3)
+TEST(Mrclam2rawlogOnFullDataset, FirstTwoMinutesOfRobots1To3)
 {
-    const std::string dir = MRPT_VSLAM_MRCLAM_DIR;
-    if (!fs::exists(dir + "/Barcodes.dat")) GTEST_SKIP() << dir << " not present";
+    const auto dataset7 = mrpt_vslam::test::mrclamDataset7();
+    if (!dataset7.missing.empty()) GTEST_SKIP() << dataset7.missing;
+    const std::string& dir = dataset7.path;
     ScratchFolder scratch("mrclam2rawlog_dataset7");
     const std::string rawlog = scratch.file("d7.rawlog");
     const double window = 120;
@@ -600,6 +603,49 @@ TEST(Mrclam2rawlogDataset7, FirstTwoMinutesOfRobots1To3)
         EXPECT_LT(error, kMaxDeadReckoningError[n - 1]) << "R" << n << ": " << error << " m";
         std::printf("R%d dead-reckoning position error after %.0f s: %.3f m\n", n, window, error);
     }
+}
+
+/// Whether two files hold the same bytes.
+bool sameBytes(const fs::path& a, const fs::path& b)
+{
+    const auto read = [](const fs::path& p) {
+        std::ifstream in(p, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    return fs::exists(a) && fs::exists(b) && read(a) == read(b);
+}
+
+TEST(Mrclam2rawlogOnFullDataset, ReproducesTheShippedWindow)
+{
+    // the commands of datasets/utias-mrclam/README.md give its files byte for byte
+    const auto dataset7 = mrpt_vslam::test::mrclamDataset7();
+    if (!dataset7.missing.empty()) GTEST_SKIP() << dataset7.missing;
+    ScratchFolder scratch("mrclam2rawlog_window");
+    const fs::path shipped = MRPT_VSLAM_SOURCE_DIR "/datasets/utias-mrclam";
+    const std::string name = "mrclam7-r123-0-300";
+    const std::string common = "'" + dataset7.path +
+                               "' --robots 1,2,3 --end 300 --command-delay 0.2 "
+                               "--keep-robot-measurements -q";
+    fs::create_directories(scratch.path() / "ids");
+    ASSERT_EQ(runImporter(scratch, common + " --out '" + scratch.file(name + ".rawlog") + "'")
+                  .exit_code,
+              0);
+    ASSERT_EQ(runImporter(scratch, common + " --keep-ids --out '" +
+                                       (scratch.path() / "ids" / (name + "-ids.rawlog")).string() +
+                                       "'")
+                  .exit_code,
+              0);
+    size_t compared = 0;
+    for (const auto& entry : fs::directory_iterator(shipped)) {
+        const std::string file = entry.path().filename().string();
+        if (file.rfind(name, 0) != 0) continue;
+        const fs::path made = file.find("-ids.") != std::string::npos
+                                  ? scratch.path() / "ids" / file
+                                  : scratch.path() / file;
+        EXPECT_TRUE(sameBytes(entry.path(), made)) << file;
+        compared++;
+    }
+    EXPECT_EQ(compared, 6u);  // two rawlogs, three ground-truth files, the landmarks
 }
 
 }  // namespace

@@ -1,12 +1,14 @@
-// multirobot-vslam on real data: UTIAS MRCLAM dataset 7, robots 1-3 (the first 300 s; 450-720 s
-// for reanchoring), imported by mrclam2rawlog with landmark identities hidden and the robots'
-// readings of each other kept, through mrclam.ini with M = 500 (doc/real-data.md). Measured with
-// seeds 1-3, as shipped: R1 0.27-0.38 m, R2 0.17-0.29 m, R3 0.19-0.25 m against odometry 1.60 /
-// 0.28 / 0.76 m. Over this window per-robot resampling alone keeps R1 (0.29-0.36 m team mean
-// without the readings of robots), so their effect is checked without it: team mean 0.22 m with
-// them, 0.66 m without.
+// multirobot-vslam on real data: UTIAS MRCLAM dataset 7, robots 1-3. The first 300 s are shipped
+// (datasets/utias-mrclam, identities hidden and kept, the robots' readings of each other kept);
+// the reanchoring test needs the full dataset (MRPT_VSLAM_MRCLAM_DIR, doc/real-data.md) and
+// skips without it. All through mrclam.ini with M = 500. Measured on the window with seeds 1-3,
+// as shipped: R1 0.27-0.38 m, R2 0.17-0.29 m, R3 0.19-0.25 m against odometry 1.60 / 0.28 /
+// 0.76 m. Over this window per-robot resampling alone keeps R1 (0.29-0.36 m team mean without
+// the readings of robots), so their effect is checked without it: team mean 0.22 m with them,
+// 0.66 m without.
 #include <gtest/gtest.h>
 #include <mrpt_vslam/core/RunEvaluation.h>
+#include <mrpt_vslam/test/ExternalData.h>
 #include <mrpt_vslam/test/RunCommand.h>
 #include <mrpt_vslam/test/RunFiles.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
@@ -21,18 +23,18 @@ using mrpt_vslam::test::ScratchFolder;
 using mrpt_vslam::test::TCommandResult;
 
 namespace {
-/// Robots 1-3 in a time window (mrclam2rawlog's --start and --end, default the first 300 s)
-/// imported with the robots' readings of each other (plus `options`) into
-/// `<scratch>/window.rawlog`.
-std::string importWindow(const ScratchFolder& scratch, const std::string& options = "",
-                         const std::string& window = "--end 300")
+/// The shipped window: robots 1-3, the first 300 s (datasets/utias-mrclam/README.md).
+const std::string kWindow = MRPT_VSLAM_SOURCE_DIR "/datasets/utias-mrclam/mrclam7-r123-0-300";
+
+/// Robots 1-3 of the full dataset in `dataset` in a time window (mrclam2rawlog's --start and
+/// --end) imported with the robots' readings of each other into `<scratch>/window.rawlog`.
+std::string importWindow(const ScratchFolder& scratch, const std::string& dataset,
+                         const std::string& window)
 {
     const std::string rawlog = scratch.file("window.rawlog");
     const TCommandResult import = mrpt_vslam::test::runCommand(
-        std::string(MRPT_VSLAM_BIN_DIR "/mrclam2rawlog '") + MRPT_VSLAM_MRCLAM_DIR +
-            "' --robots 1,2,3 " + window +
-            " --command-delay 0.2 --keep-robot-measurements -q " + options + " --out '" +
-            rawlog + "'",
+        std::string(MRPT_VSLAM_BIN_DIR "/mrclam2rawlog '") + dataset + "' --robots 1,2,3 " +
+            window + " --command-delay 0.2 --keep-robot-measurements -q --out '" + rawlog + "'",
         scratch.path() / "import.log");
     EXPECT_EQ(import.exit_code, 0) << import.out;
     return rawlog;
@@ -84,7 +86,7 @@ std::pair<double, double> teamMeans(const std::string& out)
 TEST(MultiRobotVSLAMOnMrclam, RobotReadingsKeepTheTeamFarBelowOdometry)
 {
     ScratchFolder scratch("mrclam-team");
-    const std::string rawlog = importWindow(scratch);
+    const std::string rawlog = kWindow + ".rawlog";
     // the particle's own map: map_along_path is checked below
     const auto runFilter = [&](const std::string& name, const std::string& options) {
         return runMrclam(scratch, rawlog, name,
@@ -120,15 +122,17 @@ TEST(MultiRobotVSLAMOnMrclam, RobotReadingsKeepTheTeamFarBelowOdometry)
 
 TEST(MultiRobotVSLAMOnMrclam, KnownCorrespondencesMapEachLandmarkOnce)
 {
-    // associate_by_identity on the ids kept by --keep-ids: one landmark per identity, every
-    // fused reading of its own identity, each landmark within 0.5 m of its post. Measured with
-    // seeds 1-3: all 15 identities, 3549 readings fused, team mean 0.19-0.25 m against
-    // odometry 0.88 m
+    // associate_by_identity on the rawlog with identities (the hidden one's ground truth): one
+    // landmark per identity, every fused reading of its own identity, each landmark within
+    // 0.5 m of its post. Measured with seeds 1-3: all 15 identities, 3549 readings fused, team
+    // mean 0.19-0.25 m against odometry 0.88 m
     ScratchFolder scratch("mrclam-identities");
     const std::string out = runMrclam(
-        scratch, importWindow(scratch, "--keep-ids"), "run",
-        "--seed 1 --set MappingApplication_visualLandmarksMap_00_insertOpts.associate_by_identity="
-        "true --set MultiRobotVSLAM.map_along_path=false --set MultiRobotVSLAM.smooth_paths=false");
+        scratch, kWindow + "-ids.rawlog", "run",
+        "--ground-truth '" + kWindow +
+            "' --seed 1 --set MappingApplication_visualLandmarksMap_00_insertOpts."
+            "associate_by_identity=true --set MultiRobotVSLAM.map_along_path=false "
+            "--set MultiRobotVSLAM.smooth_paths=false");
     const auto run = mrpt_vslam::test::readJson(out + "/run.json");
     const auto& ids = run["results"]["association_by_identity"];
     EXPECT_EQ(ids["identities"].get<int>(), 15);
@@ -151,8 +155,8 @@ TEST(MultiRobotVSLAMOnMrclam, SmoothedPathsAndTheMapAlongThemMeetTheTargets)
     // 0.17-0.38 m for the best particle's path; 15 landmarks, all 15 posts matched one-to-one
     // within 0.5 m, where the particle's own map holds 27-36; distance scales 0.87-0.92.
     ScratchFolder scratch("mrclam-smoothed");
-    const std::string rawlog = importWindow(scratch);
-    const std::string prefix = rawlog.substr(0, rawlog.size() - std::string(".rawlog").size());
+    const std::string rawlog = kWindow + ".rawlog";
+    const std::string& prefix = kWindow;
     for (const std::string seed : {"1", "2"}) {
         const std::string out =
             runMrclam(scratch, rawlog, "run" + seed,
@@ -186,14 +190,16 @@ TEST(MultiRobotVSLAMOnMrclam, SmoothedPathsAndTheMapAlongThemMeetTheTargets)
     }
 }
 
-TEST(MultiRobotVSLAMOnMrclam, ReanchoringBringsARobotBackAfterAGap)
+TEST(MultiRobotVSLAMOnFullDataset, ReanchoringBringsARobotBackAfterAGap)
 {
+    const auto dataset7 = mrpt_vslam::test::mrclamDataset7();
+    if (!dataset7.missing.empty()) GTEST_SKIP() << dataset7.missing;
     // 450-720 s: R2 reads no post for 48 s (537-585 s), the best particle comes back displaced
     // and its readings go to wrong posts. Measured with seeds 1-3: R2 0.22-0.24 m smoothed with
     // reanchoring (one part moved, 15 posts matched, at most 1 extra landmark), 0.44-0.91 m
     // without (2 extra landmarks); R1 and R3 0.27-0.30 m either way.
     ScratchFolder scratch("mrclam-reanchored");
-    const std::string rawlog = importWindow(scratch, "", "--start 450 --end 720");
+    const std::string rawlog = importWindow(scratch, dataset7.path, "--start 450 --end 720");
     for (const std::string seed : {"1", "2"}) {
         std::map<std::string, double> r2;
         for (const std::string gap : {"0", "10"}) {
