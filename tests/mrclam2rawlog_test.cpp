@@ -219,8 +219,12 @@ TEST_F(TinyDataset, WritesTheStepContract)
     // Read back as filter steps: one action per robot with the odometry difference, and the
     // step's range-bearing observations.
     mrpt_vslam::core::RawlogReader reader(out("a.rawlog"));
-    mrpt_vslam::core::ActionFrameSource source(reader, {"R1_RB", "R2_RB"}, {},
-                                               {"R1_ODOM", "R2_ODOM"});
+    using mrpt_vslam::core::ObservationSelector;
+    mrpt_vslam::core::ActionFrameSource source(
+        reader,
+        {ObservationSelector::of<mrpt::obs::CObservationBearingRange>("R1_RB"),
+         ObservationSelector::of<mrpt::obs::CObservationBearingRange>("R2_RB")},
+        {}, {"R1_ODOM", "R2_ODOM"});
     const std::vector<double> step_taus{2.125, 5.4375, 6.375};
     const std::vector<std::multiset<std::string>> step_rb{{"R1_RB", "R2_RB"}, {"R1_RB"}, {"R2_RB"}};
     mrpt::obs::CActionCollection::Ptr acts;

@@ -9,11 +9,11 @@
 namespace mrpt_vslam::core {
 
 ActionFrameSource::ActionFrameSource(
-    RawlogReader& reader, std::set<std::string> step_labels,
+    RawlogReader& reader, std::vector<ObservationSelector> steps,
     const mrpt::obs::CActionRobotMovement2D::TMotionModelOptions& motion_model,
     std::vector<std::string> odometry_labels)
     : m_reader(reader),
-      m_step_labels(std::move(step_labels)),
+      m_steps(std::move(steps)),
       m_motion_model(motion_model),
       m_odometry_labels(std::move(odometry_labels)),
       m_odometry(std::max<size_t>(1, m_odometry_labels.size())),
@@ -95,7 +95,9 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
             }
             m_pending->insert(e.observation);
             m_pending_is_step =
-                m_pending_is_step || m_step_labels.count(e.observation->sensorLabel) > 0;
+                m_pending_is_step ||
+                std::any_of(m_steps.begin(), m_steps.end(),
+                            [&](const auto& sel) { return sel.matches(*e.observation); });
         }
         if (ready) return true;
     }

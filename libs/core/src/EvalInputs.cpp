@@ -75,6 +75,14 @@ std::vector<TRobotFiles> robotsInRunDir(const std::string& run_dir) {
 
 }  // namespace
 
+std::string groundTruthFileOf(const std::string& prefix, const std::string& robot,
+                              bool only_robot) {
+    const std::string single = prefix + ".groundtruth.tum";
+    if (robot.empty()) return single;
+    const std::string own = prefix + ".groundtruth_" + robot + ".tum";
+    return only_robot && !fs::exists(own) && fs::exists(single) ? single : own;
+}
+
 TEvalInputs resolveInputs(const TEvalParams& p) {
     TEvalInputs in;
     if (!p.estimate_file.empty()) {
@@ -98,8 +106,7 @@ TEvalInputs resolveInputs(const TEvalParams& p) {
     } else {
         const auto prefix = groundTruthPrefix(gtArg);
         for (auto& r : in.robots)
-            r.ground_truth = prefix + (r.robot.empty() ? ".groundtruth.tum"
-                                                       : ".groundtruth_" + r.robot + ".tum");
+            r.ground_truth = groundTruthFileOf(prefix, r.robot, in.robots.size() == 1);
         if (p.landmarks_gt.empty() && fs::exists(prefix + ".landmarks.txt"))
             in.landmarks_gt = prefix + ".landmarks.txt";
     }

@@ -7,6 +7,7 @@
 #include <mrpt/obs/CObservationVisualLandmarks.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/system/string_utils.h>
+#include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
 #include <mrpt_vslam/multirobot/Cholesky3.h>
 
@@ -31,18 +32,23 @@ void requireKey(bool ok, const std::string& section, const char* key, const char
     if (!ok)
         throw std::invalid_argument("[" + section + "] " + key + ": " + what);
 }
-/// `<prefix>_std_range`, `<prefix>_std_bearing_deg`, `<prefix>_std_height`, each > 0.
+/** `<prefix>_std_range` [m], `<prefix>_std_bearing_deg`, `<prefix>_std_pitch_deg` (each > 0,
+ *  or absent: the observation's own σ), `<prefix>_std_height` [m] (> 0). */
 void loadNoise(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
                const std::string& prefix, TRangeBearingNoise& noise)
 {
-    noise.std_range = cfg.read_double(section, prefix + "_std_range", noise.std_range);
-    noise.std_bearing = mrpt::DEG2RAD(cfg.read_double(section, prefix + "_std_bearing_deg",
-                                                      mrpt::RAD2DEG(noise.std_bearing)));
+    const auto readStd = [&](const std::string& key, double unit, std::optional<double>& v) {
+        if (!cfg.keyExists(section, key)) return;
+        v = unit * cfg.read_double(section, key, 0);
+        requireKey(*v > 0 && std::isfinite(*v), section, key.c_str(),
+                   "must be > 0 (leave it out to use the observations' own)");
+    };
+    readStd(prefix + "_std_range", 1, noise.std_range);
+    readStd(prefix + "_std_bearing_deg", mrpt::DEG2RAD(1.0), noise.std_bearing);
+    readStd(prefix + "_std_pitch_deg", mrpt::DEG2RAD(1.0), noise.std_pitch);
     noise.std_height = cfg.read_double(section, prefix + "_std_height", noise.std_height);
-    requireKey(noise.std_range > 0, section, (prefix + "_std_range").c_str(), "must be > 0");
-    requireKey(noise.std_bearing > 0, section, (prefix + "_std_bearing_deg").c_str(),
-               "must be > 0");
-    requireKey(noise.std_height > 0, section, (prefix + "_std_height").c_str(), "must be > 0");
+    requireKey(noise.std_height > 0 && std::isfinite(noise.std_height), section,
+               (prefix + "_std_height").c_str(), "must be > 0");
 }
 
 /** log p(reading | both poses of a particle): the Gaussian of the point's offset from the seen
@@ -58,8 +64,11 @@ double robotReadingLogLikelihood(const Eigen::Vector3d& offset, const Eigen::Mat
 void saveNoise(mrpt::config::CConfigFileBase& cfg, const std::string& section,
                const std::string& prefix, const TRangeBearingNoise& noise)
 {
-    cfg.write(section, prefix + "_std_range", noise.std_range);
-    cfg.write(section, prefix + "_std_bearing_deg", mrpt::RAD2DEG(noise.std_bearing));
+    if (noise.std_range) cfg.write(section, prefix + "_std_range", *noise.std_range);
+    if (noise.std_bearing)
+        cfg.write(section, prefix + "_std_bearing_deg", mrpt::RAD2DEG(*noise.std_bearing));
+    if (noise.std_pitch)
+        cfg.write(section, prefix + "_std_pitch_deg", mrpt::RAD2DEG(*noise.std_pitch));
     cfg.write(section, prefix + "_std_height", noise.std_height);
 }
 }  // namespace
@@ -72,6 +81,7 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
         robots.clear();
         mrpt::system::tokenize(names, " \t,", robots);
     }
+    MRPT_LOAD_CONFIG_VAR(sensor_label, string, cfg, section);
     MRPT_LOAD_CONFIG_VAR(landmarks_suffix, string, cfg, section);
     MRPT_LOAD_CONFIG_VAR(range_bearing_suffix, string, cfg, section);
     loadNoise(cfg, section, "range_bearing", range_bearing_noise);
@@ -129,6 +139,8 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
     for (size_t i = 0; i < robots.size(); i++)
         requireKey(std::count(robots.begin(), robots.end(), robots[i]) == 1, section, "robots",
                    "must not repeat a name");
+    requireKey(sensor_label.empty() || robots.size() == 1, section, "sensor_label",
+               "is for one robot; a team's labels are <ROBOT> + the suffixes");
     requireKey(!landmarks_suffix.empty(), section, "landmarks_suffix", "must not be empty");
     requireKey(!range_bearing_suffix.empty() && range_bearing_suffix != landmarks_suffix, section,
                "range_bearing_suffix", "must not be empty nor equal landmarks_suffix");
@@ -168,6 +180,7 @@ void CMultiRobotVisualSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     std::string names;
     for (const auto& r : robots) names += (names.empty() ? "" : " ") + r;
     cfg.write(section, "robots", names);
+    cfg.write(section, "sensor_label", sensor_label);
     cfg.write(section, "landmarks_suffix", landmarks_suffix);
     cfg.write(section, "range_bearing_suffix", range_bearing_suffix);
     saveNoise(cfg, section, "range_bearing", range_bearing_noise);
@@ -288,14 +301,15 @@ CMultiRobotVisualSLAM::TMotionGaussian CMultiRobotVisualSLAM::motionOf(
 std::vector<TLandmarkMeasurement> CMultiRobotVisualSLAM::measurementsOf(
     size_t k, const mrpt::obs::CSensoryFrame& frame)
 {
+    using core::ObservationSelector;
     std::vector<TLandmarkMeasurement> z;
-    if (const auto obs = frame.getObservationBySensorLabelAs<
-            mrpt::obs::CObservationVisualLandmarks::Ptr>(options.robots[k] +
-                                                         options.landmarks_suffix))
-        z = measurementsFromObservation(*obs);
-    if (const auto obs = frame.getObservationBySensorLabelAs<
-            mrpt::obs::CObservationBearingRange::Ptr>(options.robots[k] +
-                                                      options.range_bearing_suffix)) {
+    for (const auto& obs : ObservationSelector::allIn<mrpt::obs::CObservationVisualLandmarks>(
+             frame, options.inputLabel(k, options.landmarks_suffix))) {
+        const auto v = measurementsFromObservation(*obs);
+        z.insert(z.end(), v.begin(), v.end());
+    }
+    for (const auto& obs : ObservationSelector::allIn<mrpt::obs::CObservationBearingRange>(
+             frame, options.inputLabel(k, options.range_bearing_suffix))) {
         const auto rb = measurementsFromBearingRange(*obs, options.range_bearing_noise);
         z.insert(z.end(), rb.begin(), rb.end());
     }

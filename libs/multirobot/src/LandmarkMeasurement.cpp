@@ -46,29 +46,48 @@ std::vector<TLandmarkMeasurement> measurementsFromObservation(
 std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
     const mrpt::obs::CObservationBearingRange& obs, const TRangeBearingNoise& noise)
 {
+    const auto fail = [&](const std::string& what) {
+        throw std::runtime_error(obs.sensorLabel + ": " + what);
+    };
+    const double sr = noise.std_range.value_or(obs.sensor_std_range);
+    const double sb = noise.std_bearing.value_or(obs.sensor_std_yaw);
+    const double sp = noise.std_pitch.value_or(obs.sensor_std_pitch);
+    const auto requireStd = [&](double v, const char* field) {
+        if (!(v > 0 && std::isfinite(v)))
+            fail(std::string("no usable ") + field + " (" + std::to_string(v) +
+                 "): set it in the observations or the config's *_std_* keys");
+    };
+    requireStd(sr, "range noise sensor_std_range");
+    requireStd(sb, "bearing noise sensor_std_yaw");
+    if (!(sp >= 0 && std::isfinite(sp))) requireStd(sp, "pitch noise sensor_std_pitch");
+    const bool spatial = sp > 0;
+    const Eigen::Vector3d variances(sr * sr, sb * sb, sp * sp);
+
     const Eigen::Matrix3d rot = obs.sensorLocationOnRobot.getRotationMatrix().asEigen();
     const Eigen::Vector3d t(obs.sensorLocationOnRobot.x(), obs.sensorLocationOnRobot.y(),
                             obs.sensorLocationOnRobot.z());
     std::vector<TLandmarkMeasurement> out;
     out.reserve(obs.sensedData.size());
     for (const auto& s : obs.sensedData) {
-        const auto fail = [&](const std::string& what) {
-            throw std::runtime_error(obs.sensorLabel + ": measurement of landmark " +
-                                     std::to_string(s.landmarkID) + " " + what);
+        const auto failOn = [&](const std::string& what) {
+            fail("measurement of landmark " + std::to_string(s.landmarkID) + " " + what);
         };
-        if (!std::isfinite(s.range) || !(s.range > 0)) fail("has a non-finite or non-positive range");
-        if (!std::isfinite(s.yaw)) fail("has a non-finite bearing");
-        if (s.pitch != 0) fail("has a non-zero pitch (the range-bearing model is planar)");
-        const double r = s.range, c = std::cos(s.yaw), sn = std::sin(s.yaw);
-        Eigen::Matrix<double, 3, 2> J;  // ∂(x, y, z)/∂(r, b)
-        J << c, -r * sn, sn, r * c, 0, 0;
-        Eigen::Matrix3d C = J * Eigen::Vector2d(noise.std_range, noise.std_bearing)
-                                    .cwiseAbs2()
-                                    .asDiagonal() *
-                            J.transpose();
-        C(2, 2) = noise.std_height * noise.std_height;
+        if (!std::isfinite(s.range) || !(s.range > 0))
+            failOn("has a non-finite or non-positive range");
+        if (!std::isfinite(s.yaw)) failOn("has a non-finite bearing");
+        if (!std::isfinite(s.pitch)) failOn("has a non-finite pitch");
+        if (!spatial && s.pitch != 0)
+            failOn("has a non-zero pitch, but no pitch noise (sensor_std_pitch = 0): planar model");
+        const double r = s.range, cb = std::cos(s.yaw), sb_ = std::sin(s.yaw);
+        const double cp = std::cos(s.pitch), sp_ = std::sin(s.pitch);
+        Eigen::Matrix3d J;  // ∂(x, y, z)/∂(r, b, p)
+        J << cp * cb, -r * cp * sb_, -r * sp_ * cb,  //
+            cp * sb_, r * cp * cb, -r * sp_ * sb_,   //
+            -sp_, 0, -r * cp;
+        Eigen::Matrix3d C = J * variances.asDiagonal() * J.transpose();
+        if (!spatial) C(2, 2) = noise.std_height * noise.std_height;
         TLandmarkMeasurement m;
-        m.z = rot * Eigen::Vector3d(r * c, r * sn, 0) + t;
+        m.z = rot * Eigen::Vector3d(r * cp * cb, r * cp * sb_, -r * sp_) + t;
         m.R = rot * C * rot.transpose();
         m.depth = r;
         m.track_id = s.landmarkID;

@@ -11,8 +11,10 @@
 #include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
+#include <mrpt_vslam/core/EvalInputs.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/core/LiveView.h>
+#include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/OutputDirectory.h>
 #include <mrpt_vslam/core/ProgressReporter.h>
 #include <mrpt_vslam/core/RawlogReader.h>
@@ -57,6 +59,8 @@ struct MultiRobotVSLAMApp::Impl {
     uint32_t seed = 1;
     TInput input = TInput::Auto;
     bool startFromGroundTruth = true;
+    /// One robot: the label of its CObservationOdometry readings ("": any).
+    std::string odometryLabel;
     std::vector<mrpt::math::TPose2D> startPoses;
     double gtMatchRadius = 0.25;
 
@@ -75,6 +79,10 @@ struct MultiRobotVSLAMApp::Impl {
 
     void loadConfig();
     void findGroundTruth();
+    /** One robot: the step's odometry alone (the best movement estimate of a rawlog's action
+     *  collection), stamped with the frame's time when the rawlog's action has none. */
+    static mrpt::obs::CActionCollection::Ptr singleRobotAction(
+        const mrpt::obs::CActionCollection& actions, const mrpt::obs::CSensoryFrame& frame);
     /// Stereo images → landmarks where images are the input; counts the landmark inputs.
     void prepareFrame(mrpt::obs::CSensoryFrame& sf);
     /// With smooth_paths: the result of CMultiRobotVisualSLAM::smoothPaths() and its time.
@@ -122,6 +130,7 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
     startFromGroundTruth =
         cfg.read_bool(kAppSection, "start_poses_from_ground_truth", startFromGroundTruth);
     gtMatchRadius = cfg.read_double(kAppSection, "gt_match_radius", gtMatchRadius);
+    odometryLabel = cfg.read_string(kAppSection, "odometry_label", "");
     if (!(gtMatchRadius > 0)) throw usage("[MultiRobotVSLAM] gt_match_radius must be > 0");
 
     try {
@@ -165,6 +174,9 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
         throw usage(std::string("[") + kMapSection +
                     "] must define exactly one map: visualLandmarksMap_count = 1");
     mapTemplate = *map;
+    if (!odometryLabel.empty() && filterOptions.robots.size() != 1)
+        throw usage("[MultiRobotVSLAM] odometry_label is for one robot; a team's odometry is "
+                    "labelled <ROBOT>_ODOM");
     cfg.throwIfUnreadKeys();
 }
 
@@ -173,8 +185,8 @@ void MultiRobotVSLAMApp::Impl::findGroundTruth()
     groundTruthPrefix = args.groundTruthPrefix(rawlog);
     size_t found = 0;
     for (size_t k = 0; k < filterOptions.robots.size(); k++) {
-        const std::string tum =
-            groundTruthPrefix + ".groundtruth_" + filterOptions.robots[k] + ".tum";
+        const std::string tum = core::groundTruthFileOf(groundTruthPrefix, filterOptions.robots[k],
+                                                        filterOptions.robots.size() == 1);
         groundTruth.emplace_back();
         if (!mrpt::system::fileExists(tum)) continue;
         groundTruth.back() = core::TumTrajectory::load(tum);
@@ -198,15 +210,18 @@ void MultiRobotVSLAMApp::Impl::findGroundTruth()
 
 void MultiRobotVSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
 {
-    const auto& robots = filterOptions.robots;
-    if (frontEnds.empty()) frontEnds.resize(robots.size());
-    for (size_t k = 0; k < robots.size(); k++) {
-        const std::string landmarksLabel = robots[k] + filterOptions.landmarks_suffix;
-        const auto stereo = sf.getObservationBySensorLabelAs<mrpt::obs::CObservationStereoImages::Ptr>(
-            robots[k] + "_STEREO");
+    using core::ObservationSelector;
+    const auto& o = filterOptions;
+    if (frontEnds.empty()) frontEnds.resize(o.robots.size());
+    for (size_t k = 0; k < o.robots.size(); k++) {
+        const std::string landmarksLabel = o.inputLabel(k, o.landmarks_suffix);
+        const auto stereo = ObservationSelector::firstIn<mrpt::obs::CObservationStereoImages>(
+            sf, o.inputLabel(k, "_STEREO"));
         const bool hasLandmarks =
-            sf.getObservationBySensorLabel(landmarksLabel) ||
-            sf.getObservationBySensorLabel(robots[k] + filterOptions.range_bearing_suffix);
+            ObservationSelector::firstIn<mrpt::obs::CObservationVisualLandmarks>(sf,
+                                                                                landmarksLabel) ||
+            ObservationSelector::firstIn<mrpt::obs::CObservationBearingRange>(
+                sf, o.inputLabel(k, o.range_bearing_suffix));
         if (stereo) stereoFrames++;
         if (input == TInput::Landmarks || (input == TInput::Auto && hasLandmarks) || !stereo) {
             landmarkObservations += hasLandmarks ? 1 : 0;
@@ -220,13 +235,32 @@ void MultiRobotVSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
             throw std::runtime_error(rawlog + ": step " + std::to_string(steps) + ": cannot use " +
                                      stereo->sensorLabel + ": " + core::oneLineMessage(e));
         }
-        landmarks->sensorLabel = landmarksLabel;
-        sf.eraseByLabel(landmarksLabel);
+        // the images' landmarks replace any the frame had
+        ObservationSelector::of<mrpt::obs::CObservationVisualLandmarks>(landmarksLabel)
+            .eraseFrom(sf);
+        landmarks->sensorLabel = landmarksLabel.empty() ? stereo->sensorLabel : landmarksLabel;
         sf.insert(landmarks);
         stereo->imageLeft.unload();
         stereo->imageRight.unload();
         landmarkObservations++;
     }
+}
+
+mrpt::obs::CActionCollection::Ptr MultiRobotVSLAMApp::Impl::singleRobotAction(
+    const mrpt::obs::CActionCollection& actions, const mrpt::obs::CSensoryFrame& frame)
+{
+    const auto move = actions.getBestMovementEstimation();
+    auto one = mrpt::obs::CActionCollection::Create();
+    if (!move) return one;  // the filter names what is missing
+    mrpt::obs::CActionRobotMovement2D copy(*move);
+    if (copy.timestamp == INVALID_TIMESTAMP)
+        for (const auto& obs : frame)
+            if (obs && obs->timestamp != INVALID_TIMESTAMP) {
+                copy.timestamp = obs->timestamp;
+                break;
+            }
+    one->insert(copy);
+    return one;
 }
 
 void MultiRobotVSLAMApp::initialize()
@@ -282,17 +316,24 @@ void MultiRobotVSLAMApp::run()
     core::RawlogReader reader(d.rawlog);
     core::ProgressReporter progress("multirobot-vslam", 0, d.args.quiet);
 
-    std::set<std::string> stepLabels;
+    using core::ObservationSelector;
+    const auto& o = d.filterOptions;
+    std::vector<ObservationSelector> steps;
     std::vector<std::string> odometryLabels;
-    for (const auto& r : robots) {
-        stepLabels.insert(r + d.filterOptions.landmarks_suffix);
-        stepLabels.insert(r + d.filterOptions.range_bearing_suffix);
-        if (!d.filterOptions.robot_reading_ids.empty())
-            stepLabels.insert(r + d.filterOptions.robot_readings_suffix);
-        stepLabels.insert(r + "_STEREO");
-        odometryLabels.push_back(r + "_ODOM");
+    for (size_t k = 0; k < robots.size(); k++) {
+        steps.push_back(ObservationSelector::of<mrpt::obs::CObservationVisualLandmarks>(
+            o.inputLabel(k, o.landmarks_suffix)));
+        steps.push_back(ObservationSelector::of<mrpt::obs::CObservationBearingRange>(
+            o.inputLabel(k, o.range_bearing_suffix)));
+        if (!o.robot_reading_ids.empty() && robots.size() > 1)
+            steps.push_back(ObservationSelector::of<mrpt::obs::CObservationBearingRange>(
+                robots[k] + o.robot_readings_suffix));
+        steps.push_back(ObservationSelector::of<mrpt::obs::CObservationStereoImages>(
+            o.inputLabel(k, "_STEREO")));
+        if (robots.size() > 1) odometryLabels.push_back(robots[k] + "_ODOM");
     }
-    core::ActionFrameSource source(reader, stepLabels, d.motionModel, odometryLabels);
+    if (robots.size() == 1 && !d.odometryLabel.empty()) odometryLabels = {d.odometryLabel};
+    core::ActionFrameSource source(reader, steps, d.motionModel, odometryLabels);
     std::vector<mrpt::poses::CPose2D> odometry;
     for (const auto& p : d.startPoses) odometry.emplace_back(p);
     estimatedPaths.assign(robots.size(), {});
@@ -300,6 +341,7 @@ void MultiRobotVSLAMApp::run()
     mrpt::obs::CActionCollection::Ptr actions;
     mrpt::obs::CSensoryFrame::Ptr frame;
     while (source.next(actions, frame)) {
+        if (robots.size() == 1) actions = d.singleRobotAction(*actions, *frame);
         d.prepareFrame(*frame);
         const double t = mrpt::Clock::toDouble(actions->begin()->get()->timestamp);
         if (d.steps == 0) d.filter->reset(d.startPoses, t);
@@ -326,15 +368,21 @@ void MultiRobotVSLAMApp::run()
     progress.finish(d.steps);
     std::string odoLabels;
     for (const auto& l : odometryLabels) odoLabels += (odoLabels.empty() ? "" : ", ") + l;
+    const std::string inputs =
+        robots.size() == 1
+            ? "odometry (CActionRobotMovement2D, or CObservationOdometry" +
+                  (odoLabels.empty() ? std::string() : " labelled " + odoLabels) +
+                  ") and CObservationBearingRange, CObservationVisualLandmarks or "
+                  "CObservationStereoImages" +
+                  (o.sensor_label.empty() ? std::string() : " labelled " + o.sensor_label)
+            : "observation-only rawlog with " + odoLabels + " and <ROBOT>" + o.landmarks_suffix +
+                  ", <ROBOT>" + o.range_bearing_suffix + " or <ROBOT>_STEREO";
     if (d.steps == 0)
-        throw std::runtime_error(d.rawlog + ": no team steps (observation-only rawlog with " +
-                                 odoLabels + " and <ROBOT>" + d.filterOptions.landmarks_suffix +
-                                 ", <ROBOT>" + d.filterOptions.range_bearing_suffix +
-                                 " or <ROBOT>_STEREO); the rawlog has: " +
-                                 reader.summary().describe());
+        throw std::runtime_error(d.rawlog + ": no steps (" + inputs +
+                                 "); the rawlog has: " + reader.summary().describe());
     if (d.measurements == 0)
-        throw std::runtime_error(d.rawlog + ": no landmark measurements for robots " + odoLabels +
-                                 "; the rawlog has: " + reader.summary().describe());
+        throw std::runtime_error(d.rawlog + ": no landmark measurements (" + inputs +
+                                 "); the rawlog has: " + reader.summary().describe());
     for (size_t k = 0; k < robots.size(); k++) estimatedPaths[k] = d.bestParticlePath(k);
     if (d.filterOptions.smooth_paths) {
         const core::RunTimer smoothing;

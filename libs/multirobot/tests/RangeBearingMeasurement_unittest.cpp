@@ -64,7 +64,7 @@ TEST(RangeBearingMeasurement, PointAndCovarianceMatchTheClosedForm)
 
 TEST(RangeBearingMeasurement, BadMeasurementsNameTheLabel)
 {
-    const TRangeBearingNoise noise;
+    const TRangeBearingNoise noise{0.1, 0.05, 0.01, {}};
     for (const auto& obs : {observation({{std::nan(""), 0.1, -1}}), observation({{-1, 0.1, -1}}),
                             observation({{1, std::nan(""), -1}})}) {
         try {
@@ -75,8 +75,69 @@ TEST(RangeBearingMeasurement, BadMeasurementsNameTheLabel)
         }
     }
     auto pitched = observation({{1, 0.1, -1}});
-    pitched.sensedData[0].pitch = 0.2f;
+    pitched.sensedData[0].pitch = 0.2f;  // planar model: no pitch noise anywhere
     EXPECT_THROW(measurementsFromBearingRange(pitched, noise), std::runtime_error);
+}
+
+TEST(RangeBearingMeasurement, NoiseIsTheObservationsUnlessTheConfigSetsIt)
+{
+    auto obs = observation({{2.0, 0.0, -1}});
+    // neither the observation nor the options give a range σ: refused, naming the label
+    try {
+        measurementsFromBearingRange(obs, TRangeBearingNoise());
+        FAIL() << "accepted measurements without noise";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("R1_RB"), std::string::npos) << e.what();
+    }
+    obs.sensor_std_range = 0.3f;
+    obs.sensor_std_yaw = 0.02f;
+    const auto own = measurementsFromBearingRange(obs, TRangeBearingNoise());
+    ASSERT_EQ(own.size(), 1u);
+    // bearing 0 at 2 m: σ_x = σ_r, σ_y = r σ_b
+    EXPECT_NEAR(own[0].R(0, 0), 0.09, 1e-6);
+    EXPECT_NEAR(own[0].R(1, 1), 4 * 0.0004, 1e-6);
+    TRangeBearingNoise set;
+    set.std_range = 0.1;
+    const auto overridden = measurementsFromBearingRange(obs, set);
+    EXPECT_NEAR(overridden[0].R(0, 0), 0.01, 1e-9);
+    EXPECT_NEAR(overridden[0].R(1, 1), 4 * 0.0004, 1e-6);  // still the observation's σ_b
+}
+
+// A 3D landmark (pitch measured, MRPT's convention: positive downwards): the point and the
+// covariance against finite differences of the spherical-to-Cartesian map.
+TEST(RangeBearingMeasurement, SpatialModelMatchesTheSphericalCoordinates)
+{
+    const double r = 3.0, b = 0.4, p = -0.3;  // a landmark above the sensor
+    auto obs = observation({{r, b, 4}});
+    obs.sensedData[0].pitch = static_cast<float>(p);
+    obs.sensorLocationOnRobot = mrpt::poses::CPose3D(0.2, 0, 0.5, 0.1, 0, 0);
+    const TRangeBearingNoise noise{0.05, 0.01, 0.01, 0.02};
+    const auto z = measurementsFromBearingRange(obs, noise);
+    ASSERT_EQ(z.size(), 1u);
+    const float rf = static_cast<float>(r), bf = static_cast<float>(b), pf = static_cast<float>(p);
+    const auto point = [&](double rr, double bb, double pp) {
+        // the sensor's spherical coordinates of a point, inverted by MRPT itself
+        mrpt::math::TPoint3D local(rr * std::cos(pp) * std::cos(bb),
+                                   rr * std::cos(pp) * std::sin(bb), -rr * std::sin(pp));
+        const auto robot = obs.sensorLocationOnRobot.composePoint(local);
+        return Eigen::Vector3d(robot.x, robot.y, robot.z);
+    };
+    const Eigen::Vector3d expected = point(rf, bf, pf);
+    EXPECT_LT((z[0].z - expected).norm(), 1e-6);
+    double range = 0, yaw = 0, pitch = 0;  // and MRPT maps it back to the measurement
+    obs.sensorLocationOnRobot.sphericalCoordinates({z[0].z.x(), z[0].z.y(), z[0].z.z()}, range,
+                                                   yaw, pitch);
+    EXPECT_NEAR(range, rf, 1e-6);
+    EXPECT_NEAR(yaw, bf, 1e-6);
+    EXPECT_NEAR(pitch, pf, 1e-6);
+    const double h = 1e-6;
+    Eigen::Matrix3d J;
+    J.col(0) = (point(rf + h, bf, pf) - point(rf - h, bf, pf)) / (2 * h);
+    J.col(1) = (point(rf, bf + h, pf) - point(rf, bf - h, pf)) / (2 * h);
+    J.col(2) = (point(rf, bf, pf + h) - point(rf, bf, pf - h)) / (2 * h);
+    const Eigen::Matrix3d C =
+        J * Eigen::Vector3d(0.05 * 0.05, 0.01 * 0.01, 0.02 * 0.02).asDiagonal() * J.transpose();
+    EXPECT_LT((z[0].R - C).norm(), 1e-8) << z[0].R << "\n" << C;
 }
 
 // Without descriptors every candidate has E = 0: the association takes the smallest D, not
@@ -86,6 +147,7 @@ TEST(RangeBearingMeasurement, WithoutDescriptorsTheNearestGatedLandmarkIsTaken)
     CVisualLandmarksMap map;
     map.insertionOptions.E0 = 0.25;
     TRangeBearingNoise noise;
+    noise.std_range = 0.1;
     noise.std_bearing = 0.02;  // 6 cm across at 3 m: the gate D0 = 11.34 reaches 0.29 m
     auto fuse = [&](double r, double b, int id) {
         const auto z = measurementsFromBearingRange(observation({{r, b, double(id)}}), noise);

@@ -13,6 +13,7 @@
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt/system/filesystem.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
+#include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
@@ -147,9 +148,11 @@ void OmniFastSLAMApp::Impl::loadConfig()
 
 void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
 {
-    const auto image = sf.getObservationBySensorLabelAs<mrpt::obs::CObservationImage::Ptr>(imageLabel);
+    using core::ObservationSelector;
+    const auto image = ObservationSelector::firstIn<mrpt::obs::CObservationImage>(sf, imageLabel);
     const bool hasBearings = static_cast<bool>(
-        sf.getObservationBySensorLabel(filterOptions.bearings_label));
+        ObservationSelector::firstIn<mrpt::obs::CObservationBearingRange>(
+            sf, filterOptions.bearings_label));
     if (image) framesWithImages++;
     if (input == TInput::Bearings || (input == TInput::Auto && hasBearings)) return;
     if (!image) return;
@@ -166,7 +169,9 @@ void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
                                       : std::string()) +
             ": " + core::oneLineMessage(e));
     }
-    sf.eraseByLabel(filterOptions.bearings_label);
+    // the image's bearings replace any the frame had
+    ObservationSelector::of<mrpt::obs::CObservationBearingRange>(filterOptions.bearings_label)
+        .eraseFrom(sf);
     sf.insert(bearings);
     image->unload();
 }
@@ -205,8 +210,12 @@ void OmniFastSLAMApp::run()
     core::RawlogReader reader(d.rawlog);
     core::ProgressReporter progress("omni-fastslam", 0, d.args.quiet);
 
+    using core::ObservationSelector;
     core::ActionFrameSource source(
-        reader, {d.filterOptions.bearings_label, d.imageLabel}, d.motionModel,
+        reader,
+        {ObservationSelector::of<mrpt::obs::CObservationBearingRange>(d.filterOptions.bearings_label),
+         ObservationSelector::of<mrpt::obs::CObservationImage>(d.imageLabel)},
+        d.motionModel,
         d.robot.empty() ? std::vector<std::string>{} : std::vector<std::string>{d.robot + "_ODOM"});
     mrpt::poses::CPose2D odometry(d.start.pose);
     bool started = false;

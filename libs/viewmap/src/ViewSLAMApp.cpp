@@ -9,6 +9,7 @@
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/system/filesystem.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
+#include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/AtomicFile.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
@@ -144,7 +145,10 @@ void ViewSLAMApp::run()
            "# frame t view matches inliers estimated accepted phi beta sigma_phi sigma_beta "
            "nis\n";
 
-    core::ActionFrameSource source(reader, {d.imageLabel}, d.motionModel);
+    using core::ObservationSelector;
+    core::ActionFrameSource source(
+        reader, {ObservationSelector::of<mrpt::obs::CObservationImage>(d.imageLabel)},
+        d.motionModel);
     mrpt::poses::CPose2D odometry(d.start.pose);
     bool started = false;
     mrpt::obs::CActionCollection::Ptr actions;
@@ -152,7 +156,7 @@ void ViewSLAMApp::run()
     char line[512];
     while (source.next(actions, frame)) {
         const auto image =
-            frame->getObservationBySensorLabelAs<mrpt::obs::CObservationImage::Ptr>(d.imageLabel);
+            ObservationSelector::firstIn<mrpt::obs::CObservationImage>(*frame, d.imageLabel);
         const auto move = actions->getBestMovementEstimation();
         const auto [Q, u] = move->poseChange->getCovarianceAndMean();
         const double t = mrpt::Clock::toDouble(image ? image->timestamp

@@ -5,10 +5,10 @@
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose2D.h>
+#include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/RawlogReader.h>
 
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -18,16 +18,16 @@ namespace mrpt_vslam::core {
  *  (doc/data-formats.md):
  *  - format #1: each `CActionCollection` with the `CSensoryFrame` that follows it;
  *  - format #2 (observation-only): `CObservationOdometry` readings give the odometry, and every
- *    group of observations with the same timestamp that holds one of `step_labels` becomes a
+ *    group of observations with the same timestamp that holds one matching `steps` becomes a
  *    frame, with a `CActionRobotMovement2D` built from the odometry increment since the previous
  *    frame and `motion_model`. Frames before the first odometry reading are dropped.
  *
- *  Usage: `ActionFrameSource src(reader, {"OMNICAM_BEARINGS", "OMNICAM"}, motion);` then
- *  `while (src.next(acts, sf)) ...`.
+ *  Usage: `ActionFrameSource src(reader, {ObservationSelector::of<CObservationImage>("")},
+ *  motion);` then `while (src.next(acts, sf)) ...`.
  */
 class ActionFrameSource {
 public:
-    ActionFrameSource(RawlogReader& reader, std::set<std::string> step_labels,
+    ActionFrameSource(RawlogReader& reader, std::vector<ObservationSelector> steps,
                       const mrpt::obs::CActionRobotMovement2D::TMotionModelOptions& motion_model,
                       std::vector<std::string> odometry_labels = {});
 
@@ -49,7 +49,7 @@ private:
     bool haveOdometry() const;
 
     RawlogReader& m_reader;
-    std::set<std::string> m_step_labels;
+    std::vector<ObservationSelector> m_steps;
     mrpt::obs::CActionRobotMovement2D::TMotionModelOptions m_motion_model;
     std::vector<std::string> m_odometry_labels;  ///< empty: one robot, any label
     /// Per robot: the latest reading and the one at the last step.

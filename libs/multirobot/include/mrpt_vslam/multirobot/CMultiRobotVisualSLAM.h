@@ -58,14 +58,21 @@ class CMultiRobotVisualSLAM
               TTeamParticle, mrpt::bayes::particle_storage_mode::POINTER>::CParticleList> {
 public:
     struct TOptions : public mrpt::config::CLoadableOptions {
-        /// Robot names, the prefix of their sensor labels (ini: `robots = R1 R2`).
+        /// Robot names, the prefix of their sensor labels (ini: `robots = R1 R2`). One name: a
+        /// single-robot rawlog, whose observations are found by class (see sensor_label).
         std::vector<std::string> robots{"R1", "R2"};
+        /// One robot only: the sensor label of its landmark observations (range-bearing,
+        /// visual landmarks or, in the app, stereo images); empty: every observation of those
+        /// classes, whatever its label. Several robots: must be empty, their labels are
+        /// `<ROBOT>` + the suffixes below.
+        std::string sensor_label;
         /// Suffix of the landmark observations' labels: `<ROBOT>` + this.
         std::string landmarks_suffix = "_LANDMARKS";
         /// Suffix of the range-bearing observations' labels (`CObservationBearingRange`).
         std::string range_bearing_suffix = "_RB";
         /// Noise of range-bearing measurements (ini: range_bearing_std_range,
-        /// range_bearing_std_bearing_deg, range_bearing_std_height).
+        /// range_bearing_std_bearing_deg, range_bearing_std_pitch_deg: absent = the
+        /// observation's own sensor_std_*; range_bearing_std_height).
         TRangeBearingNoise range_bearing_noise;
         /// Suffix of the labels of range-bearing readings of other robots of the team
         /// (`CObservationBearingRange`, landmarkID = the seen robot's id below).
@@ -114,6 +121,12 @@ public:
         double smooth_paths_reanchor_gap = 0;
         double smooth_paths_reanchor_gain = 0.1;
 
+        /** The sensor label of robot k's observations for a label suffix: `<ROBOT>` + suffix
+         *  for a team, sensor_label for one robot ("": any label). */
+        std::string inputLabel(size_t k, const std::string& suffix) const
+        {
+            return robots.size() == 1 ? sensor_label : robots[k] + suffix;
+        }
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                 const std::string& section) override;
         void saveToConfigFile(mrpt::config::CConfigFileBase& cfg,

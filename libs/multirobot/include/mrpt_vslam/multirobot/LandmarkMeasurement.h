@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 
 #include <cmath>
-
+#include <optional>
 #include <vector>
 
 namespace mrpt_vslam::multirobot {
@@ -44,20 +44,25 @@ struct TMapMeasurement {
 std::vector<TLandmarkMeasurement> measurementsFromObservation(
     const mrpt::obs::CObservationVisualLandmarks& obs);
 
-/** Noise of a range-bearing measurement of a landmark in the robot's plane (`<ROBOT>_RB`, e.g.
- *  UTIAS MRCLAM): σ of range and bearing, and of the landmark's height, measured as 0. */
+/** Noise of range-bearing measurements (`CObservationBearingRange`). Each σ that is not set
+ *  here is the observation's own (`sensor_std_range`, `sensor_std_yaw`, `sensor_std_pitch`).
+ *  A pitch σ > 0 makes the model spatial (3D landmarks); with σ_pitch = 0 it is planar: the
+ *  pitch must be 0 and the landmark's height is measured as 0 with σ_height. */
 struct TRangeBearingNoise {
-    double std_range = 0.1;     ///< [m]
-    double std_bearing = 0.05;  ///< [rad]
-    double std_height = 0.01;   ///< [m]
+    std::optional<double> std_range;    ///< [m]
+    std::optional<double> std_bearing;  ///< [rad]
+    double std_height = 0.01;           ///< [m], planar model only
+    std::optional<double> std_pitch;    ///< [rad]
 };
 
-/** The measurements of a `CObservationBearingRange` (range, yaw = bearing, pitch = 0) in the
- *  robot frame: the point (r cos b, r sin b, 0) in the sensor frame, its covariance
- *  J diag(σ_r², σ_b²) Jᵀ (J = ∂(x, y)/∂(r, b)) and σ_h² in height, both moved by the sensor's
- *  pose on the robot; no descriptor (all zeros: association by the gate alone); track_id =
- *  landmarkID. \throw std::runtime_error naming the label for a non-finite or non-positive
- *  range, a non-finite bearing or a non-zero pitch. */
+/** The measurements of a `CObservationBearingRange` in the robot frame: the point
+ *  r (cos p cos b, cos p sin b, −sin p) in the sensor frame (MRPT's convention: pitch p positive
+ *  downwards), its covariance J diag(σ_r², σ_b², σ_p²) Jᵀ (J = ∂point/∂(r, b, p)), or in the
+ *  planar model J diag(σ_r², σ_b²) Jᵀ with σ_h² in height, both moved by the sensor's pose on
+ *  the robot (`sensorLocationOnRobot`); no descriptor (all zeros: association by the gate
+ *  alone); track_id = landmarkID. \throw std::runtime_error naming the label for a missing or
+ *  non-finite σ, a non-finite or non-positive range, a non-finite bearing or pitch, or a
+ *  non-zero pitch in the planar model. */
 std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
     const mrpt::obs::CObservationBearingRange& obs, const TRangeBearingNoise& noise);
 

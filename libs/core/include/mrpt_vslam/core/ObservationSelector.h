@@ -1,0 +1,71 @@
+#pragma once
+
+#include <mrpt/obs/CObservation.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/rtti/CObject.h>
+
+#include <string>
+#include <vector>
+
+namespace mrpt_vslam::core {
+
+/** Which observations an app takes as its input: those of one class (or derived from it) and,
+ *  when `label` is not empty, with that sensor label. An empty label takes every observation of
+ *  the class: in a rawlog a label is a filter, not a requirement.
+ *
+ *  Usage: `const auto sel = ObservationSelector::of<CObservationImage>(cfgLabel);` then
+ *  `sel.matches(*obs)`, or `ObservationSelector::allIn<CObservationImage>(frame, cfgLabel)`. */
+struct ObservationSelector {
+    const mrpt::rtti::TRuntimeClassId* cls = nullptr;
+    std::string label;
+
+    template <class T>
+    static ObservationSelector of(const std::string& label)
+    {
+        return {CLASS_ID(T), label};
+    }
+
+    bool matches(const mrpt::obs::CObservation& obs) const
+    {
+        return obs.GetRuntimeClass()->derivedFrom(cls) && (label.empty() || obs.sensorLabel == label);
+    }
+
+    /// Removes the observations of `frame` that match; returns how many.
+    size_t eraseFrom(mrpt::obs::CSensoryFrame& frame) const
+    {
+        size_t erased = 0;
+        for (auto it = frame.begin(); it != frame.end();) {
+            if (*it && matches(**it)) {
+                it = frame.erase(it);
+                erased++;
+            } else {
+                ++it;
+            }
+        }
+        return erased;
+    }
+
+    /// The observations of `frame` of class T with sensor label `label` (any label if empty).
+    template <class T>
+    static std::vector<typename T::Ptr> allIn(const mrpt::obs::CSensoryFrame& frame,
+                                              const std::string& label)
+    {
+        std::vector<typename T::Ptr> found;
+        const auto sel = of<T>(label);
+        for (const auto& obs : frame)
+            if (obs && sel.matches(*obs)) found.push_back(std::dynamic_pointer_cast<T>(obs));
+        return found;
+    }
+
+    /// The first of allIn(), or null.
+    template <class T>
+    static typename T::Ptr firstIn(const mrpt::obs::CSensoryFrame& frame, const std::string& label)
+    {
+        const auto sel = of<T>(label);
+        for (const auto& obs : frame)
+            if (obs && sel.matches(*obs)) return std::dynamic_pointer_cast<T>(obs);
+        return {};
+    }
+};
+
+}  // namespace mrpt_vslam::core
