@@ -13,6 +13,12 @@ std::string oneLineMessage(const std::exception& e)
         text = text.substr(pos + tag.size());
         text = text.substr(0, text.find('\n'));
     }
+    // MRPT's exception wrapper (e.g. around a particle filter step): a banner, the message, then
+    // the call stack
+    const std::string banner = "==== MRPT exception ====";
+    if (const auto pos = text.rfind(banner); pos != std::string::npos)
+        text = text.substr(pos + banner.size());
+    text = text.substr(0, text.find("Call stack backtrace:"));
     std::replace(text.begin(), text.end(), '\n', ' ');
     const auto first = text.find_first_not_of(" \t");
     const auto last = text.find_last_not_of(" \t");

@@ -20,3 +20,21 @@ TEST(ErrorMessage, JoinsTheLinesOfOtherExceptions)
 {
     EXPECT_EQ(oneLineMessage(std::runtime_error("a.rawlog: bad\nentry")), "a.rawlog: bad entry");
 }
+
+namespace {
+void failInsideMrpt()
+{
+    MRPT_START
+    throw std::runtime_error("R1_RB: no usable range noise");
+    MRPT_END
+}
+}  // namespace
+
+TEST(ErrorMessage, KeepsOnlyTheMessageOfAStdExceptionThatMrptRethrew)
+{
+    try {
+        failInsideMrpt();  // as CParticleFilter::executeOn() passes on a filter's error
+    } catch (const std::exception& e) {
+        EXPECT_EQ(oneLineMessage(e), "R1_RB: no usable range noise") << e.what();
+    }
+}

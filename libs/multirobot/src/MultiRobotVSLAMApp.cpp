@@ -346,7 +346,12 @@ void MultiRobotVSLAMApp::run()
         const double t = mrpt::Clock::toDouble(actions->begin()->get()->timestamp);
         if (d.steps == 0) d.filter->reset(d.startPoses, t);
         timer.startStep();
-        d.pf.executeOn(*d.filter, actions.get(), frame.get());
+        try {
+            d.pf.executeOn(*d.filter, actions.get(), frame.get());
+        } catch (const std::exception& e) {
+            throw std::runtime_error(d.rawlog + ": step " + std::to_string(d.steps) + ": " +
+                                     core::oneLineMessage(e));
+        }
         timer.endStep();
 
         for (size_t k = 0; k < robots.size(); k++) {

@@ -66,7 +66,7 @@ int64_t CCeilingLightsMap::addLandmark(const Eigen::Vector3d& mean, const Eigen:
 
 BearingMeasurementModel CCeilingLightsMap::measurementModel() const
 {
-    return BearingMeasurementModel(sensorOptions.sensor_in_robot, sensorOptions.measurement_model);
+    return BearingMeasurementModel(m_sensor_in_robot, sensorOptions.measurement_model);
 }
 
 void CCeilingLightsMap::internal_clear()

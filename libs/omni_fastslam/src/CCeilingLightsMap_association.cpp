@@ -23,6 +23,7 @@ bool isUsableCovariance(const Eigen::Matrix2d& Q)
 std::vector<TBearingMeasurement> CCeilingLightsMap::measurementsFromObservation(
     const mrpt::obs::CObservationBearingRange& obs) const
 {
+    m_sensor_in_robot = sensorOptions.sensor_in_robot.value_or(obs.sensorLocationOnRobot);
     Eigen::Matrix2d Q_sensor = Eigen::Vector2d(sensorOptions.sigma_phi * sensorOptions.sigma_phi,
                                                sensorOptions.sigma_theta * sensorOptions.sigma_theta)
                                    .asDiagonal();

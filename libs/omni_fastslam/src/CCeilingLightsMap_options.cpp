@@ -22,7 +22,10 @@ void CCeilingLightsMap::TSensorOptions::loadFromConfigFile(const mrpt::config::C
     measurement_model =
         cfg.read_enum<TMeasurementModelKind>(section, "measurement_model", measurement_model);
     const std::string pose = cfg.read_string(section, "sensor_in_robot", "");
-    if (!pose.empty()) sensor_in_robot.fromString(pose);
+    if (!pose.empty()) {
+        sensor_in_robot.emplace();
+        sensor_in_robot->fromString(pose);
+    }
     sigma_phi = mrpt::DEG2RAD(cfg.read_double(section, "sigma_phi_deg", mrpt::RAD2DEG(sigma_phi)));
     sigma_theta =
         mrpt::DEG2RAD(cfg.read_double(section, "sigma_theta_deg", mrpt::RAD2DEG(sigma_theta)));
@@ -44,7 +47,8 @@ void CCeilingLightsMap::TSensorOptions::dumpToTextStream(std::ostream& out) cons
     out << "\n----------- [CCeilingLightsMap::TSensorOptions] ------------ \n\n";
     dumpVar_string(out, "measurement_model",
                    mrpt::typemeta::TEnumType<TMeasurementModelKind>::value2name(measurement_model));
-    dumpVar_string(out, "sensor_in_robot", sensor_in_robot.asString());
+    dumpVar_string(out, "sensor_in_robot",
+                   sensor_in_robot ? sensor_in_robot->asString() : "(each observation's own)");
     dumpVar_double(out, "sigma_phi_deg", mrpt::RAD2DEG(sigma_phi));
     dumpVar_double(out, "sigma_theta_deg", mrpt::RAD2DEG(sigma_theta));
     dumpVar_double(out, "max_theta_deg", mrpt::RAD2DEG(max_theta));

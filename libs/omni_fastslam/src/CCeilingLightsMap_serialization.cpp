@@ -104,13 +104,13 @@ void readCandidate(CArchive& in, TCandidateLight& c, uint8_t version)
 }
 }  // namespace
 
-uint8_t CCeilingLightsMap::serializeGetVersion() const { return 1; }
+uint8_t CCeilingLightsMap::serializeGetVersion() const { return 2; }
 
 void CCeilingLightsMap::serializeTo(mrpt::serialization::CArchive& out) const
 {
     out << genericMapParams;
     // Options travel with the map: CMultiMetricMap copies (particle resampling) serialize it.
-    writePose3D(out, sensorOptions.sensor_in_robot);
+    writePose3D(out, m_sensor_in_robot);
     out << sensorOptions.sigma_phi << sensorOptions.sigma_theta << sensorOptions.max_theta
         << sensorOptions.max_horizontal_distance;
     const auto& io = insertionOptions;
@@ -125,6 +125,8 @@ void CCeilingLightsMap::serializeTo(mrpt::serialization::CArchive& out) const
     out << static_cast<uint8_t>(sensorOptions.measurement_model) << sensorOptions.max_abs_azimuth
         << io.max_cross_point_range << io.min_cross_point_range
         << static_cast<uint32_t>(io.hit_increment);
+    // version 2: whether that pose is the config's (else the last observation's)
+    out << sensorOptions.sensor_in_robot.has_value();
 
     out << m_step << m_next_landmark_id << m_next_candidate_id;
     out << static_cast<uint32_t>(m_landmarks.size());
@@ -137,9 +139,10 @@ void CCeilingLightsMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t
 {
     switch (version) {
         case 0:
-        case 1: {
+        case 1:
+        case 2: {
             in >> genericMapParams;
-            readPose3D(in, sensorOptions.sensor_in_robot);
+            readPose3D(in, m_sensor_in_robot);
             in >> sensorOptions.sigma_phi >> sensorOptions.sigma_theta >>
                 sensorOptions.max_theta >> sensorOptions.max_horizontal_distance;
             auto& io = insertionOptions;
@@ -172,6 +175,10 @@ void CCeilingLightsMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t
                     THROW_EXCEPTION_FMT("CCeilingLightsMap: invalid measurement model %u", kind);
                 sensorOptions.measurement_model = static_cast<TMeasurementModelKind>(kind);
             }
+            bool configured = true;  // before version 2 the pose was always the config's
+            if (version >= 2) in >> configured;
+            sensorOptions.sensor_in_robot.reset();
+            if (configured) sensorOptions.sensor_in_robot = m_sensor_in_robot;
 
             uint32_t n;
             in >> m_step >> m_next_landmark_id >> m_next_candidate_id >> n;

@@ -1,6 +1,7 @@
 #include <mrpt/bayes/CParticleFilter.h>
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
+#include <mrpt/core/format.h>
 #include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/maps/TMetricMapInitializer.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -13,11 +14,11 @@
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt/system/filesystem.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
-#include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/core/LiveView.h>
+#include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/OutputDirectory.h>
 #include <mrpt_vslam/core/PajdlaBaksteinCamera.h>
 #include <mrpt_vslam/core/ProgressReporter.h>
@@ -33,6 +34,7 @@
 #include <mrpt_vslam/omni_fastslam/OmniFastSLAMApp.h>
 #include <opencv2/core/version.hpp>
 
+#include <cstdio>
 #include <optional>
 #include <stdexcept>
 
@@ -230,7 +232,12 @@ void OmniFastSLAMApp::run()
             started = true;
         }
         timer.startStep();
-        d.pf.executeOn(*d.filter, actions.get(), frame.get());
+        try {
+            d.pf.executeOn(*d.filter, actions.get(), frame.get());
+        } catch (const std::exception& e) {
+            throw std::runtime_error(d.rawlog + ": step " + std::to_string(d.frames) + ": " +
+                                     core::oneLineMessage(e));
+        }
         timer.endStep();
 
         odometry = odometry + actions->getBestMovementEstimation()->poseChange->getMeanVal();
@@ -292,6 +299,20 @@ void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTi
     report.setCount("landmarks", best.map.landmarks().size());
     report.setCount("candidates", best.map.candidates().size());
     report.setTiming(timer);
+    // which camera pose the measurement model used: the config's, or the observations' own
+    const auto& pose = best.map.sensorPoseInUse();
+    const bool configured = best.map.sensorOptions.sensor_in_robot.has_value();
+    report.setResultJson(
+        "camera_pose_on_robot",
+        mrpt::format("{\"source\": \"%s\", \"x_y_z_m_yaw_pitch_roll_deg\": "
+                     "[%g, %g, %g, %g, %g, %g]}",
+                     configured ? "config" : "observations", pose.x(), pose.y(), pose.z(),
+                     mrpt::RAD2DEG(pose.yaw()), mrpt::RAD2DEG(pose.pitch()),
+                     mrpt::RAD2DEG(pose.roll())));
+    if (!args.quiet)
+        std::printf("omni-fastslam: camera pose on the robot from the %s: %s\n",
+                    configured ? "config (sensor_in_robot)" : "observations",
+                    pose.asString().c_str());
     if (best.associations.labelled() > 0) {
         // evaluation only: the rawlog gave landmark numbers (landmarkID), the filter ignored them
         report.setResult("labelled_associations", best.associations.labelled());

@@ -105,7 +105,10 @@ TEST(CCeilingLightsMap, CandidateDeletedAfterINotMisses)
 
 TEST(CCeilingLightsMap, CandidatePromotedNearTheTrueLight)
 {
-    CCeilingLightsMap map;
+    CCeilingLightsMap map;  // the paper's initialization: the best cross-point with Σ0
+    map.insertionOptions.refine_initialization = false;
+    map.insertionOptions.sigma0_xx = map.insertionOptions.sigma0_yy =
+        map.insertionOptions.sigma0_zz = 0.0025;
     const std::vector<Eigen::Vector3d> light{{3, 1, 6.5}};
     size_t promoted_at = 0;
     for (int k = 0; k < 14 && promoted_at == 0; k++) {

@@ -126,9 +126,10 @@ TEST(CCeilingLightsMap, CreatedFromIniThroughMultiMetricMap)
     ASSERT_TRUE(map);
 
     const auto& s = map->sensorOptions;
-    EXPECT_NEAR(s.sensor_in_robot.x(), 0.1, 1e-12);
-    EXPECT_NEAR(s.sensor_in_robot.z(), 1.5, 1e-12);
-    EXPECT_NEAR(s.sensor_in_robot.yaw(), M_PI / 2, 1e-12);
+    ASSERT_TRUE(s.sensor_in_robot.has_value());
+    EXPECT_NEAR(s.sensor_in_robot->x(), 0.1, 1e-12);
+    EXPECT_NEAR(s.sensor_in_robot->z(), 1.5, 1e-12);
+    EXPECT_NEAR(s.sensor_in_robot->yaw(), M_PI / 2, 1e-12);
     EXPECT_NEAR(s.sigma_phi, 0.5 * M_PI / 180, 1e-12);
     EXPECT_NEAR(s.sigma_theta, 0.75 * M_PI / 180, 1e-12);
     EXPECT_NEAR(s.max_theta, 70 * M_PI / 180, 1e-12);
@@ -151,7 +152,8 @@ TEST(CCeilingLightsMap, CreatedFromIniThroughMultiMetricMap)
     EXPECT_EQ(map->renderOptions.ellipsoid_quantiles, 2);
 }
 
-TEST(CCeilingLightsMap, DefaultsAreThePaperValues)
+// The paper's values, but Σ0 and the refined initialization (measured best, doc/omni-fastslam.md)
+TEST(CCeilingLightsMap, DefaultsAreTheRecommendedValues)
 {
     const CCeilingLightsMap map;
     const auto& io = map.insertionOptions;
@@ -160,9 +162,38 @@ TEST(CCeilingLightsMap, DefaultsAreThePaperValues)
     EXPECT_EQ(io.ncross_valid, 5u);
     EXPECT_NEAR(io.ang_min, 7 * M_PI / 180, 1e-15);
     EXPECT_EQ(io.d_min, 8.0);
-    EXPECT_EQ(io.sigma0_xx, 0.0025);
+    EXPECT_EQ(io.sigma0_xx, 0.1);
+    EXPECT_TRUE(io.refine_initialization);
     EXPECT_EQ(io.p_new_mahalanobis2, 64);
-    EXPECT_NEAR(map.sensorOptions.sensor_in_robot.z(), 1.8, 1e-15);
+    EXPECT_FALSE(map.sensorOptions.sensor_in_robot.has_value());  // the observations' own
+}
+
+// The camera pose comes from each observation, as in MRPT's own maps; a configured
+// sensor_in_robot overrides it. Both survive serialization (particle copies go through it).
+TEST(CCeilingLightsMap, CameraPoseIsTheObservationsUnlessConfigured)
+{
+    mrpt::obs::CObservationBearingRange obs;
+    obs.sensorLocationOnRobot = mrpt::poses::CPose3D(0.1, 0, 1.0, 0, 0, 0);
+    CCeilingLightsMap map;
+    map.measurementsFromObservation(obs);
+    EXPECT_NEAR(map.sensorPoseInUse().z(), 1.0, 1e-12);
+    EXPECT_NEAR(map.measurementModel().sensorInRobot().x(), 0.1, 1e-12);
+
+    CCeilingLightsMap configured;
+    configured.sensorOptions.sensor_in_robot = mrpt::poses::CPose3D(0, 0, 1.8, 0, 0, 0);
+    configured.measurementsFromObservation(obs);
+    EXPECT_NEAR(configured.sensorPoseInUse().z(), 1.8, 1e-12);
+
+    mrpt::io::CMemoryStream buf;
+    auto arch = mrpt::serialization::archiveFrom(buf);
+    arch << map << configured;
+    buf.Seek(0);
+    CCeilingLightsMap back, backConfigured;
+    arch >> back >> backConfigured;
+    EXPECT_FALSE(back.sensorOptions.sensor_in_robot.has_value());
+    EXPECT_NEAR(back.sensorPoseInUse().z(), 1.0, 1e-12);
+    ASSERT_TRUE(backConfigured.sensorOptions.sensor_in_robot.has_value());
+    EXPECT_NEAR(backConfigured.sensorOptions.sensor_in_robot->z(), 1.8, 1e-12);
 }
 
 TEST(CCeilingLightsMap, RejectsInvalidOptionsNamingTheKey)

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include <optional>
 #include <vector>
 
 namespace mrpt_vslam::omni_fastslam {
@@ -48,8 +49,10 @@ public:
         /// `spherical` (φ, θ of an upward camera, 3D landmarks) or `planar` (azimuth only,
         /// landmarks in the robot's plane; doc/omni-fastslam.md §12).
         TMeasurementModelKind measurement_model = TMeasurementModelKind::Spherical;
-        /// Camera pose on the robot; ini: `sensor_in_robot = [x y z yaw pitch roll]` (m, deg).
-        mrpt::poses::CPose3D sensor_in_robot{0, 0, 1.8, 0, 0, 0};
+        /// Camera pose on the robot, when set (ini: `sensor_in_robot = [x y z yaw pitch roll]`,
+        /// m, deg); unset (the default): each observation's own `sensorLocationOnRobot`, as
+        /// MRPT's maps take it.
+        std::optional<mrpt::poses::CPose3D> sensor_in_robot;
         /// Default σ of φ / θ [rad] (ini: `sigma_phi_deg`, `sigma_theta_deg`), used when the
         /// observation has neither per-measurement covariances nor sensor_std_yaw/pitch > 0.
         double sigma_phi = 1.0 * M_PI / 180;
@@ -76,8 +79,10 @@ public:
         /// ANG_min [rad] (ini: `ang_min_deg`, paper "1.22 rad (7°)": we use 7°).
         double ang_min = 7.0 * M_PI / 180;
         double d_min = 8.0;  ///< D_min: XY distance for type I landmarks [m]
-        /// Σ0 diagonal [m²] (paper gives a 2×2 diag(0.0025, 0.0025) for a 3D landmark).
-        double sigma0_xx = 0.0025, sigma0_yy = 0.0025, sigma0_zz = 0.0025;
+        /// Σ0 diagonal [m²]. The paper's diag(0.0025, 0.0025) (for a 3D landmark) is far below
+        /// the triangulation error of a light from rays a few degrees apart; 0.1 is what the
+        /// project measured best (doc/omni-fastslam.md, "Deviations").
+        double sigma0_xx = 0.1, sigma0_yy = 0.1, sigma0_zz = 0.1;
         /// Squared Mahalanobis distance of P_new = (1/2π)|Q|^{-1/2} exp(−p_new_mahalanobis2/2).
         double p_new_mahalanobis2 = 64;
         /// Counter decrement of an unseen candidate: 0 = the paper's I_not (number of iterations
@@ -87,8 +92,9 @@ public:
         unsigned int max_candidate_measurements = 20;
         /// Our addition (doc/omni-fastslam.md): after a promotion, fuse the candidate's
         /// measurements into the new landmark by EKF updates from the poses they were taken
-        /// from. false = the paper (mean = best cross-point, covariance Σ0).
-        bool refine_initialization = false;
+        /// from. false = the paper (mean = best cross-point, covariance Σ0); true is what the
+        /// project measured best.
+        bool refine_initialization = true;
         /// Cross-points farther than this along either ray are not valid [m] (0 = no limit);
         /// the planar mode's maximum range of a bearing-line crossing.
         double max_cross_point_range = 0;
@@ -140,8 +146,11 @@ public:
     /// Adds a landmark (e.g. a known map), returns its id. \param cov [m²]
     int64_t addLandmark(const Eigen::Vector3d& mean, const Eigen::Matrix3d& cov,
                         TLandmarkType type = TLandmarkType::TypeI, int counter = 1);
-    /// The measurement model with the current sensorOptions.sensor_in_robot.
+    /// The measurement model with the camera pose in use (sensorPoseInUse()).
     BearingMeasurementModel measurementModel() const;
+    /** The camera pose of the measurements being processed: sensorOptions.sensor_in_robot
+     *  when set, else that of the last observation given to measurementsFromObservation(). */
+    const mrpt::poses::CPose3D& sensorPoseInUse() const { return m_sensor_in_robot; }
     /// @}
 
     /// @name Measurements
@@ -250,6 +259,8 @@ protected:
         const mrpt::obs::CObservation& obs) const override;
 
 private:
+    /// See sensorPoseInUse(); set by each observation turned into measurements.
+    mutable mrpt::poses::CPose3D m_sensor_in_robot;
     std::vector<TLightLandmark> m_landmarks;
     std::vector<TCandidateLight> m_candidates;
     uint64_t m_step = 0;
