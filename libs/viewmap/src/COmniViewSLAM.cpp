@@ -96,21 +96,31 @@ std::unique_ptr<COmniViewSLAM> COmniViewSLAM::fromConfig(const mrpt::config::CCo
     core::UnifiedSphereCamera camera;
     camera.loadFromConfigFile(cfg, "Camera");
     // Only the rotation matters: the observation is a bearing and a relative heading.
+    bool configured = false;
     const auto deg = [&](const char* key) {
+        if (!cfg.keyExists("CameraOnRobot", key)) return 0.0;
+        configured = true;
         return mrpt::DEG2RAD(cfg.read_double("CameraOnRobot", key, 0));
     };
+    const double yaw = deg("yaw_deg"), pitch = deg("pitch_deg"), roll = deg("roll_deg");
     const Eigen::Matrix3d cameraToRobot =
-        mrpt::poses::CPose3D(0, 0, 0, deg("yaw_deg"), deg("pitch_deg"), deg("roll_deg"))
-            .getRotationMatrix()
-            .asEigen();
+        mrpt::poses::CPose3D(0, 0, 0, yaw, pitch, roll).getRotationMatrix().asEigen();
     OmniFeatureExtractor::TOptions features;
     features.loadFromConfigFile(cfg, "Features");
     OmniViewObserver::TOptions observer;
     observer.loadFromConfigFile(cfg, "ViewObserver");
     ViewInitializationPolicy::TOptions policy;
     policy.loadFromConfigFile(cfg, "ViewInitialization");
-    return std::make_unique<COmniViewSLAM>(
+    auto slam = std::make_unique<COmniViewSLAM>(
         options, OmniFeatureExtractor(camera, cameraToRobot, features), observer, policy, seed);
+    slam->m_camera_on_robot_configured = configured;
+    return slam;
+}
+
+void COmniViewSLAM::useCameraPoseOf(const mrpt::poses::CPose3D& camera_on_robot)
+{
+    if (m_camera_on_robot_configured) return;
+    m_extractor.setCameraToRobot(camera_on_robot.getRotationMatrix().asEigen());
 }
 
 void COmniViewSLAM::reset(const mrpt::math::TPose2D& start)

@@ -82,13 +82,15 @@ void OmniFeatureExtractor::TOptions::saveToConfigFile(mrpt::config::CConfigFileB
 OmniFeatureExtractor::OmniFeatureExtractor(const core::UnifiedSphereCamera& camera,
                                            const Eigen::Matrix3d& camera_to_robot,
                                            const TOptions& options)
-    : m_camera(camera),
-      m_camera_to_robot(camera_to_robot),
-      m_options(options),
-      m_detector(options.detector)
+    : m_camera(camera), m_options(options), m_detector(options.detector)
 {
     m_camera.validate();
     m_options.validate();
+    setCameraToRobot(camera_to_robot);
+}
+
+void OmniFeatureExtractor::setCameraToRobot(const Eigen::Matrix3d& camera_to_robot)
+{
     const double off = (camera_to_robot.transpose() * camera_to_robot - Eigen::Matrix3d::Identity())
                            .cwiseAbs()
                            .maxCoeff();
@@ -96,6 +98,7 @@ OmniFeatureExtractor::OmniFeatureExtractor(const core::UnifiedSphereCamera& came
         throw std::invalid_argument(
             "OmniFeatureExtractor: camera_to_robot must be a rotation matrix");
     }
+    m_camera_to_robot = camera_to_robot;
 }
 
 std::optional<core::USurfDescriptor::TDescriptor> OmniFeatureExtractor::orientedDescriptor(

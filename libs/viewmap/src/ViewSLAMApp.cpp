@@ -1,4 +1,5 @@
 #include <mrpt/core/bits_math.h>
+#include <mrpt/core/format.h>
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -9,11 +10,11 @@
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/system/filesystem.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
-#include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/AtomicFile.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/LiveView.h>
+#include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/OutputDirectory.h>
 #include <mrpt_vslam/core/ProgressReporter.h>
 #include <mrpt_vslam/core/RawlogReader.h>
@@ -169,6 +170,7 @@ void ViewSLAMApp::run()
         COmniViewSLAM::TStepResult r;
         timer.startStep();
         try {
+            if (image) d.slam->useCameraPoseOf(image->cameraPose);
             r = d.slam->processStep(u.asTPose(), Q.asEigen(), image ? &image->image : nullptr, t,
                                     image && image->image.isExternallyStored()
                                         ? image->image.getExternalStorageFile()
@@ -271,6 +273,21 @@ void ViewSLAMApp::Impl::writeOutputs(ViewSLAMApp& app, const core::RunTimer& tim
     report.setCount("observations_estimated", estimated);
     report.setCount("observations_accepted", accepted);
     report.setTiming(timer);
+    // which camera orientation the front-end used: the config's, or the images' own
+    const mrpt::poses::CPose3D rotation(
+        mrpt::math::CMatrixDouble33(slam->extractor().cameraToRobot()), mrpt::math::TPoint3D());
+    const char* source = slam->cameraOnRobotConfigured() ? "config" : "observations";
+    report.setResultJson(
+        "camera_orientation_on_robot",
+        mrpt::format("{\"source\": \"%s\", \"yaw_pitch_roll_deg\": [%g, %g, %g]}", source,
+                     mrpt::RAD2DEG(rotation.yaw()), mrpt::RAD2DEG(rotation.pitch()),
+                     mrpt::RAD2DEG(rotation.roll())));
+    if (!args.quiet)
+        std::printf("view-slam: camera orientation on the robot from the %s: yaw %g, pitch %g, "
+                    "roll %g deg\n",
+                    slam->cameraOnRobotConfigured() ? "config ([CameraOnRobot])" : source,
+                    mrpt::RAD2DEG(rotation.yaw()), mrpt::RAD2DEG(rotation.pitch()),
+                    mrpt::RAD2DEG(rotation.roll()));
     report.setResult("mean_sqrt_trace_Pvv", sqrtTrace.mean());
     report.setResult("final_sqrt_trace_Pvv",
                      std::sqrt(slam->ekf().robotCovariance().trace()));

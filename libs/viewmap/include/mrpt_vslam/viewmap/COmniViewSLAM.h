@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPose2D.h>
+#include <mrpt/poses/CPose3D.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/viewmap/CViewMap.h>
 #include <mrpt_vslam/viewmap/OmniFeatureExtractor.h>
@@ -83,8 +84,9 @@ class COmniViewSLAM {
                   const ViewInitializationPolicy::TOptions& policy, uint32_t seed);
 
     /** The filter of an `.ini` (doc/view-slam.md §6): [ViewSLAM] (TOptions), [Camera]
-     *  (core::UnifiedSphereCamera), [CameraOnRobot] (yaw_deg, pitch_deg, roll_deg), [Features],
-     *  [ViewObserver] and [ViewInitialization].
+     *  (core::UnifiedSphereCamera), [CameraOnRobot] (yaw_deg, pitch_deg, roll_deg: when any is
+     *  given, the camera's orientation for every image; else each image's own, see
+     *  useCameraPoseOf()), [Features], [ViewObserver] and [ViewInitialization].
      *  \throw std::invalid_argument naming the section and key of a bad value. */
     static std::unique_ptr<COmniViewSLAM> fromConfig(const mrpt::config::CConfigFileBase& cfg,
                                                      uint32_t seed);
@@ -99,6 +101,14 @@ class COmniViewSLAM {
     TStepResult processStep(const mrpt::math::TPose2D& increment, const Eigen::Matrix3d& Q,
                             const mrpt::img::CImage* image, double timestamp,
                             const std::string& image_file = {});
+
+    /** The camera's orientation on the robot for the next images: that of `camera_on_robot`
+     *  (an image's own `cameraPose`) unless the config's [CameraOnRobot] set it. Only the
+     *  rotation matters: the observations are a bearing and a relative heading. */
+    void useCameraPoseOf(const mrpt::poses::CPose3D& camera_on_robot);
+    /// Whether the config's [CameraOnRobot] sets the camera's orientation.
+    bool cameraOnRobotConfigured() const { return m_camera_on_robot_configured; }
+    const OmniFeatureExtractor& extractor() const { return m_extractor; }
 
     const ViewMapEKF& ekf() const { return m_ekf; }
     /// The view map with the EKF's current estimates.
@@ -119,6 +129,7 @@ class COmniViewSLAM {
     ViewMapEKF m_ekf;
     CViewMap m_map;
     double m_gate = 0;
+    bool m_camera_on_robot_configured = false;
 };
 
 }  // namespace mrpt_vslam::viewmap

@@ -117,6 +117,10 @@ class OmniFeatureExtractor {
 
     const TOptions& options() const { return m_options; }
     const core::UnifiedSphereCamera& camera() const { return m_camera; }
+    /// The rotation from the camera frame to the robot frame.
+    const Eigen::Matrix3d& cameraToRobot() const { return m_camera_to_robot; }
+    /// \throw std::invalid_argument if `camera_to_robot` is not a rotation matrix.
+    void setCameraToRobot(const Eigen::Matrix3d& camera_to_robot);
 
   private:
     core::UnifiedSphereCamera m_camera;
