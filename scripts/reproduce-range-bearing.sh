@@ -1,0 +1,267 @@
+#!/usr/bin/env bash
+# Peer comparison on range-bearing data made by MRPT's own tools (doc/results/range-bearing.md):
+#   1. stock simul-landmarks (share/mrpt-vslam/config/peer-comparison/simul-landmarks-noise-*.ini)
+#      writes one robot's rawlog (action / sensory-frame pairs: CActionRobotMovement2D +
+#      CObservationBearingRange) per noise level (low, medium, high range and bearing std) with
+#      landmark IDs kept and hidden (ID -1): 300 steps on a 7.2 m square, 40 landmarks, seed 1;
+#      its ground truth becomes NAME.groundtruth.tum and NAME.landmarks.txt beside NAME.rawlog;
+#   2. stock kf-slam (EKF, CRangeBearingKFSLAM2D, kf-slam-2d.ini with the rawlog's sensor noise;
+#      readings with an ID are associated by it, the others to the nearest landmark within a
+#      Mahalanobis gate) on each rawlog, timed; its printed poses and final 3D scene become a run
+#      folder (estimated_path.tum, map.txt);
+#   3. multirobot-vslam (multirobot-vslam/range-bearing.ini) on each rawlog, per seed, timed;
+#   4. vslam-eval on every run folder, and the table of both to doc/results/range-bearing.md (or
+#      $RESULTS): position RMSE, landmarks mapped vs true, landmark error mean (one-to-one
+#      matching within vslam-eval's 1.5 m), run time (wall clock of the process).
+# Writes rawlogs, run folders (metrics.json, paths.png, ...) and logs under
+# out/reproduce-range-bearing/ (or $OUT). Builds first (scripts/setup.sh). The kf-slam half takes
+# about 10 s (6 rawlogs, well under a second each).
+# Environment: OUT, SEEDS (multirobot-vslam seeds, default 1; several: the table has their mean),
+# NOISE_LEVELS (default "low medium high"), TOOLS (default "kf-slam multirobot-vslam"), RESULTS.
+set -euo pipefail
+REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+# the command line for the table, with the variables given to it
+COMMAND="$(for v in OUT SEEDS NOISE_LEVELS TOOLS RESULTS; do
+  [ -z "${!v+x}" ] || printf '%s=%q ' "$v" "${!v}"; done)scripts/reproduce-range-bearing.sh"
+source "$REPO_DIR/scripts/setup.sh"
+
+OUT="${OUT:-$REPO_DIR/out/reproduce-range-bearing}"
+BIN="$BUILD_DIR/bin"
+CONFIGS="$REPO_DIR/share/mrpt-vslam/config"
+PEER="$CONFIGS/peer-comparison"
+SEEDS="${SEEDS:-1}"
+NOISE_LEVELS="${NOISE_LEVELS:-low medium high}"
+TOOLS="${TOOLS:-kf-slam multirobot-vslam}"
+RESULTS="${RESULTS:-$REPO_DIR/doc/results/range-bearing.md}"
+OUT="$(mkdir -p "$OUT" && cd "$OUT" && pwd)"
+DATA="$OUT/data"
+mkdir -p "$DATA"
+
+# ini_value FILE KEY: the value of KEY (first occurrence, comments and spaces stripped)
+ini_value() {
+  awk -v k="$2" -F= '$1 ~ "^[ \t]*" k "[ \t]*$" { v = $2; sub(/\/\/.*/, "", v); gsub(/^[ \t]+|[ \t]+$/, "", v)
+    print v; exit }' "$1"
+}
+
+# ini_copy SRC DST KEY=VALUE...: SRC with each KEY's line replaced (every KEY must occur once)
+ini_copy() {
+  local src="$1" dst="$2"; shift 2
+  cp "$src" "$dst.tmp"
+  local kv key n
+  for kv in "$@"; do
+    key="${kv%%=*}"
+    n=$(grep -c -E "^[[:space:]]*$key[[:space:]]*=" "$dst.tmp" || true)
+    [ "$n" = 1 ] || { echo "$src: key $key found $n times, expected once" >&2; exit 1; }
+    awk -v k="$key" -v line="$key = ${kv#*=}" \
+      '$0 ~ "^[ \t]*" k "[ \t]*=" { print line; next } { print }' "$dst.tmp" > "$dst.tmp2"
+    mv "$dst.tmp2" "$dst.tmp"
+  done
+  mv "$dst.tmp" "$dst"
+}
+
+# --- 1. simulate: NAME.rawlog, NAME.groundtruth.tum, NAME.landmarks.txt, NAME.stamps.txt -------
+# The rawlog is CSensoryFrame, CActionCollection, CSensoryFrame, ... (simul-landmarks writes each
+# step's reading before the step's motion). Readers of pairs (kf-slam's
+# CRawlog::readActionObservationPair, rawlog-edit) skip the first frame and pair the motion of
+# step k with the reading of step k + 1: nSteps - 1 steps, the robot's true pose at reading k + 1
+# being row k + 1 of NAME.rawlog_ground_truth_robot_path.txt (x y z yaw pitch roll, one row per
+# reading). simul-landmarks 2.5.8 stamps the readings with the clock at simulation time (a few
+# microseconds apart): NAME.stamps.txt is rawlog-edit's list of them (6 decimals, as our TUM
+# files), and the ground truth and estimates use those stamps.
+simulate() {  # simulate NAME NOISE IDS(true|false)
+  local name="$1" noise="$2" ids="$3"
+  local ini="$DATA/$name.simul-landmarks.ini"
+  ini_copy "$PEER/simul-landmarks-noise-$noise.ini" "$ini" outFile="$name.rawlog" outDir=. \
+    sensorDetectsIDs="$ids"
+  rm -f "$DATA/$name.rawlog"*
+  (cd "$DATA" && simul-landmarks "$name.simul-landmarks.ini" < /dev/null > "$name.simul-landmarks.log")
+  # simul-landmarks prints an error and exits 0: check its files
+  local f
+  for f in "$name.rawlog" "$name.rawlog_ground_truth.txt" "$name.rawlog_ground_truth_robot_path.txt"; do
+    [ -s "$DATA/$f" ] || { echo "simul-landmarks wrote no $DATA/$f:" >&2
+      tail -5 "$DATA/$name.simul-landmarks.log" >&2; exit 1; }
+  done
+  rawlog-edit -i "$DATA/$name.rawlog" --list-timestamps --text-file-output "$DATA/$name.stamps.txt" \
+    -q > /dev/null 2>&1
+  local steps expected
+  steps=$(wc -l < "$DATA/$name.stamps.txt")
+  expected=$(( $(ini_value "$ini" nSteps) - 1 ))
+  [ "$steps" = "$expected" ] || { echo "$name: $steps readings stamped, expected $expected" >&2; exit 1; }
+  awk 'NR > 1 && $1 <= p { print FILENAME ": stamps not increasing at line " NR > "/dev/stderr"; exit 1 }
+       { p = $1 }' "$DATA/$name.stamps.txt"
+  # TUM: the pose of reading k (k >= 1) at the stamp of that reading; planar, so q = (0, 0,
+  # sin(yaw/2), cos(yaw/2)) (pitch and roll are 0)
+  awk 'NR == FNR { t[++n] = $1; next }
+       /^%/ || NF != 6 { next }
+       { if (++r == 1) next; if (r - 1 > n) exit 1
+         printf "%s %.9f %.9f %.9f 0 0 %.9f %.9f\n", t[r - 1], $1, $2, $3, sin($4 / 2), cos($4 / 2) }
+       END { if (r - 1 != n) { print FILENAME ": " r - 1 " poses for " n " stamps" > "/dev/stderr"; exit 1 } }' \
+    "$DATA/$name.stamps.txt" "$DATA/$name.rawlog_ground_truth_robot_path.txt" \
+    | { echo "# timestamp x y z qx qy qz qw"; cat; } > "$DATA/$name.groundtruth.tum"
+  # landmarks (CLandmarksMap::saveToTextFile): x y z, three other fields, the ID in column 7
+  awk 'BEGIN { print "# id x y z" } NF >= 7 { printf "%d %s %s %s\n", $7, $1, $2, $3 }' \
+    "$DATA/$name.rawlog_ground_truth.txt" > "$DATA/$name.landmarks.txt"
+}
+
+# --- 2. kf-slam --------------------------------------------------------------------------------
+# map.txt from kf-slam's last kf_state_N.3Dscene (gzip-compressed MRPT serialization): one
+# CEllipsoid2D per landmark, named by its index in the state vector, the robot's unnamed; each
+# starts with the CRenderizable header (0xFF, flags, u16 name length, name, RGBA, then the pose as
+# 6 little-endian float32: x y z yaw pitch roll). The covariances come from full_cov_N.txt (the
+# full state covariance, landmark i at rows 3 + 2i, 4 + 2i).
+SCENE_TO_MAP='
+use strict; use warnings;
+my ($scene, $cov) = @ARGV;
+open(my $fh, "-|", "gzip", "-dc", $scene) or die "$scene: $!\n";
+binmode $fh; my $d = do { local $/; <$fh> }; close $fh or die "$scene: cannot decompress\n";
+my $tag = "\x9amrpt::opengl::CEllipsoid2D";
+my @lm; my $pos = 0;
+while (($pos = index($d, $tag, $pos)) >= 0) {
+  my $p = $pos + length($tag); $pos = $p;
+  my ($ver, $magic, $flags, $nlen) = unpack("C C C v", substr($d, $p, 5));
+  die "$scene: unexpected CRenderizable header at byte $p\n" unless $magic == 0xFF && ($flags & 0x80);
+  $p += 5; my $name = substr($d, $p, $nlen); $p += $nlen + 4;
+  my ($x, $y) = unpack("f< f<", substr($d, $p, 8));
+  next if $name eq "";
+  die "$scene: landmark ellipse \"$name\" out of order\n" unless $name eq scalar(@lm);
+  push @lm, [$x, $y];
+}
+open(my $ch, "<", $cov) or die "$cov: $!\n";
+my @C = map { [split] } grep { /\S/ && !/^%/ } <$ch>;
+die sprintf("%s: %d rows, expected 3 + 2 x %d landmarks\n", $cov, scalar(@C), scalar(@lm))
+  unless @C == 3 + 2 * @lm;
+print "# id x y z cxx cxy cxz cyy cyz czz\n";
+for my $i (0 .. $#lm) {
+  my $k = 3 + 2 * $i;
+  printf "%d %.6f %.6f 0 %.9g %.9g 0 %.9g 0 0\n", $i, @{$lm[$i]}, $C[$k][$k], $C[$k][$k + 1],
+    $C[$k + 1][$k + 1];
+}'
+
+run_kf_slam() {  # run_kf_slam NAME NOISE
+  local name="$1" noise="$2"
+  local dir="$OUT/kf-slam/$name" sim="$PEER/simul-landmarks-noise-$noise.ini"
+  local steps=$(( $(ini_value "$sim" nSteps) - 1 ))
+  mkdir -p "$dir"
+  rm -f "$dir"/*.tum "$dir/map.txt" "$dir/metrics.json"
+  ini_copy "$PEER/kf-slam-2d.ini" "$dir/kf-slam.ini" logOutput_dir="$dir/kf-slam-out" \
+    SAVE_LOG_FREQUENCY=$(( steps - 1 )) std_sensor_range="$(ini_value "$sim" stdRange)" \
+    std_sensor_yaw_deg="$(ini_value "$sim" stdYaw_deg)"
+  local t0=$EPOCHREALTIME
+  kf-slam "$dir/kf-slam.ini" "$DATA/$name.rawlog" < /dev/null > "$dir/kf-slam.log" 2>&1
+  local t1=$EPOCHREALTIME
+  grep -q 'KF-SLAM finished' "$dir/kf-slam.log" ||
+    { echo "kf-slam did not finish on $name:" >&2; tail -5 "$dir/kf-slam.log" >&2; exit 1; }
+  # estimated path: the "Mean pose: (x,y,phideg)" line printed after each step (1 mm, 0.01 deg),
+  # step k at the stamp of reading k + 1
+  grep -o 'Mean pose: ([^)]*)' "$dir/kf-slam.log" |
+    sed 's/^Mean pose: (\([^,]*\),\([^,]*\),\(.*\)deg)$/\1 \2 \3/' |
+    awk 'NR == FNR { t[++n] = $1; next }
+         { a = $3 * 3.14159265358979 / 360
+           printf "%s %s %s 0 0 0 %.9f %.9f\n", t[++k], $1, $2, sin(a), cos(a) }
+         END { if (k != n) { print "kf-slam printed " k " poses for " n " steps" > "/dev/stderr"; exit 1 } }' \
+      "$DATA/$name.stamps.txt" - | { echo "# timestamp x y z qx qy qz qw"; cat; } \
+      > "$dir/estimated_path.tum"
+  local last
+  last=$(printf '%05d' $(( steps - 1 )))
+  perl -e "$SCENE_TO_MAP" "$dir/kf-slam-out/kf_state_$last.3Dscene" \
+    "$dir/kf-slam-out/full_cov_$last.txt" > "$dir/map.txt"
+  awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f\n", b - a }' > "$dir/wall_s.txt"
+  printf '{"app": "kf-slam", "config": "%s", "rawlog": "%s", "ground_truth": "%s"}\n' \
+    "$dir/kf-slam.ini" "$DATA/$name.rawlog" "$DATA/$name.rawlog" > "$dir/run.json"
+  "$BIN/vslam-eval" "$dir" --ground-truth "$DATA/$name.rawlog" > "$dir/summary.txt"
+}
+
+# --- 3. multirobot-vslam -----------------------------------------------------------------------
+run_multirobot_vslam() {  # run_multirobot_vslam NAME SEED
+  local name="$1" seed="$2"
+  local dir="$OUT/multirobot-vslam/$name-seed$seed"
+  local t0=$EPOCHREALTIME
+  "$BIN/multirobot-vslam" "$CONFIGS/multirobot-vslam/range-bearing.ini" "$DATA/$name.rawlog" \
+    --seed "$seed" --out "$dir" --quiet
+  local t1=$EPOCHREALTIME
+  awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f\n", b - a }' > "$dir/wall_s.txt"
+  "$BIN/vslam-eval" "$dir" > "$dir/summary.txt"
+}
+
+# --- 4. table ----------------------------------------------------------------------------------
+# metrics DIR: "rmse estimated true matched error_mean" from vslam-eval's summary ("-" if absent)
+metrics() {
+  local s="$1/summary.txt" rmse="-" lm="- - - -"
+  if [ -f "$s" ]; then
+    rmse=$(sed -n 's/.*estimate: *ATE RMSE \([0-9.]*\) m.*/\1/p' "$s" | head -1)
+    lm=$(sed -n 's/^landmarks: *\([0-9]*\) true, \([0-9]*\) estimated: \([0-9]*\) matched.*error mean \([0-9.]*\) m.*/\2 \1 \3 \4/p' "$s")
+  fi
+  echo "${rmse:--} ${lm:-- - - -}"
+}
+
+# cells DIR...: " RMSE | landmarks | error | time |" of one tool (mean over the run folders when
+# several; "-" where a run has no number)
+cells() {
+  local d
+  for d in "$@"; do
+    echo "$(metrics "$d") $(cat "$d/wall_s.txt" 2>/dev/null || echo -)"
+  done | awk '{ for (i = 1; i <= 6; i++) if ($i != "-") { s[i] += $i; c[i]++ } }
+    END { for (i = 1; i <= 6; i++) v[i] = (NR > 0 && c[i] == NR) ? s[i] / NR : "-"
+          lm = v[2] == "-" ? "-" : sprintf("%.4g / %d (%.4g matched)", v[2], v[3], v[4])
+          printf " %s | %s | %s | %s |", v[1] == "-" ? "-" : sprintf("%.3f", v[1]), lm,
+            v[5] == "-" ? "-" : sprintf("%.3f", v[5]), v[6] == "-" ? "-" : sprintf("%.2f", v[6]) }'
+}
+
+# --- run -----------------------------------------------------------------------------------------
+NAMES=()
+for noise in $NOISE_LEVELS; do
+  for ids in kept hidden; do
+    name="range-bearing-ids-$ids-noise-$noise"
+    NAMES+=("$name:$noise:$ids")
+    simulate "$name" "$noise" "$([ "$ids" = kept ] && echo true || echo false)"
+  done
+done
+
+for entry in "${NAMES[@]}"; do
+  IFS=: read -r name noise ids <<< "$entry"
+  for tool in $TOOLS; do
+    case "$tool" in
+      kf-slam) run_kf_slam "$name" "$noise" ;;
+      multirobot-vslam) for seed in $SEEDS; do run_multirobot_vslam "$name" "$seed"; done ;;
+      *) echo "TOOLS: unknown tool $tool" >&2; exit 2 ;;
+    esac
+  done
+done
+
+mkdir -p "$(dirname "$RESULTS")"
+{
+  echo "# Range-bearing peer comparison: stock kf-slam and multirobot-vslam"
+  echo
+  echo "Made $(date -u '+%Y-%m-%d %H:%M UTC') on $(sed -n 's/^model name[[:space:]]*: *//p' /proc/cpuinfo | head -1)," \
+    "$(nproc) cores (load average $(cut -d' ' -f1-3 /proc/loadavg) at the end), MRPT" \
+    "$(dpkg-query -W -f='${Version}' mrpt-apps 2>/dev/null || echo '?'), by \`$COMMAND\`" \
+    "(tools run: $TOOLS; multirobot-vslam seeds: $SEEDS)."
+  echo
+  first="$PEER/simul-landmarks-noise-${NOISE_LEVELS%% *}.ini"
+  echo "Data: stock simul-landmarks (share/mrpt-vslam/config/peer-comparison/), one robot," \
+    "$(ini_value "$first" nSteps) readings ($(( $(ini_value "$first" nSteps) - 1 )) filtered) on a" \
+    "square path with $(awk -v n="$(ini_value "$first" squarePathLength)" 'BEGIN { print (n - 4) * 0.2 }') m" \
+    "sides (0.2 m per step, 4 steps per 90° turn)," \
+    "$(ini_value "$first" nLandmarks) landmarks, range ≤ $(ini_value "$first" maxSensorDistance) m," \
+    "$(ini_value "$first" fieldOfView_deg)° field of view, odometry noise" \
+    "$(ini_value "$first" odometryNoiseXY_std) m and $(ini_value "$first" odometryNoisePhi_std_deg)° per" \
+    "step, simulation seed $(ini_value "$first" random_seed). IDs kept: every reading carries its" \
+    "landmark's ID; hidden: ID −1, so each tool associates by itself (kf-slam: nearest neighbour" \
+    "within a $(ini_value "$PEER/kf-slam-2d.ini" data_assoc_IC_chi2_thres) Mahalanobis gate," \
+    "kf-slam-2d.ini says why). Position RMSE: vslam-eval's ATE, unaligned. Landmarks: mapped /" \
+    "true (matched one-to-one within 1.5 m); error: mean over the matched ones. Time: wall" \
+    "clock of the tool's process (reading, filtering, writing)."
+  echo
+  echo "| rawlog | IDs | noise (σ range, σ bearing) | kf-slam RMSE [m] | kf-slam landmarks | kf-slam landmark error [m] | kf-slam time [s] | multirobot-vslam RMSE [m] | multirobot-vslam landmarks | multirobot-vslam landmark error [m] | multirobot-vslam time [s] |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|"
+  for entry in "${NAMES[@]}"; do
+    IFS=: read -r name noise ids <<< "$entry"
+    sim="$PEER/simul-landmarks-noise-$noise.ini"
+    mrv=()
+    for seed in $SEEDS; do mrv+=("$OUT/multirobot-vslam/$name-seed$seed"); done
+    echo "| $name | $ids | $noise ($(ini_value "$sim" stdRange) m, $(ini_value "$sim" stdYaw_deg)°) |$(cells "$OUT/kf-slam/$name")$(cells "${mrv[@]}")"
+  done
+} > "$RESULTS"
+cat "$RESULTS"
+echo
+echo "Rawlogs and ground truth in $DATA; run folders in $OUT/kf-slam and $OUT/multirobot-vslam"
