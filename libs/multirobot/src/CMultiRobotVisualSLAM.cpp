@@ -310,7 +310,8 @@ std::vector<TLandmarkMeasurement> CMultiRobotVisualSLAM::measurementsOf(
     }
     for (const auto& obs : ObservationSelector::allIn<mrpt::obs::CObservationBearingRange>(
              frame, options.inputLabel(k, options.range_bearing_suffix))) {
-        const auto rb = measurementsFromBearingRange(*obs, options.range_bearing_noise);
+        const auto rb = measurementsFromBearingRange(*obs, options.range_bearing_noise,
+                                                     &lastStepStats.non_positive_ranges);
         z.insert(z.end(), rb.begin(), rb.end());
     }
     const size_t B = options.max_observations_per_robot;
@@ -320,7 +321,7 @@ std::vector<TLandmarkMeasurement> CMultiRobotVisualSLAM::measurementsOf(
 }
 
 std::vector<CMultiRobotVisualSLAM::TRobotReading> CMultiRobotVisualSLAM::robotReadingsOf(
-    size_t k, const mrpt::obs::CSensoryFrame& frame) const
+    size_t k, const mrpt::obs::CSensoryFrame& frame)
 {
     std::vector<TRobotReading> readings;
     if (options.robot_reading_ids.empty()) return readings;
@@ -328,7 +329,8 @@ std::vector<CMultiRobotVisualSLAM::TRobotReading> CMultiRobotVisualSLAM::robotRe
         options.robots[k] + options.robot_readings_suffix);
     if (!obs) return readings;
     const auto& ids = options.robot_reading_ids;
-    for (const auto& m : measurementsFromBearingRange(*obs, options.robot_reading_noise)) {
+    for (const auto& m : measurementsFromBearingRange(*obs, options.robot_reading_noise,
+                                                      &lastStepStats.non_positive_ranges)) {
         const auto seen = std::find(ids.begin(), ids.end(), m.track_id);
         const auto j = static_cast<size_t>(seen - ids.begin());
         if (seen != ids.end() && j != k) readings.push_back({j, m});

@@ -44,10 +44,12 @@ std::vector<TLandmarkMeasurement> measurementsFromObservation(
 }
 
 std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
-    const mrpt::obs::CObservationBearingRange& obs, const TRangeBearingNoise& noise)
+    const mrpt::obs::CObservationBearingRange& obs, const TRangeBearingNoise& noise,
+    size_t* non_positive)
 {
     const auto fail = [&](const std::string& what) {
-        throw std::runtime_error(obs.sensorLabel + ": " + what);
+        throw std::runtime_error(
+            (obs.sensorLabel.empty() ? "CObservationBearingRange" : obs.sensorLabel) + ": " + what);
     };
     const double sr = noise.std_range.value_or(obs.sensor_std_range);
     const double sb = noise.std_bearing.value_or(obs.sensor_std_yaw);
@@ -72,12 +74,15 @@ std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
         const auto failOn = [&](const std::string& what) {
             fail("measurement of landmark " + std::to_string(s.landmarkID) + " " + what);
         };
-        if (!std::isfinite(s.range) || !(s.range > 0))
-            failOn("has a non-finite or non-positive range");
+        if (!std::isfinite(s.range)) failOn("has a non-finite range");
         if (!std::isfinite(s.yaw)) failOn("has a non-finite bearing");
         if (!std::isfinite(s.pitch)) failOn("has a non-finite pitch");
         if (!spatial && s.pitch != 0)
             failOn("has a non-zero pitch, but no pitch noise (sensor_std_pitch = 0): planar model");
+        if (!(s.range > 0)) {
+            if (non_positive) (*non_positive)++;
+            continue;
+        }
         const double r = s.range, cb = std::cos(s.yaw), sb_ = std::sin(s.yaw);
         const double cp = std::cos(s.pitch), sp_ = std::sin(s.pitch);
         Eigen::Matrix3d J;  // ∂(x, y, z)/∂(r, b, p)

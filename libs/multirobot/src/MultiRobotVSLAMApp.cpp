@@ -29,6 +29,7 @@
 #include <opencv2/core/version.hpp>
 
 #include <bitset>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -75,7 +76,7 @@ struct MultiRobotVSLAMApp::Impl {
     std::unique_ptr<core::LiveView> window;  ///< --gui
 
     size_t steps = 0, measurements = 0, stereoFrames = 0, landmarkObservations = 0;
-    size_t robotReadings = 0;
+    size_t robotReadings = 0, nonPositiveRanges = 0;
 
     void loadConfig();
     void findGroundTruth();
@@ -362,6 +363,7 @@ void MultiRobotVSLAMApp::run()
         }
         d.measurements += d.filter->lastStepStats.measurements;
         d.robotReadings += d.filter->lastStepStats.robot_readings;
+        d.nonPositiveRanges += d.filter->lastStepStats.non_positive_ranges;
         progress.update(++d.steps);
         if (d.window)
             d.window->show([&](auto& scene) {
@@ -530,6 +532,10 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
     report.setCount("landmark_observations", static_cast<double>(landmarkObservations));
     report.setCount("measurements", static_cast<double>(measurements));
     report.setCount("robot_readings", static_cast<double>(robotReadings));
+    report.setCount("readings_with_non_positive_range", static_cast<double>(nonPositiveRanges));
+    if (nonPositiveRanges > 0 && !args.quiet)
+        std::printf("multirobot-vslam: %zu range-bearing readings with a range <= 0 left out\n",
+                    nonPositiveRanges);
     report.setCount("particles", static_cast<double>(filter->particlesCount()));
     report.setCount("landmarks", static_cast<double>(map.size()));
     if (filterOptions.map_along_path)

@@ -65,8 +65,8 @@ TEST(RangeBearingMeasurement, PointAndCovarianceMatchTheClosedForm)
 TEST(RangeBearingMeasurement, BadMeasurementsNameTheLabel)
 {
     const TRangeBearingNoise noise{0.1, 0.05, 0.01, {}};
-    for (const auto& obs : {observation({{std::nan(""), 0.1, -1}}), observation({{-1, 0.1, -1}}),
-                            observation({{1, std::nan(""), -1}})}) {
+    for (const auto& obs :
+         {observation({{std::nan(""), 0.1, -1}}), observation({{1, std::nan(""), -1}})}) {
         try {
             measurementsFromBearingRange(obs, noise);
             FAIL() << "accepted a bad measurement";
@@ -77,6 +77,13 @@ TEST(RangeBearingMeasurement, BadMeasurementsNameTheLabel)
     auto pitched = observation({{1, 0.1, -1}});
     pitched.sensedData[0].pitch = 0.2f;  // planar model: no pitch noise anywhere
     EXPECT_THROW(measurementsFromBearingRange(pitched, noise), std::runtime_error);
+    // a range <= 0 (noise on a landmark at the sensor) is left out and counted
+    size_t non_positive = 0;
+    const auto kept = measurementsFromBearingRange(observation({{-0.1, 0.1, 1}, {2, 0.1, 2}, {0, 0, 3}}),
+                                                   noise, &non_positive);
+    ASSERT_EQ(kept.size(), 1u);
+    EXPECT_EQ(kept[0].track_id, 2);
+    EXPECT_EQ(non_positive, 2u);
 }
 
 TEST(RangeBearingMeasurement, NoiseIsTheObservationsUnlessTheConfigSetsIt)

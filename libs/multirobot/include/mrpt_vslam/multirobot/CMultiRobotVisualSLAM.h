@@ -140,6 +140,7 @@ public:
         size_t created = 0;               ///< new landmarks, summed over particles
         size_t associated = 0;            ///< EKF updates, summed over particles
         size_t robot_readings = 0;        ///< readings of team robots used, all robots
+        size_t non_positive_ranges = 0;   ///< range-bearing readings left out (range ≤ 0)
     } lastStepStats;
 
     /** \param map_template options every particle's map starts with (must be empty)
@@ -215,8 +216,7 @@ private:
         TLandmarkMeasurement m;
     };
     /// Robot k's readings of the other robots of the team (`<ROBOT>_ROBOTS`); others dropped.
-    std::vector<TRobotReading> robotReadingsOf(size_t k,
-                                               const mrpt::obs::CSensoryFrame& frame) const;
+    std::vector<TRobotReading> robotReadingsOf(size_t k, const mrpt::obs::CSensoryFrame& frame);
     /// pfStandardProposal: multiplies each particle's weight by its robot readings' likelihood.
     void weighRobotReadings(size_t k, const std::vector<TRobotReading>& readings);
     Eigen::Vector3d drawGaussian(const Eigen::Matrix3d& L);

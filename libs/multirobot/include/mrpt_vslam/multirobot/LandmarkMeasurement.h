@@ -60,11 +60,13 @@ struct TRangeBearingNoise {
  *  downwards), its covariance J diag(σ_r², σ_b², σ_p²) Jᵀ (J = ∂point/∂(r, b, p)), or in the
  *  planar model J diag(σ_r², σ_b²) Jᵀ with σ_h² in height, both moved by the sensor's pose on
  *  the robot (`sensorLocationOnRobot`); no descriptor (all zeros: association by the gate
- *  alone); track_id = landmarkID. \throw std::runtime_error naming the label for a missing or
- *  non-finite σ, a non-finite or non-positive range, a non-finite bearing or pitch, or a
- *  non-zero pitch in the planar model. */
+ *  alone); track_id = landmarkID. A reading with a range ≤ 0 (noise on a very near landmark)
+ *  is left out and counted in `non_positive` when given.
+ *  \throw std::runtime_error naming the label for a missing or non-finite σ, a non-finite
+ *  range, bearing or pitch, or a non-zero pitch in the planar model. */
 std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
-    const mrpt::obs::CObservationBearingRange& obs, const TRangeBearingNoise& noise);
+    const mrpt::obs::CObservationBearingRange& obs, const TRangeBearingNoise& noise,
+    size_t* non_positive = nullptr);
 
 /** The (at most) B measurements with the smallest depth, the most precise for a stereo pair,
  *  in that order (ties: in the order given); all of them if B = 0 or fewer. */
