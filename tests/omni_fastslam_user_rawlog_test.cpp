@@ -2,14 +2,11 @@
 // observations (a hall whose camera is lower than the shipped config's), and the template on
 // both MRPT rawlog formats with every sensor label removed.
 #include <gtest/gtest.h>
-#include <mrpt/io/CFileGZOutputStream.h>
-#include <mrpt/obs/CObservationOdometry.h>
-#include <mrpt/serialization/CArchive.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
-#include <mrpt_vslam/core/RawlogReader.h>
 #include <mrpt_vslam/test/RunCommand.h>
 #include <mrpt_vslam/test/RunFiles.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
+#include <mrpt_vslam/test/UnlabelledRawlog.h>
 
 #include <cmath>
 #include <cstdio>
@@ -34,35 +31,6 @@ double meanHeight(const std::string& run)
     return map.landmarks.empty() ? std::nan("") : sum / static_cast<double>(map.size());
 }
 
-/** The shipped hall rewritten with every sensor label empty, in format #1 (the rawlog's own
- *  actions) or #2 (odometry readings integrated from them), bearings and ground-truth poses
- *  kept, images left out; its ground truth is the shipped hall's. */
-void writeUnlabelledHall(const std::string& rawlog, bool observationsOnly)
-{
-    mrpt::io::CFileGZOutputStream f(rawlog);
-    auto ar = mrpt::serialization::archiveFrom(f);
-    mrpt_vslam::core::RawlogReader reader(kHall + ".rawlog");
-    mrpt::poses::CPose2D odometry;
-    for (mrpt_vslam::core::TRawlogEntry e; reader.next(e);) {
-        if (!e.actions || !e.observations) continue;
-        mrpt::obs::CSensoryFrame frame;
-        for (const auto& obs : *e.observations) {
-            if (obs->sensorLabel == "OMNICAM") continue;
-            obs->sensorLabel.clear();
-            frame.insert(obs);
-        }
-        if (!observationsOnly) {
-            ar << *e.actions << frame;
-            continue;
-        }
-        odometry = odometry + e.actions->getBestMovementEstimation()->poseChange->getMeanVal();
-        mrpt::obs::CObservationOdometry odo;
-        odo.timestamp = (*frame.begin())->timestamp;
-        odo.odometry = odometry;
-        ar << odo;
-        for (const auto& obs : frame) ar << *obs;
-    }
-}
 }  // namespace
 
 // The hall simulated with the camera 1.0 m above the floor instead of 1.8 m; the observations
@@ -121,7 +89,10 @@ TEST(OmniFastSLAMUserRawlog, TemplateRunsOnBothFormatsWithoutLabels)
     for (const bool observationsOnly : {false, true}) {
         const std::string name = observationsOnly ? "format2" : "format1";
         const std::string rawlog = scratch.file(name + ".rawlog");
-        writeUnlabelledHall(rawlog, observationsOnly);
+        // the shipped hall without labels and without its images (bearings, ground truth kept)
+        mrpt_vslam::test::writeUnlabelledRawlog(
+            kHall + ".rawlog", rawlog, observationsOnly,
+            [](const mrpt::obs::CObservation& o) { return o.sensorLabel != "OMNICAM"; });
         const std::string out = scratch.file(name + "-run");
         const auto r = runCommand(std::string(MRPT_VSLAM_BIN_DIR "/omni-fastslam ") + kConfigs +
                                       "template.ini '" + rawlog + "' --seed 1 -q --out '" + out +

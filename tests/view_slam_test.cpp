@@ -2,14 +2,10 @@
 // and consistency against ground truth with both view-initialization policies, outputs,
 // reproducibility and errors; and the template on the sequence without labels, in both formats.
 #include <gtest/gtest.h>
-#include <mrpt/io/CFileGZOutputStream.h>
-#include <mrpt/obs/CObservationImage.h>
-#include <mrpt/obs/CObservationOdometry.h>
-#include <mrpt/serialization/CArchive.h>
-#include <mrpt_vslam/core/RawlogReader.h>
 #include <mrpt_vslam/test/RunCommand.h>
 #include <mrpt_vslam/test/RunFiles.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
+#include <mrpt_vslam/test/UnlabelledRawlog.h>
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -76,36 +72,6 @@ TEST_F(ViewSLAMApp, ShortSequenceIsAccurateAndConsistentWithBothPolicies)
     }
 }
 
-namespace {
-/** The shipped sequence with every sensor label empty and the images referred to by absolute
- *  path, in format #1 (its own actions) or #2 (odometry readings integrated from them). */
-void writeUnlabelledRooms(const std::string& rawlog, bool observationsOnly)
-{
-    mrpt::io::CFileGZOutputStream f(rawlog);
-    auto ar = mrpt::serialization::archiveFrom(f);
-    mrpt_vslam::core::RawlogReader reader(kRawlog);
-    mrpt::poses::CPose2D odometry;
-    for (mrpt_vslam::core::TRawlogEntry e; reader.next(e);) {
-        if (!e.actions || !e.observations) continue;
-        for (const auto& obs : *e.observations) {
-            obs->sensorLabel.clear();
-            if (const auto img = std::dynamic_pointer_cast<mrpt::obs::CObservationImage>(obs))
-                img->image.setExternalStorage(img->image.getExternalStorageFileAbsolutePath());
-        }
-        if (!observationsOnly) {
-            ar << *e.actions << *e.observations;
-            continue;
-        }
-        odometry = odometry + e.actions->getBestMovementEstimation()->poseChange->getMeanVal();
-        mrpt::obs::CObservationOdometry odo;
-        odo.timestamp = (*e.observations->begin())->timestamp;
-        odo.odometry = odometry;
-        ar << odo;
-        for (const auto& obs : *e.observations) ar << *obs;
-    }
-}
-}  // namespace
-
 // The template, no key changed, on the shipped sequence without any label, both formats.
 // Measured (seed 1): ATE 0.082 m against odometry 0.107 m, 7 views (omni-views.ini: 0.081 m,
 // 6 views).
@@ -116,7 +82,8 @@ TEST_F(ViewSLAMApp, TemplateRunsOnBothFormatsWithoutLabels)
     const std::string truth = MRPT_VSLAM_SOURCE_DIR "/datasets/omni-views/rooms";
     for (const bool observationsOnly : {false, true}) {
         const std::string name = observationsOnly ? "unlabelled2" : "unlabelled1";
-        writeUnlabelledRooms(out(name + ".rawlog"), observationsOnly);
+        mrpt_vslam::test::writeUnlabelledRawlog(kRawlog, out(name + ".rawlog"),
+                                                observationsOnly);
         const TCommandResult r = run(templ + " " + out(name + ".rawlog") + " --seed 1 -q --out " +
                                      out(name) + " --ground-truth " + truth);
         ASSERT_EQ(r.exit_code, 0) << name << ": " << r.out;
