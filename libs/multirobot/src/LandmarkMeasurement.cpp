@@ -1,3 +1,4 @@
+#include <mrpt/core/format.h>
 #include <mrpt/maps/CLandmarksMap.h>
 #include <mrpt/obs/CObservationVisualLandmarks.h>
 #include <mrpt_vslam/multirobot/LandmarkMeasurement.h>
@@ -56,7 +57,7 @@ std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
     const double sp = noise.std_pitch.value_or(obs.sensor_std_pitch);
     const auto requireStd = [&](double v, const char* field) {
         if (!(v > 0 && std::isfinite(v)))
-            fail(std::string("no usable ") + field + " (" + std::to_string(v) +
+            fail(std::string("no usable ") + field + " (" + mrpt::format("%g", v) +
                  "): set it in the observations or the config's *_std_* keys");
     };
     requireStd(sr, "range noise sensor_std_range");
