@@ -11,7 +11,7 @@
 #      folder (estimated_path.tum, map.txt);
 #   3. multirobot-vslam (multirobot-vslam/range-bearing.ini) on each rawlog, per seed, timed;
 #   4. vslam-eval on every run folder, and the table of both to doc/results/range-bearing.md (or
-#      $RESULTS): position RMSE, landmarks mapped vs true, landmark error mean (one-to-one
+#      $RESULTS): position RMSE (unaligned and SE(2)-aligned), landmarks mapped vs true, landmark error mean (one-to-one
 #      matching within vslam-eval's 1.5 m), run time (wall clock of the process).
 # Writes rawlogs, run folders (metrics.json, paths.png, ...) and logs under
 # out/reproduce-range-bearing/ (or $OUT). Builds first (scripts/setup.sh). The kf-slam half takes
@@ -184,27 +184,30 @@ run_multirobot_vslam() {  # run_multirobot_vslam NAME SEED
 }
 
 # --- 4. table ----------------------------------------------------------------------------------
-# metrics DIR: "rmse estimated true matched error_mean" from vslam-eval's summary ("-" if absent)
+# metrics DIR: "rmse aligned_rmse estimated true matched error_mean" from vslam-eval's summary
+# ("-" if absent)
 metrics() {
-  local s="$1/summary.txt" rmse="-" lm="- - - -"
+  local s="$1/summary.txt" rmse="-" aligned="-" lm="- - - -"
   if [ -f "$s" ]; then
     rmse=$(sed -n 's/.*estimate: *ATE RMSE \([0-9.]*\) m.*/\1/p' "$s" | head -1)
+    aligned=$(sed -n 's/.*estimate aligned: *ATE RMSE \([0-9.]*\) m.*/\1/p' "$s" | head -1)
     lm=$(sed -n 's/^landmarks: *\([0-9]*\) true, \([0-9]*\) estimated: \([0-9]*\) matched.*error mean \([0-9.]*\) m.*/\2 \1 \3 \4/p' "$s")
   fi
-  echo "${rmse:--} ${lm:-- - - -}"
+  echo "${rmse:--} ${aligned:--} ${lm:-- - - -}"
 }
 
-# cells DIR...: " RMSE | landmarks | error | time |" of one tool (mean over the run folders when
-# several; "-" where a run has no number)
+# cells DIR...: " RMSE | aligned RMSE | landmarks | error | time |" of one tool (mean over the run
+# folders when several; "-" where a run has no number)
 cells() {
   local d
   for d in "$@"; do
     echo "$(metrics "$d") $(cat "$d/wall_s.txt" 2>/dev/null || echo -)"
-  done | awk '{ for (i = 1; i <= 6; i++) if ($i != "-") { s[i] += $i; c[i]++ } }
-    END { for (i = 1; i <= 6; i++) v[i] = (NR > 0 && c[i] == NR) ? s[i] / NR : "-"
-          lm = v[2] == "-" ? "-" : sprintf("%.4g / %d (%.4g matched)", v[2], v[3], v[4])
-          printf " %s | %s | %s | %s |", v[1] == "-" ? "-" : sprintf("%.3f", v[1]), lm,
-            v[5] == "-" ? "-" : sprintf("%.3f", v[5]), v[6] == "-" ? "-" : sprintf("%.2f", v[6]) }'
+  done | awk '{ for (i = 1; i <= 7; i++) if ($i != "-") { s[i] += $i; c[i]++ } }
+    END { for (i = 1; i <= 7; i++) v[i] = (NR > 0 && c[i] == NR) ? s[i] / NR : "-"
+          lm = v[3] == "-" ? "-" : sprintf("%.4g / %d (%.4g matched)", v[3], v[4], v[5])
+          printf " %s | %s | %s | %s | %s |", v[1] == "-" ? "-" : sprintf("%.3f", v[1]),
+            v[2] == "-" ? "-" : sprintf("%.3f", v[2]), lm,
+            v[6] == "-" ? "-" : sprintf("%.3f", v[6]), v[7] == "-" ? "-" : sprintf("%.2f", v[7]) }'
 }
 
 # --- run -----------------------------------------------------------------------------------------
@@ -248,12 +251,15 @@ mkdir -p "$(dirname "$RESULTS")"
     "step, simulation seed $(ini_value "$first" random_seed). IDs kept: every reading carries its" \
     "landmark's ID; hidden: ID −1, so each tool associates by itself (kf-slam: nearest neighbour" \
     "within a $(ini_value "$PEER/kf-slam-2d.ini" data_assoc_IC_chi2_thres) Mahalanobis gate," \
-    "kf-slam-2d.ini says why). Position RMSE: vslam-eval's ATE, unaligned. Landmarks: mapped /" \
+    "kf-slam-2d.ini says why). Position RMSE: vslam-eval's ATE, unaligned, and after the SE(2)" \
+    "alignment to the truth that fits best (both tools start at the true pose, yet both paths" \
+    "come out turned by about the same angle: the aligned figure compares their shapes). Landmarks:" \
+    "mapped /" \
     "true (matched one-to-one within 1.5 m); error: mean over the matched ones. Time: wall" \
     "clock of the tool's process (reading, filtering, writing)."
   echo
-  echo "| rawlog | IDs | noise (σ range, σ bearing) | kf-slam RMSE [m] | kf-slam landmarks | kf-slam landmark error [m] | kf-slam time [s] | multirobot-vslam RMSE [m] | multirobot-vslam landmarks | multirobot-vslam landmark error [m] | multirobot-vslam time [s] |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "| rawlog | IDs | noise (σ range, σ bearing) | kf-slam RMSE [m] | kf-slam aligned RMSE [m] | kf-slam landmarks | kf-slam landmark error [m] | kf-slam time [s] | multirobot-vslam RMSE [m] | multirobot-vslam aligned RMSE [m] | multirobot-vslam landmarks | multirobot-vslam landmark error [m] | multirobot-vslam time [s] |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   for entry in "${NAMES[@]}"; do
     IFS=: read -r name noise ids <<< "$entry"
     sim="$PEER/simul-landmarks-noise-$noise.ini"

@@ -32,6 +32,7 @@ void EvalApp::printSummary(std::ostream& os) const
     for (const auto& r : result.robots) {
         const std::string robot = r.files.robot.empty() ? "" : r.files.robot + " ";
         line(robot + "estimate:", r.estimate.unaligned);
+        line(robot + "estimate aligned:", r.estimate.aligned);  // SE(2)-aligned to the truth
         if (r.odometry) line(robot + "odometry:", r.odometry->unaligned);
     }
     if (const auto& l = result.landmarks)
