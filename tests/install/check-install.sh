@@ -9,6 +9,7 @@ trap 'rm -rf "$scratch"' EXIT
 cmake --install "$build" --prefix "$scratch/prefix" >/dev/null
 cmake -S "$here/consumer" -B "$scratch/build" -DCMAKE_PREFIX_PATH="$scratch/prefix" >/dev/null
 cmake --build "$scratch/build" >/dev/null
-LD_LIBRARY_PATH="$scratch/prefix/lib" "$scratch/build/consumer"
+# the installed programs find the project's libraries by their RPATH alone
+env -u LD_LIBRARY_PATH "$scratch/build/consumer"
 test -f "$scratch/prefix/share/mrpt-vslam/config/omni-fastslam/sports-hall.ini"
-test -x "$scratch/prefix/bin/omni-fastslam"
+env -u LD_LIBRARY_PATH "$scratch/prefix/bin/omni-fastslam" --version | grep -q omni-fastslam
