@@ -90,11 +90,12 @@ TEST(CeilingLightDetector, RejectsBlobsOutsideTheAreaLimits)
     options.max_blob_area = 400;
     const CeilingLightDetector detector(cam, options);
     auto img = darkImage(cam);
-    *img.ptr<uint8_t>(100, 100) = 255;  // a hot pixel
-    img.filledRectangle(101, 300, 102, 301, mrpt::img::TColor(200, 200, 200));  // 4 px
-    img.filledRectangle(400, 100, 429, 129, mrpt::img::TColor(255, 255, 255));  // 900 px
-    img.filledRectangle(200, 200, 202, 201, mrpt::img::TColor(180, 180, 180));  // 6 px: kept
-    img.filledRectangle(300, 350, 319, 369, mrpt::img::TColor(180, 180, 180));  // 400 px: kept
+    // a hot pixel, a 4 px speck, a 900 px window; 6 px and 400 px lights
+    *img.ptr<uint8_t>(100, 100) = 255;
+    img.filledRectangle(101, 300, 102, 301, mrpt::img::TColor(200, 200, 200));
+    img.filledRectangle(400, 100, 429, 129, mrpt::img::TColor(255, 255, 255));
+    img.filledRectangle(200, 200, 202, 201, mrpt::img::TColor(180, 180, 180));
+    img.filledRectangle(300, 350, 319, 369, mrpt::img::TColor(180, 180, 180));
     const auto blobs = detector.detectBlobs(img);
     ASSERT_EQ(blobs.size(), 2u);
     std::vector<int> areas{blobs[0].area, blobs[1].area};

@@ -153,6 +153,8 @@ COmniViewSLAM::TStepResult COmniViewSLAM::processStep(const mrpt::math::TPose2D&
                                                       double timestamp,
                                                       const std::string& image_file)
 {
+    // a bad image is refused before anything changes
+    if (image && image->isEmpty()) throw std::invalid_argument("COmniViewSLAM: empty image");
     TStepResult result;
     TViewPolicyInputs in;
     in.ekf = &m_ekf;
