@@ -49,7 +49,10 @@ AppArguments AppArguments::parse(int argc, const char* const* argv, const std::s
         "", "ground-truth", "Ground truth NAME (default: found beside the rawlog).", false, "",
         "NAME", cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "No progress line or log output.", cmd, false);
-    TCLAP::SwitchArg gui("", "gui", "Live 3D view of the estimate while it runs.", cmd, false);
+    TCLAP::SwitchArg gui("", "gui",
+                         "Live 3D view of the estimate while it runs; at the end the window stays "
+                         "open until closed (unless --quiet).",
+                         cmd, false);
 
     AppArguments a;
     a.appName = appName;

@@ -2,7 +2,10 @@
 #include <mrpt_vslam/core/LiveView.h>
 #include <mrpt_vslam/core/UsageError.h>
 
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
+#include <thread>
 
 namespace mrpt_vslam::core {
 
@@ -26,6 +29,13 @@ void LiveView::show(const std::function<void(mrpt::opengl::COpenGLScene&)>& draw
     draw(*scene);
     m_impl->window->unlockAccess3DScene();
     m_impl->window->forceRepaint();
+}
+
+void LiveView::waitUntilClosed()
+{
+    std::printf("The run is complete: close the 3D window to exit.\n");
+    std::fflush(stdout);
+    while (m_impl->window->isOpen()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
 }
 
 }  // namespace mrpt_vslam::core

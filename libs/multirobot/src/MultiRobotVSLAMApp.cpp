@@ -400,6 +400,7 @@ void MultiRobotVSLAMApp::run()
             estimatedPaths[k] = asTrajectory(d.smoothed->paths[k]);
     }
     d.writeOutputs(*this, timer);
+    if (d.window && !d.args.quiet) d.window->waitUntilClosed();
 }
 
 std::string MultiRobotVSLAMApp::Impl::landmarkMergingJson(const CVisualLandmarksMap& map,

@@ -261,6 +261,7 @@ void OmniFastSLAMApp::run()
         if (estimatedPath.empty() || t > estimatedPath.timestamps.back())
             estimatedPath.push_back(t, to3D(p));
     d.writeOutputs(*this, timer);
+    if (d.window && !d.args.quiet) d.window->waitUntilClosed();
 }
 
 void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTimer& timer)

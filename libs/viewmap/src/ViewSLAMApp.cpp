@@ -234,6 +234,7 @@ void ViewSLAMApp::run()
     steps.commit();
     observations.commit();
     d.writeOutputs(*this, timer);
+    if (d.window && !d.args.quiet) d.window->waitUntilClosed();
 }
 
 void ViewSLAMApp::Impl::writeOutputs(ViewSLAMApp& app, const core::RunTimer& timer)
