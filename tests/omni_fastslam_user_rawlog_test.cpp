@@ -6,7 +6,7 @@
 #include <mrpt_vslam/test/RunCommand.h>
 #include <mrpt_vslam/test/RunFiles.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
-#include <mrpt_vslam/test/UnlabelledRawlog.h>
+#include <mrpt_vslam/test/RewrittenRawlog.h>
 
 #include <cmath>
 #include <cstdio>
@@ -90,8 +90,8 @@ TEST(OmniFastSLAMUserRawlog, TemplateRunsOnBothFormatsWithoutLabels)
         const std::string name = observationsOnly ? "format2" : "format1";
         const std::string rawlog = scratch.file(name + ".rawlog");
         // the shipped hall without labels and without its images (bearings, ground truth kept)
-        mrpt_vslam::test::writeUnlabelledRawlog(
-            kHall + ".rawlog", rawlog, observationsOnly,
+        mrpt_vslam::test::rewriteRawlog(
+            kHall + ".rawlog", rawlog, observationsOnly, true,
             [](const mrpt::obs::CObservation& o) { return o.sensorLabel != "OMNICAM"; });
         const std::string out = scratch.file(name + "-run");
         const auto r = runCommand(std::string(MRPT_VSLAM_BIN_DIR "/omni-fastslam ") + kConfigs +

@@ -5,7 +5,7 @@
 #include <mrpt_vslam/test/RunCommand.h>
 #include <mrpt_vslam/test/RunFiles.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
-#include <mrpt_vslam/test/UnlabelledRawlog.h>
+#include <mrpt_vslam/test/RewrittenRawlog.h>
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -82,8 +82,7 @@ TEST_F(ViewSLAMApp, TemplateRunsOnBothFormatsWithoutLabels)
     const std::string truth = MRPT_VSLAM_SOURCE_DIR "/datasets/omni-views/rooms";
     for (const bool observationsOnly : {false, true}) {
         const std::string name = observationsOnly ? "unlabelled2" : "unlabelled1";
-        mrpt_vslam::test::writeUnlabelledRawlog(kRawlog, out(name + ".rawlog"),
-                                                observationsOnly);
+        mrpt_vslam::test::rewriteRawlog(kRawlog, out(name + ".rawlog"), observationsOnly, true);
         const TCommandResult r = run(templ + " " + out(name + ".rawlog") + " --seed 1 -q --out " +
                                      out(name) + " --ground-truth " + truth);
         ASSERT_EQ(r.exit_code, 0) << name << ": " << r.out;

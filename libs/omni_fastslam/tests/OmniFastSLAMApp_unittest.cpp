@@ -15,6 +15,7 @@
 #include <mrpt_vslam/core/TumTrajectory.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/omni_fastslam/OmniFastSLAMApp.h>
+#include <mrpt_vslam/test/RewrittenRawlog.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
 
 #include <cmath>
@@ -65,23 +66,9 @@ TEST(OmniFastSLAMApp, ReadsObservationOnlyRawlogs)
     // The shipped rawlog rewritten in format #2: odometry readings + the frames' observations.
     const test::ScratchFolder scratch("OmniFastSLAMApp_format2");
     const auto rawlog = scratch.file("hall2.rawlog");
-    {
-        mrpt::io::CFileGZOutputStream f(rawlog);
-        auto ar = mrpt::serialization::archiveFrom(f);
-        core::RawlogReader reader(kRawlog);
-        mrpt::poses::CPose2D odometry;
-        for (core::TRawlogEntry e; reader.next(e);) {
-            if (!e.actions || !e.observations) continue;
-            odometry = odometry + e.actions->getBestMovementEstimation()->poseChange->getMeanVal();
-            mrpt::obs::CObservationOdometry odo;
-            odo.sensorLabel = "ODOM";
-            odo.timestamp = (*e.observations->begin())->timestamp;
-            odo.odometry = odometry;
-            ar << odo;
-            for (const auto& obs : *e.observations)
-                if (obs->sensorLabel != "OMNICAM") ar << *obs;  // bearings + ground truth
-        }
-    }
+    test::rewriteRawlog(kRawlog, rawlog, true, false, [](const mrpt::obs::CObservation& o) {
+        return o.sensorLabel != "OMNICAM";  // bearings + ground truth
+    });
     omni_fastslam::OmniFastSLAMApp app(args({kConfig, rawlog, "--out", scratch.file("out"),
                                              "--quiet", "--ground-truth",
                                              kSource + "/datasets/sports-hall/hall"}));

@@ -12,15 +12,14 @@
 
 namespace mrpt_vslam::test {
 
-/** A format-#1 rawlog `source` rewritten as a user's own might be: every sensor label empty,
- *  external images referred to by absolute path, only the observations `keep` accepts (all
- *  when empty); in format #1 (the source's own actions) or, with `observations_only`, format #2
- *  (`CObservationOdometry` readings integrated from those actions, stamped with each frame's
- *  first observation). */
-inline void writeUnlabelledRawlog(const std::string& source, const std::string& rawlog,
-                                  bool observations_only,
-                                  const std::function<bool(const mrpt::obs::CObservation&)>& keep =
-                                      {})
+/** A format-#1 rawlog `source` rewritten as a user's own might be: external images referred
+ *  to by absolute path, only the observations `keep` accepts (all when empty), every sensor
+ *  label emptied with `clear_labels`; in format #1 (the source's own actions) or, with
+ *  `observations_only`, format #2 (unlabelled `CObservationOdometry` readings integrated from
+ *  those actions, stamped with each frame's first observation). */
+inline void rewriteRawlog(const std::string& source, const std::string& rawlog,
+                          bool observations_only, bool clear_labels,
+                          const std::function<bool(const mrpt::obs::CObservation&)>& keep = {})
 {
     mrpt::io::CFileGZOutputStream f(rawlog);
     auto ar = mrpt::serialization::archiveFrom(f);
@@ -31,7 +30,7 @@ inline void writeUnlabelledRawlog(const std::string& source, const std::string& 
         mrpt::obs::CSensoryFrame frame;
         for (const auto& obs : *e.observations) {
             if (keep && !keep(*obs)) continue;
-            obs->sensorLabel.clear();
+            if (clear_labels) obs->sensorLabel.clear();
             if (const auto img = std::dynamic_pointer_cast<mrpt::obs::CObservationImage>(obs))
                 img->image.setExternalStorage(img->image.getExternalStorageFileAbsolutePath());
             frame.insert(obs);
