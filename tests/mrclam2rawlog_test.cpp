@@ -180,8 +180,8 @@ TEST_F(TinyDataset, WritesTheStepContract)
             4.0 - std::hypot(dx, dy), (-0.5 - (std::atan2(dy, dx) - 0.5)) * 180 / M_PI);
     EXPECT_NE(r.out.find(residuals), std::string::npos) << residuals << "\n" << r.out;
     // ... binned by its true range (4.8 m)
-    const std::string by_range = fmt(" Range residual by true range: 4-5 m %.3f +- 0.000 (1).",
-                                     4.0 - std::hypot(dx, dy));
+    const std::string by_range =
+        fmt(" Range residual by true range: 4-5 m %.3f +- 0.000 (1).", 4.0 - std::hypot(dx, dy));
     EXPECT_NE(r.out.find(residuals + by_range), std::string::npos) << by_range << "\n" << r.out;
 
     // The observation sequence, label by label.
@@ -263,8 +263,8 @@ TEST_F(TinyDataset, WritesTheStepContract)
 TEST_F(TinyDataset, DelaysTheCommands)
 {
     const double d = 0.25;
-    const TCommandResult r = runImporter(
-        *s_scratch, dataArgs() + " --out '" + out("late.rawlog") + "' --end 8 --command-delay 0.25");
+    const TCommandResult r = runImporter(*s_scratch, dataArgs() + " --out '" + out("late.rawlog") +
+                                                         "' --end 8 --command-delay 0.25");
     ASSERT_EQ(r.exit_code, 0) << r.out;
     int checked = 0;
     for (const auto& o : readObservations(out("late.rawlog"))) {
@@ -289,16 +289,13 @@ TEST_F(TinyDataset, DelaysTheCommands)
 // the last Vicon pose (5.4375 s) carried on by the commands. The dead reckoning file holds them.
 TEST_F(TinyDataset, WritesViconPosesAsOdometryOnRequest)
 {
-    const TCommandResult r =
-        runImporter(*s_scratch, dataArgs() + " --out '" + out("known.rawlog") +
-                                    "' --odometry-from-ground-truth");
+    const TCommandResult r = runImporter(*s_scratch, dataArgs() + " --out '" + out("known.rawlog") +
+                                                         "' --odometry-from-ground-truth");
     ASSERT_EQ(r.exit_code, 0) << r.out;
     const auto vicon1 = [](double tau) {
         return mrpt::poses::CPose2D(0.1 * tau, 2.0, heading1(tau));
     };
-    const auto vicon2 = [](double tau) {
-        return mrpt::poses::CPose2D(1 + 0.3 * tau, -1.0, 0.5);
-    };
+    const auto vicon2 = [](double tau) { return mrpt::poses::CPose2D(1 + 0.3 * tau, -1.0, 0.5); };
     std::map<std::pair<int, double>, mrpt::poses::CPose2D> got;
     for (const auto& o : readObservations(out("known.rawlog")))
         if (const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(o))
@@ -382,11 +379,11 @@ TEST_F(TinyDataset, MapsBarcodesAndHidesIdentities)
                 << r.out;
             // R2 at (1 + 0.3 · 3, −1) seen from R1 at (0.1 · 3, 2, heading1(3)): range 1, bearing 0
             const double dx = 1 + 0.3 * 3 - 0.1 * 3, dy = -1.0 - 2.0;
-            const std::string residuals = fmt(
-                "R1 reading robots: residuals vs Vicon range %.3f +- 0.000 m, bearing %.2f +- "
-                "0.00 deg (1 readings).",
-                1.0 - std::hypot(dx, dy),
-                mrpt::math::wrapToPi(0.0 - (std::atan2(dy, dx) - heading1(3))) * 180 / M_PI);
+            const std::string residuals =
+                fmt("R1 reading robots: residuals vs Vicon range %.3f +- 0.000 m, bearing %.2f +- "
+                    "0.00 deg (1 readings).",
+                    1.0 - std::hypot(dx, dy),
+                    mrpt::math::wrapToPi(0.0 - (std::atan2(dy, dx) - heading1(3))) * 180 / M_PI);
             EXPECT_NE(r.out.find(residuals), std::string::npos) << residuals << "\n" << r.out;
         } else {
             EXPECT_TRUE(seen.empty());
@@ -631,14 +628,14 @@ TEST(Mrclam2rawlogOnFullDataset, ReproducesTheShippedWindow)
                                "' --robots 1,2,3 --end 300 --command-delay 0.2 "
                                "--keep-robot-measurements -q";
     fs::create_directories(scratch.path() / "ids");
-    ASSERT_EQ(runImporter(scratch, common + " --out '" + scratch.file(name + ".rawlog") + "'")
-                  .exit_code,
-              0);
-    ASSERT_EQ(runImporter(scratch, common + " --keep-ids --out '" +
-                                       (scratch.path() / "ids" / (name + "-ids.rawlog")).string() +
-                                       "'")
-                  .exit_code,
-              0);
+    ASSERT_EQ(
+        runImporter(scratch, common + " --out '" + scratch.file(name + ".rawlog") + "'").exit_code,
+        0);
+    ASSERT_EQ(
+        runImporter(scratch, common + " --keep-ids --out '" +
+                                 (scratch.path() / "ids" / (name + "-ids.rawlog")).string() + "'")
+            .exit_code,
+        0);
     size_t compared = 0;
     for (const auto& entry : fs::directory_iterator(shipped)) {
         const std::string file = entry.path().filename().string();

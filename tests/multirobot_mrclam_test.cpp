@@ -12,10 +12,10 @@
 #include <mrpt_vslam/test/RunCommand.h>
 #include <mrpt_vslam/test/RunFiles.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
-#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 
@@ -47,7 +47,7 @@ std::string runMrclam(const ScratchFolder& scratch, const std::string& rawlog,
     const std::string out = scratch.file(name);
     const TCommandResult r = mrpt_vslam::test::runCommand(
         std::string(MRPT_VSLAM_BIN_DIR "/multirobot-vslam " MRPT_VSLAM_SOURCE_DIR
-                    "/share/mrpt-vslam/config/multirobot-vslam/mrclam.ini '") +
+                                       "/share/mrpt-vslam/config/multirobot-vslam/mrclam.ini '") +
             rawlog + "' -q --set ParticleFilter.sampleSize=500 --out '" + out + "' " + options,
         scratch.path() / (name + ".log"));
     EXPECT_EQ(r.exit_code, 0) << r.out;
@@ -111,9 +111,11 @@ TEST(MultiRobotVSLAMOnMrclam, RobotReadingsKeepTheTeamFarBelowOdometry)
     EXPECT_LT(teamMeans(with).first, 0.6 * teamMeans(without).first);
 
     const auto run = mrpt_vslam::test::readJson(shipped + "/run.json");
-    EXPECT_EQ(run["counts"]["robot_readings"].get<int>(), 300);  // R1-R3 reading each other in 300 s
-    EXPECT_EQ(mrpt_vslam::test::readJson(without + "/run.json")["counts"]["robot_readings"].get<int>(),
-              0);
+    EXPECT_EQ(run["counts"]["robot_readings"].get<int>(),
+              300);  // R1-R3 reading each other in 300 s
+    EXPECT_EQ(
+        mrpt_vslam::test::readJson(without + "/run.json")["counts"]["robot_readings"].get<int>(),
+        0);
     // every true landmark the robots saw is in the particle's map (within 0.5 m), identities
     // unread
     EXPECT_GE(run["results"]["landmark_merging"]["true_landmarks_mapped"].get<int>(), 10);
@@ -127,12 +129,12 @@ TEST(MultiRobotVSLAMOnMrclam, KnownCorrespondencesMapEachLandmarkOnce)
     // 0.5 m of its post. Measured with seeds 1-3: all 15 identities, 3549 readings fused, team
     // mean 0.19-0.25 m against odometry 0.88 m
     ScratchFolder scratch("mrclam-identities");
-    const std::string out = runMrclam(
-        scratch, kWindow + "-ids.rawlog", "run",
-        "--ground-truth '" + kWindow +
-            "' --seed 1 --set MappingApplication_visualLandmarksMap_00_insertOpts."
-            "associate_by_identity=true --set MultiRobotVSLAM.map_along_path=false "
-            "--set MultiRobotVSLAM.smooth_paths=false");
+    const std::string out =
+        runMrclam(scratch, kWindow + "-ids.rawlog", "run",
+                  "--ground-truth '" + kWindow +
+                      "' --seed 1 --set MappingApplication_visualLandmarksMap_00_insertOpts."
+                      "associate_by_identity=true --set MultiRobotVSLAM.map_along_path=false "
+                      "--set MultiRobotVSLAM.smooth_paths=false");
     const auto run = mrpt_vslam::test::readJson(out + "/run.json");
     const auto& ids = run["results"]["association_by_identity"];
     EXPECT_EQ(ids["identities"].get<int>(), 15);
@@ -175,15 +177,15 @@ TEST(MultiRobotVSLAMOnMrclam, SmoothedPathsAndTheMapAlongThemMeetTheTargets)
         for (const auto& robot : result.robots) {
             const std::string& r = robot.files.robot;
             mrpt_vslam::core::TEvalInputs filter;
-            filter.robots.push_back({r, out + "/filter_path_" + r + ".tum", "",
-                                     prefix + ".groundtruth_" + r + ".tum"});
+            filter.robots.push_back(
+                {r, out + "/filter_path_" + r + ".tum", "", prefix + ".groundtruth_" + r + ".tum"});
             const double filtered = mrpt_vslam::core::evaluateRun(filter, evalParamsOf(out))
-                                        .robots.at(0).estimate.unaligned.ate_rmse;
+                                        .robots.at(0)
+                                        .estimate.unaligned.ate_rmse;
             const double smoothed = robot.estimate.unaligned.ate_rmse;
             EXPECT_LT(smoothed, 0.15) << r << " seed " << seed;
             EXPECT_LT(smoothed, 0.75 * filtered) << r << " seed " << seed;
-            const double distance =
-                run["results"]["smoothing_odometry_scales"][r][0].get<double>();
+            const double distance = run["results"]["smoothing_odometry_scales"][r][0].get<double>();
             EXPECT_GT(distance, 0.8) << r;
             EXPECT_LT(distance, 0.97) << r;  // the commands overstate distances
         }

@@ -6,10 +6,10 @@
 #include <mrpt_vslam/test/RunFiles.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
 #include <mrpt_vslam/test/SingleRobotRangeBearingLog.h>
-#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -104,11 +104,11 @@ TEST_F(MultiRobotVSLAMApp, SingleRobotRangeBearingRawlogsRunFromTheTemplate)
 TEST_F(MultiRobotVSLAMApp, PreExtractedInputMatchesStereoInput)
 {
     const std::string frontend = std::string(MRPT_VSLAM_BIN_DIR "/stereo-frontend ") + kConfigs +
-                                 "stereo-frontend.ini " + kData + "team2-stereo-short.rawlog -q --out " +
-                                 out("lm/short");
+                                 "stereo-frontend.ini " + kData +
+                                 "team2-stereo-short.rawlog -q --out " + out("lm/short");
     ASSERT_EQ(mrpt_vslam::test::runCommand(frontend, s_scratch->path() / "fe.log").exit_code, 0);
-    ASSERT_EQ(run(kConfigs + "office-team-2.ini " + out("lm/short.rawlog") +
-                  " --seed 3 -q --out " + out("from_landmarks"))
+    ASSERT_EQ(run(kConfigs + "office-team-2.ini " + out("lm/short.rawlog") + " --seed 3 -q --out " +
+                  out("from_landmarks"))
                   .exit_code,
               0);
     ASSERT_EQ(run(kConfigs + "office-team-2.ini " + kData +
@@ -129,9 +129,9 @@ TEST_F(MultiRobotVSLAMApp, TeamOfTwoMeetsTheAccuracyBoundsOnEverySeed)
 {
     for (const int seed : {1, 2, 3}) {
         const std::string dir = out("t2_" + std::to_string(seed));
-        const TCommandResult r = run(kConfigs + "office-team-2.ini " + kData +
-                                     "team2.rawlog -q --seed " + std::to_string(seed) +
-                                     " --out " + dir);
+        const TCommandResult r =
+            run(kConfigs + "office-team-2.ini " + kData + "team2.rawlog -q --seed " +
+                std::to_string(seed) + " --out " + dir);
         ASSERT_EQ(r.exit_code, 0) << r.out;
         const auto metrics = json(dir + "/metrics.json");
         for (const char* name : {"R1", "R2"}) {

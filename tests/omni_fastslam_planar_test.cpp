@@ -26,8 +26,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <filesystem>
+#include <limits>
 
 using namespace mrpt_vslam;
 using mrpt::math::TPose2D;
@@ -103,7 +103,8 @@ TPlanarSequence makeSequence(uint32_t seed, double noise = 1)
     for (size_t k = 0; k < seq.truth.size(); k++) {
         const mrpt::poses::CPose2D pose(seq.truth[k]);
         if (k > 0)
-            reading = reading + odo.simulateIncrement(pose - mrpt::poses::CPose2D(seq.truth[k - 1]));
+            reading =
+                reading + odo.simulateIncrement(pose - mrpt::poses::CPose2D(seq.truth[k - 1]));
         seq.timestamps.push_back(1000.0 + 0.25 * static_cast<double>(k));
         seq.odometry.push_back(reading);
 
@@ -113,9 +114,9 @@ TPlanarSequence makeSequence(uint32_t seed, double noise = 1)
         obs.validCovariances = false;
         for (size_t i = 0; i < seq.landmarks.size(); i++) {
             const double phi = camera.predict(seq.landmarks[i], seq.truth[k])[0];
-            const double range = (seq.landmarks[i].head<2>() -
-                                  Eigen::Vector2d(seq.truth[k].x, seq.truth[k].y))
-                                     .norm();
+            const double range =
+                (seq.landmarks[i].head<2>() - Eigen::Vector2d(seq.truth[k].x, seq.truth[k].y))
+                    .norm();
             if (std::abs(phi) > 30 * kDeg || range > 5 || rng.drawUniform(0, 1) > 0.5) continue;
             mrpt::obs::CObservationBearingRange::TMeasurement m;
             m.yaw = static_cast<float>(phi + noise * rng.drawGaussian1D(0, 2 * kDeg));
@@ -220,7 +221,8 @@ std::vector<double> landmarkErrors(const TPlanarSequence& seq,
 }
 size_t countBelow(const std::vector<double>& v, double bound)
 {
-    return static_cast<size_t>(std::count_if(v.begin(), v.end(), [&](double e) { return e < bound; }));
+    return static_cast<size_t>(
+        std::count_if(v.begin(), v.end(), [&](double e) { return e < bound; }));
 }
 }  // namespace
 
@@ -335,8 +337,9 @@ TEST(OmniFastSLAMPlanar, AppRunsOneRobotOfATeamRawlog)
     app.run();
 
     // one step per R1 frame with measurements; R2 ignored
-    const auto frames = static_cast<size_t>(std::count_if(
-        seq.bearings.begin(), seq.bearings.end(), [](const auto& b) { return !b.sensedData.empty(); }));
+    const auto frames =
+        static_cast<size_t>(std::count_if(seq.bearings.begin(), seq.bearings.end(),
+                                          [](const auto& b) { return !b.sensedData.empty(); }));
     EXPECT_EQ(app.estimatedPath.size(), frames);
     for (const char* f : {"estimated_path_R1.tum", "odometry_path_R1.tum", "map.txt",
                           "final_map.gz", "final.3Dscene", "run.json", "metrics.json"})
@@ -347,8 +350,8 @@ TEST(OmniFastSLAMPlanar, AppRunsOneRobotOfATeamRawlog)
     ASSERT_FALSE(odo.empty());
     size_t k_last = seq.bearings.size() - 1;
     while (seq.bearings[k_last].sensedData.empty()) k_last--;
-    const auto last = (mrpt::poses::CPose2D(seq.truth.front()) +
-                       (seq.odometry[k_last] - seq.odometry.front()));
+    const auto last =
+        (mrpt::poses::CPose2D(seq.truth.front()) + (seq.odometry[k_last] - seq.odometry.front()));
     EXPECT_NEAR(odo.poses.back().x, last.x(), 1e-3);
     EXPECT_NEAR(odo.poses.back().y, last.y(), 1e-3);
 

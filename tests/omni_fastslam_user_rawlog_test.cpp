@@ -3,10 +3,10 @@
 // both MRPT rawlog formats with every sensor label removed.
 #include <gtest/gtest.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/test/RewrittenRawlog.h>
 #include <mrpt_vslam/test/RunCommand.h>
 #include <mrpt_vslam/test/RunFiles.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
-#include <mrpt_vslam/test/RewrittenRawlog.h>
 
 #include <cmath>
 #include <cstdio>
@@ -41,10 +41,11 @@ TEST(OmniFastSLAMUserRawlog, CameraPoseComesFromTheObservations)
 {
     const ScratchFolder scratch("omni-camera-pose");
     const std::string hall = scratch.file("low-camera");
-    const auto sim = runCommand(std::string(MRPT_VSLAM_BIN_DIR "/vslam-sim sports-hall --seed 1 "
-                                            "--no-images -q --set CameraOnRobot.z=1.0 -o '") +
-                                    hall + "'",
-                                scratch.path() / "sim.log");
+    const auto sim =
+        runCommand(std::string(MRPT_VSLAM_BIN_DIR "/vslam-sim sports-hall --seed 1 "
+                                                  "--no-images -q --set CameraOnRobot.z=1.0 -o '") +
+                       hall + "'",
+                   scratch.path() / "sim.log");
     ASSERT_EQ(sim.exit_code, 0) << sim.out;
     const auto run = [&](const std::string& name, const std::string& options) {
         const std::string out = scratch.file(name);
@@ -57,7 +58,8 @@ TEST(OmniFastSLAMUserRawlog, CameraPoseComesFromTheObservations)
     };
     double sum = 0;
     for (const int seed : {1, 2, 3}) {
-        const std::string out = run("seed" + std::to_string(seed), "--seed " + std::to_string(seed));
+        const std::string out =
+            run("seed" + std::to_string(seed), "--seed " + std::to_string(seed));
         const double z = meanHeight(out);
         std::printf("seed %d: mean light height %.3f m (true 6.5 m)\n", seed, z);
         EXPECT_NEAR(z, 6.5, 0.15) << "seed " << seed;
@@ -71,12 +73,13 @@ TEST(OmniFastSLAMUserRawlog, CameraPoseComesFromTheObservations)
     EXPECT_NEAR(sum / 3, 6.5, 0.1);
     // a configured pose overrides the observations' (and here is 0.8 m wrong)
     const std::string forced =
-        run("forced", "--seed 1 --set "
-                      "MappingApplication_ceilingLightsMap_00_creationOpts.sensor_in_robot="
-                      "'[0 0 1.8 0 0 0]'");
+        run("forced",
+            "--seed 1 --set "
+            "MappingApplication_ceilingLightsMap_00_creationOpts.sensor_in_robot="
+            "'[0 0 1.8 0 0 0]'");
     EXPECT_GT(meanHeight(forced), 7.1);
-    EXPECT_EQ(mrpt_vslam::test::readJson(forced + "/run.json")["results"]["camera_pose_on_robot"]
-                                                               ["source"],
+    EXPECT_EQ(mrpt_vslam::test::readJson(forced +
+                                         "/run.json")["results"]["camera_pose_on_robot"]["source"],
               "config");
 }
 
@@ -103,7 +106,8 @@ TEST(OmniFastSLAMUserRawlog, TemplateRunsOnBothFormatsWithoutLabels)
                               "final.3Dscene", "run.json", "metrics.json"})
             EXPECT_TRUE(fs::exists(out + "/" + f)) << name << ": " << f;
         const auto metrics = mrpt_vslam::test::readJson(out + "/metrics.json");
-        const double est = metrics["estimate"]["ate_rmse_m"], odo = metrics["odometry"]["ate_rmse_m"];
+        const double est = metrics["estimate"]["ate_rmse_m"],
+                     odo = metrics["odometry"]["ate_rmse_m"];
         std::printf("%s: ATE %.3f m (odometry %.3f m), %d lights\n", name.c_str(), est, odo,
                     metrics["landmarks"]["estimated_landmarks"].get<int>());
         EXPECT_LT(est, 0.4) << name;

@@ -2,13 +2,13 @@
 // and consistency against ground truth with both view-initialization policies, outputs,
 // reproducibility and errors; and the template on the sequence without labels, in both formats.
 #include <gtest/gtest.h>
+#include <mrpt_vslam/test/RewrittenRawlog.h>
 #include <mrpt_vslam/test/RunCommand.h>
 #include <mrpt_vslam/test/RunFiles.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
-#include <mrpt_vslam/test/RewrittenRawlog.h>
-#include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -17,7 +17,8 @@ using mrpt_vslam::test::TCommandResult;
 namespace {
 
 const std::string kRawlog = MRPT_VSLAM_SOURCE_DIR "/datasets/omni-views/rooms.rawlog";
-const std::string kConfig = MRPT_VSLAM_SOURCE_DIR "/share/mrpt-vslam/config/view-slam/omni-views.ini";
+const std::string kConfig =
+    MRPT_VSLAM_SOURCE_DIR "/share/mrpt-vslam/config/view-slam/omni-views.ini";
 
 class ViewSLAMApp : public ::testing::Test {
   protected:
@@ -53,9 +54,8 @@ TEST_F(ViewSLAMApp, ShortSequenceIsAccurateAndConsistentWithBothPolicies)
         const auto runJson = json(dir + "/run.json");
         const auto& res = runJson["results"];
         std::cout << policy << ": ATE " << est << " m (odometry " << odo << "), views "
-                  << runJson["counts"]["views"] << ", NEES in bounds "
-                  << res["nees_in_95_bounds"] << ", view RMSE " << res["view_position_rmse"]
-                  << "\n";
+                  << runJson["counts"]["views"] << ", NEES in bounds " << res["nees_in_95_bounds"]
+                  << ", view RMSE " << res["view_position_rmse"] << "\n";
         EXPECT_LT(est, 0.10) << policy;
         EXPECT_LT(est, odo) << policy;
         EXPECT_GE(res["nees_in_95_bounds"].get<double>(), 0.8) << policy;
@@ -63,9 +63,9 @@ TEST_F(ViewSLAMApp, ShortSequenceIsAccurateAndConsistentWithBothPolicies)
         EXPECT_GE(runJson["counts"]["views"].get<int>(), 2) << policy;
         EXPECT_EQ(runJson["seed"], 1);
         EXPECT_EQ(runJson["counts"]["frames"], 40);
-        for (const char* f : {"estimated_path.tum", "odometry_path.tum", "map.txt",
-                              "map_views.txt", "final_map.gz", "final.3Dscene", "steps.txt",
-                              "observations.txt", "config.ini"})
+        for (const char* f :
+             {"estimated_path.tum", "odometry_path.tum", "map.txt", "map_views.txt", "final_map.gz",
+              "final.3Dscene", "steps.txt", "observations.txt", "config.ini"})
             EXPECT_TRUE(fs::exists(dir + "/" + f)) << f;
         // One line per frame after the two header lines.
         EXPECT_EQ(mrpt_vslam::test::lineCount(bytes(dir + "/steps.txt")), 42);
@@ -122,9 +122,9 @@ TEST_F(ViewSLAMApp, BadInputGivesOneLineErrors)
     expectError(kConfig + " " + kRawlog + " -q --out " + out("e2") +
                     " --set ViewInitialization.policy=sometimes",
                 2, "policy must be traditional or information");
-    expectError(kConfig + " " + kRawlog + " -q --out " + out("e3") +
-                    " --set ViewSLAM.gate_probability=1.5",
-                2, "gate_probability");
+    expectError(
+        kConfig + " " + kRawlog + " -q --out " + out("e3") + " --set ViewSLAM.gate_probability=1.5",
+        2, "gate_probability");
     expectError(kConfig + " /nonexistent/x.rawlog -q --out " + out("e4"), 1,
                 "/nonexistent/x.rawlog: cannot open rawlog");
     // A rawlog without omnidirectional images.

@@ -1,8 +1,9 @@
 #include <gtest/gtest.h>
-#include <mrpt_vslam/test/ScratchFolder.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/core/TumTrajectory.h>
+#include <mrpt_vslam/test/RunFiles.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -14,8 +15,6 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
-
-#include <mrpt_vslam/test/RunFiles.h>
 
 using mrpt_vslam::test::readJson;
 
@@ -32,7 +31,8 @@ const mrpt_vslam::test::ScratchFolder& scratch()
 }
 
 /// A curvy planar path at 10 Hz, optionally shifted by (dx, dy).
-TumTrajectory makePath(double dx = 0, double dy = 0, size_t n = 60) {
+TumTrajectory makePath(double dx = 0, double dy = 0, size_t n = 60)
+{
     TumTrajectory p;
     for (size_t i = 0; i < n; i++) {
         const double a = 0.05 * i;
@@ -42,7 +42,8 @@ TumTrajectory makePath(double dx = 0, double dy = 0, size_t n = 60) {
     return p;
 }
 
-LandmarkFile landmarks(const std::vector<std::array<double, 3>>& xyz, int first_id) {
+LandmarkFile landmarks(const std::vector<std::array<double, 3>>& xyz, int first_id)
+{
     LandmarkFile f;
     for (const auto& p : xyz) {
         mrpt_vslam::core::TLandmark lm;
@@ -60,7 +61,8 @@ struct TRunResult {
 
 /// Under LeakSanitizer, ignores leaks inside the font and plugin loaders PLplot uses (third-party
 /// allocations kept until exit); leaks in our code are still reported.
-void suppressThirdPartyLeaks() {
+void suppressThirdPartyLeaks()
+{
     if (std::getenv("LSAN_OPTIONS")) return;  // the caller's choice wins
     const auto file = (scratch().path() / "lsan.supp").string();
     std::ofstream(file) << "leak:libfontconfig.so\nleak:libltdl.so\nleak:libcairo.so\n"
@@ -68,7 +70,8 @@ void suppressThirdPartyLeaks() {
     ::setenv("LSAN_OPTIONS", ("suppressions=" + file).c_str(), 1);
 }
 
-TRunResult runApp(const std::string& app, const std::string& args) {
+TRunResult runApp(const std::string& app, const std::string& args)
+{
     suppressThirdPartyLeaks();
     const auto errFile = (scratch().path() / "stderr.txt").string();
     const std::string cmd = std::string("\"") + MRPT_VSLAM_BIN_DIR "/" + app + "\" " + args +
@@ -85,7 +88,8 @@ TRunResult runApp(const std::string& app, const std::string& args) {
 
 TRunResult runEval(const std::string& args) { return runApp("vslam-eval", args); }
 
-void expectNonEmptyPng(const fs::path& file) {
+void expectNonEmptyPng(const fs::path& file)
+{
     ASSERT_TRUE(fs::exists(file)) << file;
     EXPECT_GT(fs::file_size(file), 1000u) << file;
     std::ifstream in(file, std::ios::binary);
@@ -97,7 +101,8 @@ void expectNonEmptyPng(const fs::path& file) {
 
 }  // namespace
 
-TEST(VslamEval, LooseFilesGiveTheKnownOffset) {
+TEST(VslamEval, LooseFilesGiveTheKnownOffset)
+{
     const auto dir = scratch().path() / "loose";
     fs::create_directories(dir);
     makePath().save((dir / "gt.tum").string());
@@ -144,7 +149,8 @@ TEST(VslamEval, LooseFilesGiveTheKnownOffset) {
     EXPECT_FALSE(fs::exists(out / "metrics.json.tmp"));
 }
 
-TEST(VslamEval, RunFolderWithRobotsAndRunJson) {
+TEST(VslamEval, RunFolderWithRobotsAndRunJson)
+{
     const auto dir = scratch().path() / "multi";
     const auto run = dir / "run";
     fs::create_directories(run);
@@ -170,7 +176,8 @@ TEST(VslamEval, RunFolderWithRobotsAndRunJson) {
     EXPECT_FALSE(fs::exists(run / "landmark_errors.png"));
 }
 
-TEST(VslamEval, MissingFileFailsWithOneLineNamingIt) {
+TEST(VslamEval, MissingFileFailsWithOneLineNamingIt)
+{
     const auto dir = scratch().path() / "missing";
     fs::create_directories(dir);
     makePath().save((dir / "gt.tum").string());
@@ -183,7 +190,8 @@ TEST(VslamEval, MissingFileFailsWithOneLineNamingIt) {
     EXPECT_FALSE(fs::exists(dir / "out" / "metrics.json"));
 }
 
-TEST(VslamEval, MalformedGroundTruthNamesFileAndLine) {
+TEST(VslamEval, MalformedGroundTruthNamesFileAndLine)
+{
     const auto dir = scratch().path() / "malformed";
     fs::create_directories(dir);
     makePath().save((dir / "est.tum").string());
@@ -195,7 +203,8 @@ TEST(VslamEval, MalformedGroundTruthNamesFileAndLine) {
         << r.stderr_text;
 }
 
-TEST(VslamEval, RunFolderWithoutGroundTruthIsAnError) {
+TEST(VslamEval, RunFolderWithoutGroundTruthIsAnError)
+{
     const auto run = scratch().path() / "nogt";
     fs::create_directories(run);
     makePath().save((run / "estimated_path.tum").string());
@@ -207,11 +216,13 @@ TEST(VslamEval, RunFolderWithoutGroundTruthIsAnError) {
 
 // vslam-plot: a table of two series with error bars becomes a PNG; a malformed line is a
 // one-line error naming file and line, and no image is left behind.
-TEST(VslamPlot, PlotsTablesAndRejectsMalformedOnes) {
+TEST(VslamPlot, PlotsTablesAndRejectsMalformedOnes)
+{
     const auto dir = scratch().path() / "plot";
     fs::create_directories(dir);
-    std::ofstream(dir / "ok.txt") << "# series x y low high\nM=500 1 0.5 0.4 0.6\n"
-                                     "M=500 10 0.3 0.2 0.4\nM=500 100 0.2 0.1 0.3\nB=8 1 0.6 0.5 0.7\n";
+    std::ofstream(dir / "ok.txt")
+        << "# series x y low high\nM=500 1 0.5 0.4 0.6\n"
+           "M=500 10 0.3 0.2 0.4\nM=500 100 0.2 0.1 0.3\nB=8 1 0.6 0.5 0.7\n";
     const auto ok = runApp("vslam-plot", (dir / "ok.txt").string() + " " +
                                              (dir / "ok.png").string() + " --log-x --y-from-zero");
     EXPECT_EQ(ok.exit_code, 0) << ok.stderr_text;
@@ -234,8 +245,8 @@ TEST(VslamPlot, PlotsTablesAndRejectsMalformedOnes) {
         << mixed.stderr_text;
 
     std::ofstream(dir / "neg.txt") << "A 0 1\nA 1 2\n";
-    const auto neg = runApp("vslam-plot", (dir / "neg.txt").string() + " " +
-                                              (dir / "neg.png").string() + " --log-x");
+    const auto neg = runApp(
+        "vslam-plot", (dir / "neg.txt").string() + " " + (dir / "neg.png").string() + " --log-x");
     EXPECT_EQ(neg.exit_code, 1);
     EXPECT_NE(neg.stderr_text.find("--log-x"), std::string::npos) << neg.stderr_text;
     EXPECT_FALSE(fs::exists(dir / "neg.png"));

@@ -69,10 +69,11 @@ TMrclamCommandLine TMrclamCommandLine::parse(int argc, const char* const* argv)
                                 false, 0, "S", cmd);
     TCLAP::SwitchArg keep_ids("", "keep-ids",
                               "landmarkID = subject number (default -1: identities hidden)", cmd);
-    TCLAP::SwitchArg keep_robots("", "keep-robot-measurements",
-                                 "Keep the readings of the other imported robots' barcodes, as R<n>_ROBOTS with "
-                                 "landmarkID = the seen robot (dropped by default)",
-                                 cmd);
+    TCLAP::SwitchArg keep_robots(
+        "", "keep-robot-measurements",
+        "Keep the readings of the other imported robots' barcodes, as R<n>_ROBOTS with "
+        "landmarkID = the seen robot (dropped by default)",
+        cmd);
     TCLAP::ValueArg<double> std_range("", "std-range",
                                       "sensor_std_range of the observations [m] (default 0.20)",
                                       false, 0.20, "M", cmd);
@@ -131,7 +132,8 @@ TMrclamCommandLine TMrclamCommandLine::parse(int argc, const char* const* argv)
     if (!(c.std_bearing > 0 && std::isfinite(c.std_bearing)))
         throw usage_error("--std-bearing-deg must be > 0");
     c.command_delay = command_delay.getValue();
-    if (!(std::abs(c.command_delay) <= 5)) throw usage_error("--command-delay must be within +-5 s");
+    if (!(std::abs(c.command_delay) <= 5))
+        throw usage_error("--command-delay must be within +-5 s");
     c.odometry_from_ground_truth = odometry_from_ground_truth.getValue();
     c.quiet = quiet.getValue();
     return c;

@@ -141,10 +141,9 @@ MrclamImporter::TStepReadings MrclamImporter::selectReadings(TImportSummary& sum
             }
             if (subject->second <= TMrclamDataset::kRobots &&
                 (!m_options.keep_robot_measurements ||
-                 std::none_of(m_dataset.robots.begin(), m_dataset.robots.end(),
-                              [&](const TMrclamRobot& robot) {
-                                  return robot.number == subject->second;
-                              }))) {
+                 std::none_of(
+                     m_dataset.robots.begin(), m_dataset.robots.end(),
+                     [&](const TMrclamRobot& robot) { return robot.number == subject->second; }))) {
                 summary.dropped_robot++;
                 continue;
             }
@@ -235,16 +234,16 @@ TImportSummary MrclamImporter::run()
                 (r.subject <= TMrclamDataset::kRobots ? of_robots : of_landmarks).push_back(r);
             TRobotCounts& counts = summary.robots[number];
             if (!of_landmarks.empty()) {
-                writer.writeObservation(bearingRange(robotName(number) + "_RB", stamp,
-                                                     of_landmarks, m_options.keep_ids));
-                addResiduals(k, of_landmarks, vicon, counts.range_residual,
-                             counts.bearing_residual, &counts.range_residual_by_range);
+                writer.writeObservation(bearingRange(robotName(number) + "_RB", stamp, of_landmarks,
+                                                     m_options.keep_ids));
+                addResiduals(k, of_landmarks, vicon, counts.range_residual, counts.bearing_residual,
+                             &counts.range_residual_by_range);
                 counts.measurements += of_landmarks.size();
                 counts.observations++;
             }
             if (!of_robots.empty()) {  // robots know each other's barcodes: ids always kept
-                writer.writeObservation(bearingRange(robotName(number) + "_ROBOTS", stamp,
-                                                     of_robots, true));
+                writer.writeObservation(
+                    bearingRange(robotName(number) + "_ROBOTS", stamp, of_robots, true));
                 addResiduals(k, of_robots, vicon, counts.robot_range_residual,
                              counts.robot_bearing_residual);
                 counts.robot_readings += of_robots.size();
@@ -293,9 +292,9 @@ std::string TImportSummary::describe(const std::string& out_rawlog, double secon
             "ground-truth poses, residuals vs Vicon range %.3f +- %.3f m, bearing %.2f +- %.2f "
             "deg (%zu readings).",
             number, c.measurements, c.observations, c.robot_readings, c.ground_truth_poses,
-            c.range_residual.mean(),
-            c.range_residual.std(), mrpt::RAD2DEG(c.bearing_residual.mean()),
-            mrpt::RAD2DEG(c.bearing_residual.std()), c.range_residual.n);
+            c.range_residual.mean(), c.range_residual.std(),
+            mrpt::RAD2DEG(c.bearing_residual.mean()), mrpt::RAD2DEG(c.bearing_residual.std()),
+            c.range_residual.n);
         if (c.range_residual_by_range.empty()) continue;
         std::string bins;
         for (const auto& [metres, s] : c.range_residual_by_range)

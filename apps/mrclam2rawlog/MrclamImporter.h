@@ -49,12 +49,12 @@ struct TRobotCounts {
 
 /// Counts of an import, for the summary and the tests.
 struct TImportSummary {
-    size_t steps = 0;                      ///< distinct measurement timestamps
-    size_t kept = 0;                       ///< readings written
-    size_t dropped_robot = 0;  ///< readings of robots' barcodes dropped (all, or of robots
-                               ///< not imported with keep_robot_measurements)
-    size_t dropped_unknown = 0;            ///< readings of barcodes not in Barcodes.dat, dropped
-    size_t outside_window = 0;             ///< readings before --start or after --end
+    size_t steps = 0;            ///< distinct measurement timestamps
+    size_t kept = 0;             ///< readings written
+    size_t dropped_robot = 0;    ///< readings of robots' barcodes dropped (all, or of robots
+                                 ///< not imported with keep_robot_measurements)
+    size_t dropped_unknown = 0;  ///< readings of barcodes not in Barcodes.dat, dropped
+    size_t outside_window = 0;   ///< readings before --start or after --end
     double first_step = 0, last_step = 0;  ///< [s] Unix time of the first and last step
     double dataset_start = 0;              ///< [s] first timestamp of the chosen robots' files
     std::map<int, TRobotCounts> robots;    ///< per robot number

@@ -24,10 +24,11 @@ void EvalApp::run()
 void EvalApp::printSummary(std::ostream& os) const
 {
     const auto line = [&](const std::string& what, const core::TTrajectoryMetrics& m) {
-        os << mrpt::format("%-22s ATE RMSE %.3f m (max %.3f m), heading RMSE %.2f deg, %.0f%% of "
-                           "frames under the heading threshold\n",
-                           what.c_str(), m.ate_rmse, m.ate_max, mrpt::RAD2DEG(m.heading_rmse),
-                           100 * m.heading_share_under_threshold);
+        os << mrpt::format(
+            "%-22s ATE RMSE %.3f m (max %.3f m), heading RMSE %.2f deg, %.0f%% of "
+            "frames under the heading threshold\n",
+            what.c_str(), m.ate_rmse, m.ate_max, mrpt::RAD2DEG(m.heading_rmse),
+            100 * m.heading_share_under_threshold);
     };
     for (const auto& r : result.robots) {
         const std::string robot = r.files.robot.empty() ? "" : r.files.robot + " ";
@@ -36,10 +37,11 @@ void EvalApp::printSummary(std::ostream& os) const
         if (r.odometry) line(robot + "odometry:", r.odometry->unaligned);
     }
     if (const auto& l = result.landmarks)
-        os << mrpt::format("landmarks:             %zu true, %zu estimated: %zu matched, %zu "
-                           "false (%zu duplicated), %zu missed; error mean %.3f m, max %.3f m\n",
-                           l->num_true, l->num_estimated, l->num_matched, l->num_false,
-                           l->num_duplicates, l->num_missed, l->error_mean, l->error_max);
+        os << mrpt::format(
+            "landmarks:             %zu true, %zu estimated: %zu matched, %zu "
+            "false (%zu duplicated), %zu missed; error mean %.3f m, max %.3f m\n",
+            l->num_true, l->num_estimated, l->num_matched, l->num_false, l->num_duplicates,
+            l->num_missed, l->error_mean, l->error_max);
 }
 
 }  // namespace mrpt_vslam::eval

@@ -11,7 +11,8 @@ namespace {
 /// Keeps TCLAP's --help text; records a parse error instead of printing a usage block.
 class ErrorCapturingOutput : public TCLAP::StdOutput {
   public:
-    void failure(TCLAP::CmdLineInterface&, TCLAP::ArgException& e) override {
+    void failure(TCLAP::CmdLineInterface&, TCLAP::ArgException& e) override
+    {
         error = e.argId().empty() ? e.error() : e.argId() + ": " + e.error();
     }
     std::string error;
@@ -21,7 +22,8 @@ class ErrorCapturingOutput : public TCLAP::StdOutput {
 class EvalCmdLine : public TCLAP::CmdLine {
   public:
     EvalCmdLine(const std::string& message, TCLAP::CmdLineOutput* output)
-        : TCLAP::CmdLine(message, ' ', mrpt_vslam::core::projectVersion()) {
+        : TCLAP::CmdLine(message, ' ', mrpt_vslam::core::projectVersion())
+    {
         delete _output;
         setOutput(output);
     }
@@ -29,7 +31,8 @@ class EvalCmdLine : public TCLAP::CmdLine {
 
 }  // namespace
 
-std::optional<core::TEvalParams> parseEvalCommandLine(int argc, char** argv) {
+std::optional<core::TEvalParams> parseEvalCommandLine(int argc, char** argv)
+{
     ErrorCapturingOutput output;
     EvalCmdLine cmd(
         "vslam-eval: trajectory and map metrics of a SLAM run against ground truth, with PNG "

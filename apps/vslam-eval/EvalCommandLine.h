@@ -1,8 +1,8 @@
 #pragma once
 
-#include <optional>
-
 #include <mrpt_vslam/core/EvalInputs.h>
+
+#include <optional>
 
 namespace mrpt_vslam::eval {
 

@@ -17,22 +17,26 @@ constexpr int kRobotColors[] = {PngFigure::kBlue, PngFigure::kGreen, PngFigure::
 
 int estimateColor(size_t robot) { return kRobotColors[robot % std::size(kRobotColors)]; }
 /// Odometry is orange for one robot, else the robot's colour (drawn dashed).
-int odometryColor(const core::TEvalResult& r, size_t robot) {
+int odometryColor(const core::TEvalResult& r, size_t robot)
+{
     return r.robots.size() == 1 ? PngFigure::kOrange : estimateColor(robot);
 }
 
-std::string labelOf(const core::TRobotResult& r, const std::string& what) {
+std::string labelOf(const core::TRobotResult& r, const std::string& what)
+{
     return r.files.robot.empty() ? what : r.files.robot + " " + what;
 }
 
 /// Growing [min, max] box of the points drawn.
 struct TBounds {
     double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
-    void add(double x, double y) {
+    void add(double x, double y)
+    {
         x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
     }
     /// Adds a relative margin (and a minimum span of 1 m) on every side.
-    void pad(double rel) {
+    void pad(double rel)
+    {
         const double mx = std::max(1.0, x1 - x0) * rel, my = std::max(1.0, y1 - y0) * rel;
         x0 -= mx, x1 += mx, y0 -= my, y1 += my;
     }
@@ -40,7 +44,8 @@ struct TBounds {
 
 /// XY of a path, optionally moved by the trajectory's SE(2) alignment.
 void pathXY(const core::TTrajectoryResult& t, bool aligned, std::vector<double>& x,
-            std::vector<double>& y) {
+            std::vector<double>& y)
+{
     for (const auto& p : t.path.poses) {
         const auto q = aligned ? core::applySE2(t.aligned.alignment, p) : p;
         x.push_back(q.x);
@@ -49,7 +54,8 @@ void pathXY(const core::TTrajectoryResult& t, bool aligned, std::vector<double>&
 }
 
 void landmarkXY(const std::vector<core::TLandmark>& lms, const mrpt::math::TPose2D& move,
-                std::vector<double>& x, std::vector<double>& y) {
+                std::vector<double>& x, std::vector<double>& y)
+{
     for (const auto& l : lms) {
         const auto q = core::applySE2(move, {l.position.x, l.position.y, 0, 0, 0, 0});
         x.push_back(q.x);
@@ -59,7 +65,8 @@ void landmarkXY(const std::vector<core::TLandmark>& lms, const mrpt::math::TPose
 
 }  // namespace
 
-void plotPaths(const core::TEvalResult& result, bool aligned, const std::string& file) {
+void plotPaths(const core::TEvalResult& result, bool aligned, const std::string& file)
+{
     // Aligning the map only makes sense with one robot (one transform).
     const bool alignMap = aligned && result.robots.size() == 1;
     const mrpt::math::TPose2D mapMove =
@@ -122,7 +129,8 @@ void plotPaths(const core::TEvalResult& result, bool aligned, const std::string&
     fig.commit();
 }
 
-void plotErrors(const core::TEvalResult& result, bool aligned, const std::string& file) {
+void plotErrors(const core::TEvalResult& result, bool aligned, const std::string& file)
+{
     double t0 = std::numeric_limits<double>::infinity(), t1 = -t0, eMax = 0, hMax = 0;
     const auto metricsOf =
         [aligned](const core::TTrajectoryResult& t) -> const core::TTrajectoryMetrics& {
@@ -174,7 +182,8 @@ void plotErrors(const core::TEvalResult& result, bool aligned, const std::string
     fig.commit();
 }
 
-void plotLandmarkErrors(const core::TLandmarkMetrics& metrics, const std::string& file) {
+void plotLandmarkErrors(const core::TLandmarkMetrics& metrics, const std::string& file)
+{
     const size_t n = metrics.matches.size();
     double yMax = metrics.cutoff;
     for (const auto& m : metrics.matches)

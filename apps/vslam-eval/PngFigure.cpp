@@ -19,7 +19,8 @@ constexpr int kPalette[PngFigure::kCount][3] = {
 }  // namespace
 
 PngFigure::PngFigure(const std::string& file, int width_px, int height_px)
-    : m_file(file), m_tmp(file + ".tmp") {
+    : m_file(file), m_tmp(file + ".tmp")
+{
     // PLplot exits the process on an unwritable file, so check first.
     if (!std::ofstream(m_tmp)) throw std::runtime_error(file + ": cannot create file for writing");
     m_pl = std::make_unique<plstream>();
@@ -33,7 +34,8 @@ PngFigure::PngFigure(const std::string& file, int width_px, int height_px)
     m_pl->schr(0, kCharScale);
 }
 
-PngFigure::~PngFigure() {
+PngFigure::~PngFigure()
+{
     if (!m_committed) {
         m_pl.reset();
         std::remove(m_tmp.c_str());
@@ -42,7 +44,8 @@ PngFigure::~PngFigure() {
 
 void PngFigure::axes(double vx0, double vx1, double vy0, double vy1, double x0, double x1,
                      double y0, double y1, const std::string& x_label, const std::string& y_label,
-                     const std::string& title, bool equal_aspect, bool log_x) {
+                     const std::string& title, bool equal_aspect, bool log_x)
+{
     // Equal aspect: the largest viewport in the region where one metre is as long on both axes.
     if (equal_aspect)
         m_pl->vpas(vx0, vx1, vy0, vy1, (y1 - y0) / (x1 - x0));
@@ -58,7 +61,8 @@ void PngFigure::axes(double vx0, double vx1, double vy0, double vy1, double x0, 
 }
 
 void PngFigure::line(const std::vector<double>& x, const std::vector<double>& y, int color,
-                     int style, double width) {
+                     int style, double width)
+{
     m_pl->col0(color);
     m_pl->lsty(style);
     m_pl->width(width);
@@ -67,18 +71,21 @@ void PngFigure::line(const std::vector<double>& x, const std::vector<double>& y,
 }
 
 void PngFigure::markers(const std::vector<double>& x, const std::vector<double>& y, int color,
-                        const char* glyph, double scale) {
+                        const char* glyph, double scale)
+{
     m_pl->col0(color);
     m_pl->schr(0, scale);
     m_pl->string(static_cast<PLINT>(x.size()), x.data(), y.data(), glyph);
     m_pl->schr(0, kCharScale);
 }
 
-void PngFigure::addLegend(const std::string& text, int color, int style, const char* glyph) {
+void PngFigure::addLegend(const std::string& text, int color, int style, const char* glyph)
+{
     m_legend.push_back({text, color, style, glyph});
 }
 
-void PngFigure::drawLegend(int position) {
+void PngFigure::drawLegend(int position)
+{
     const auto n = static_cast<PLINT>(m_legend.size());
     if (n == 0) return;
     std::vector<PLINT> opts, colors, styles, symbolNumbers(n, 1), textColors(n, kBlack);
@@ -101,7 +108,8 @@ void PngFigure::drawLegend(int position) {
     m_legend.clear();
 }
 
-void PngFigure::commit() {
+void PngFigure::commit()
+{
     m_pl.reset();  // ends the stream, which writes the image
     core::AtomicFile::commitRename(m_tmp, m_file);
     m_committed = true;

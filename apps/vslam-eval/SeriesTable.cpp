@@ -30,7 +30,8 @@ SeriesTable SeriesTable::load(const std::string& file)
             } catch (const std::exception&) {
                 used = 0;
             }
-            if (used != word.size() || !std::isfinite(d)) fail("'" + word + "' is not a finite number");
+            if (used != word.size() || !std::isfinite(d))
+                fail("'" + word + "' is not a finite number");
             v.push_back(d);
         }
         if (v.size() != 2 && v.size() != 4) fail("expected 'SERIES X Y' or 'SERIES X Y LOW HIGH'");

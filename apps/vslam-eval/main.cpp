@@ -5,7 +5,8 @@
 #include "EvalApp.h"
 #include "EvalCommandLine.h"
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv)
+{
     try {
         const auto params = mrpt_vslam::eval::parseEvalCommandLine(argc, argv);
         if (!params) return 0;  // --help or --version

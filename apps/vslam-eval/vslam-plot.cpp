@@ -18,9 +18,9 @@ using mrpt_vslam::eval::SeriesTable;
 
 namespace {
 
-constexpr int kColors[] = {PngFigure::kBlue,   PngFigure::kOrange, PngFigure::kGreen,
-                           PngFigure::kRed,    PngFigure::kPurple, PngFigure::kBrown,
-                           PngFigure::kGray,   PngFigure::kBlack};
+constexpr int kColors[] = {PngFigure::kBlue, PngFigure::kOrange, PngFigure::kGreen,
+                           PngFigure::kRed,  PngFigure::kPurple, PngFigure::kBrown,
+                           PngFigure::kGray, PngFigure::kBlack};
 
 void plot(const SeriesTable& table, const std::string& out, const std::string& title,
           const std::string& x_label, const std::string& y_label, bool log_x, bool y_from_zero)
@@ -38,8 +38,8 @@ void plot(const SeriesTable& table, const std::string& out, const std::string& t
     if (y_from_zero) y0 = std::min(0.0, y0);
     const double mx = std::max(1e-9, x1 - x0) * 0.05, my = std::max(1e-9, y1 - y0) * 0.08;
     PngFigure fig(out, 1000, 700);
-    fig.axes(0.1, 0.95, 0.13, 0.92, x0 - mx, x1 + mx, y_from_zero && y0 >= 0 ? 0 : y0 - my,
-             y1 + my, x_label, y_label, title, false, log_x);
+    fig.axes(0.1, 0.95, 0.13, 0.92, x0 - mx, x1 + mx, y_from_zero && y0 >= 0 ? 0 : y0 - my, y1 + my,
+             x_label, y_label, title, false, log_x);
     for (size_t k = 0; k < table.series.size(); k++) {
         const auto& s = table.series[k];
         const int color = kColors[k % std::size(kColors)];
@@ -75,8 +75,8 @@ int main(int argc, char** argv)
         TCLAP::SwitchArg logx("", "log-x", "Logarithmic x axis", cmd);
         TCLAP::SwitchArg zero("", "y-from-zero", "Start the y axis at 0", cmd);
         cmd.parse(argc, argv);
-        plot(SeriesTable::load(table.getValue()), out.getValue(), title.getValue(),
-             xl.getValue(), yl.getValue(), logx.getValue(), zero.getValue());
+        plot(SeriesTable::load(table.getValue()), out.getValue(), title.getValue(), xl.getValue(),
+             yl.getValue(), logx.getValue(), zero.getValue());
         return 0;
     } catch (const TCLAP::ArgException& e) {
         std::cerr << "vslam-plot: error: " << e.argId() << ": " << e.error() << "\n";

@@ -67,7 +67,8 @@ void BM_OmniFastSLAMStep(benchmark::State& state)
         pf.executeOn(*filter, data.pairs[k].first.get(), data.pairs[k].second.get());
         k++;
     }
-    state.counters["landmarks"] = static_cast<double>(filter->bestParticle().map.landmarks().size());
+    state.counters["landmarks"] =
+        static_cast<double>(filter->bestParticle().map.landmarks().size());
 }
 BENCHMARK(BM_OmniFastSLAMStep)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 }  // namespace

@@ -10,8 +10,8 @@ namespace {
 void BM_OmniRenderFrame(benchmark::State& state)
 {
     mrpt_vslam::sim::OmniViewsScenario s;
-    s.loadConfig(mrpt::config::CConfigFile(
-        MRPT_VSLAM_SOURCE_DIR "/share/mrpt-vslam/config/vslam-sim/omni-views.ini"));
+    s.loadConfig(mrpt::config::CConfigFile(MRPT_VSLAM_SOURCE_DIR
+                                           "/share/mrpt-vslam/config/vslam-sim/omni-views.ini"));
     const auto model = s.world.build(s.textures);
     const auto path = s.trajectory.generate(s.trajectory.frames);
     size_t k = 0;

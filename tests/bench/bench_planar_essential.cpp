@@ -1,11 +1,10 @@
 #include <benchmark/benchmark.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/core/UnifiedSphereCamera.h>
+#include <mrpt_vslam/test/PlanarScene.h>
 #include <mrpt_vslam/viewmap/PlanarEssentialRansac.h>
 
 #include <cstdint>
-
-#include <mrpt_vslam/test/PlanarScene.h>
 
 using mrpt_vslam::viewmap::PlanarEssentialMatrix;
 using mrpt_vslam::viewmap::PlanarEssentialRansac;

@@ -25,8 +25,8 @@ void BM_ViewMapEKFStep(benchmark::State& state)
     for (auto _ : state) {
         ekf.predict({0.01, 0, 0.0033}, Q);
         const size_t view = (k++ * 7 + N / 2) % N;
-        const auto h = mrpt_vslam::viewmap::predictViewObservation(ekf.robotPose(),
-                                                                  ekf.viewPose(view));
+        const auto h =
+            mrpt_vslam::viewmap::predictViewObservation(ekf.robotPose(), ekf.viewPose(view));
         benchmark::DoNotOptimize(ekf.update(view, h, R, 9.21));
     }
 }

@@ -107,7 +107,8 @@ void BM_InformationPolicyDecision(benchmark::State& state)
     in.ekf = &ekf;
     in.features = &features;
     for (size_t k = 0; k < features.size(); k++) in.consistent.push_back(k % 2 == 0);
-    for (size_t v = 12; v < 15; v++) in.observed.push_back({v, Eigen::Matrix2d::Identity() * 1e-4, 60});
+    for (size_t v = 12; v < 15; v++)
+        in.observed.push_back({v, Eigen::Matrix2d::Identity() * 1e-4, 60});
     in.nearest_view_distance = 0.5;
     in.P_vv_previous = ekf.robotCovariance() * 0.9;
     in.P_vv_predicted = ekf.robotCovariance();

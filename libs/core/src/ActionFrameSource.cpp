@@ -1,5 +1,5 @@
-#include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/core/bits_math.h>
+#include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/UsageError.h>
 
@@ -80,8 +80,8 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
         if (ready) emitPending(actions, frame);
         if (const auto odo =
                 std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(e.observation)) {
-            const auto it = std::find(m_odometry_labels.begin(), m_odometry_labels.end(),
-                                      odo->sensorLabel);
+            const auto it =
+                std::find(m_odometry_labels.begin(), m_odometry_labels.end(), odo->sensorLabel);
             const size_t k = static_cast<size_t>(it - m_odometry_labels.begin());  // 0 if none
             if (m_odometry_labels.empty() || it != m_odometry_labels.end()) {
                 m_odometry[k] = odo->odometry;
@@ -94,10 +94,10 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
                 m_pending_is_step = false;
             }
             m_pending->insert(e.observation);
-            m_pending_is_step =
-                m_pending_is_step ||
-                std::any_of(m_steps.begin(), m_steps.end(),
-                            [&](const auto& sel) { return sel.matches(*e.observation); });
+            m_pending_is_step = m_pending_is_step ||
+                                std::any_of(m_steps.begin(), m_steps.end(), [&](const auto& sel) {
+                                    return sel.matches(*e.observation);
+                                });
         }
         if (ready) return true;
     }

@@ -73,7 +73,7 @@ TConfigOverride TConfigOverride::parse(const std::string& text)
 std::string TConfigOverride::asString() const { return section + "." + key + "=" + value; }
 
 CheckedConfigFile::TKeyId CheckedConfigFile::keyId(const std::string& section,
-                                                    const std::string& key)
+                                                   const std::string& key)
 {
     return {toLower(section), toLower(key)};
 }
@@ -107,8 +107,7 @@ void CheckedConfigFile::loadText(const std::string& text, const std::string& nam
 }
 
 std::string CheckedConfigFile::readString(const std::string& section, const std::string& name,
-                                          const std::string& defaultStr,
-                                          bool failIfNotFound) const
+                                          const std::string& defaultStr, bool failIfNotFound) const
 {
     {
         std::lock_guard<std::mutex> lock(m_read_mutex);

@@ -10,13 +10,15 @@ namespace mrpt_vslam::core {
 namespace fs = std::filesystem;
 namespace {
 
-bool endsWith(const std::string& s, const std::string& suffix) {
+bool endsWith(const std::string& s, const std::string& suffix)
+{
     return s.size() >= suffix.size() &&
            s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 /// `--ground-truth` from the parameters, else from RUN_DIR/run.json; "" when neither has it.
-std::string groundTruthArgument(const TEvalParams& p) {
+std::string groundTruthArgument(const TEvalParams& p)
+{
     if (!p.ground_truth.empty() || p.run_dir.empty()) return p.ground_truth;
     const auto runJson = (fs::path(p.run_dir) / "run.json").string();
     if (!fs::exists(runJson)) return {};
@@ -40,14 +42,16 @@ std::string groundTruthArgument(const TEvalParams& p) {
 }
 
 /// Prefix NAME of a ground-truth argument `NAME.rawlog[.gz]` or `NAME`.
-std::string groundTruthPrefix(const std::string& arg) {
+std::string groundTruthPrefix(const std::string& arg)
+{
     for (const char* ext : {".rawlog.gz", ".rawlog"})
         if (endsWith(arg, ext)) return arg.substr(0, arg.size() - std::string(ext).size());
     return arg;
 }
 
 /// Robots of a run folder: "" for estimated_path.tum, R for estimated_path_R.tum (sorted).
-std::vector<TRobotFiles> robotsInRunDir(const std::string& run_dir) {
+std::vector<TRobotFiles> robotsInRunDir(const std::string& run_dir)
+{
     if (!fs::is_directory(run_dir)) throw std::runtime_error(run_dir + ": not a folder");
     const std::string stem = "estimated_path", ext = ".tum";
     std::vector<TRobotFiles> robots;
@@ -75,15 +79,16 @@ std::vector<TRobotFiles> robotsInRunDir(const std::string& run_dir) {
 
 }  // namespace
 
-std::string groundTruthFileOf(const std::string& prefix, const std::string& robot,
-                              bool only_robot) {
+std::string groundTruthFileOf(const std::string& prefix, const std::string& robot, bool only_robot)
+{
     const std::string single = prefix + ".groundtruth.tum";
     if (robot.empty()) return single;
     const std::string own = prefix + ".groundtruth_" + robot + ".tum";
     return only_robot && !fs::exists(own) && fs::exists(single) ? single : own;
 }
 
-TEvalInputs resolveInputs(const TEvalParams& p) {
+TEvalInputs resolveInputs(const TEvalParams& p)
+{
     TEvalInputs in;
     if (!p.estimate_file.empty()) {
         in.robots.push_back({"", p.estimate_file, p.odometry_file, ""});

@@ -28,9 +28,8 @@ double checkedStep(double step, double range, const char* key)
 {
     if (!(step >= 0) || step > range) {
         throw std::invalid_argument(std::string("FisheyeLookupTable: ") + key + " = " +
-                                    std::to_string(mrpt::RAD2DEG(step)) +
-                                    " deg must be in [0, " + std::to_string(mrpt::RAD2DEG(range)) +
-                                    "] (0 = automatic)");
+                                    std::to_string(mrpt::RAD2DEG(step)) + " deg must be in [0, " +
+                                    std::to_string(mrpt::RAD2DEG(range)) + "] (0 = automatic)");
     }
     return step;
 }
@@ -40,8 +39,8 @@ double checkedStep(double step, double range, const char* key)
 void FisheyeLookupTable::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                                       const std::string& section)
 {
-    lut_delta_phi = mrpt::DEG2RAD(
-        cfg.read_double(section, "lut_delta_phi_deg", mrpt::RAD2DEG(lut_delta_phi)));
+    lut_delta_phi =
+        mrpt::DEG2RAD(cfg.read_double(section, "lut_delta_phi_deg", mrpt::RAD2DEG(lut_delta_phi)));
     lut_delta_theta = mrpt::DEG2RAD(
         cfg.read_double(section, "lut_delta_theta_deg", mrpt::RAD2DEG(lut_delta_theta)));
     checkedStep(lut_delta_phi, 2 * M_PI, "lut_delta_phi_deg");
@@ -59,8 +58,7 @@ void FisheyeLookupTable::TOptions::saveToConfigFile(mrpt::config::CConfigFileBas
               "[deg] off-axis angle step of the look-up table (0 = automatic, <= 0.5 px)");
 }
 
-FisheyeLookupTable::FisheyeLookupTable(const PajdlaBaksteinCamera& camera,
-                                       const TOptions& options)
+FisheyeLookupTable::FisheyeLookupTable(const PajdlaBaksteinCamera& camera, const TOptions& options)
     : m_camera(camera)
 {
     m_camera.validate();
@@ -78,8 +76,8 @@ FisheyeLookupTable::FisheyeLookupTable(const PajdlaBaksteinCamera& camera,
         constexpr int kProbes = 1000;
         double max_slope = 0;
         for (int i = 0; i <= kProbes; i++) {
-            max_slope = std::max(max_slope,
-                                 m_camera.radiusDerivative(m_camera.max_theta * i / kProbes));
+            max_slope =
+                std::max(max_slope, m_camera.radiusDerivative(m_camera.max_theta * i / kProbes));
         }
         delta_theta = kAutoSpacingPx / (stretch * max_slope);
     }
@@ -148,10 +146,10 @@ void FisheyeLookupTable::build()
         const TBounds& b = bounds[idx];
         if (b.theta_min > b.theta_max) continue;
         const double mid_offset = 0.5 * (double(b.phi_offset_min) + b.phi_offset_max);
-        m_cells[idx] = TCell{static_cast<float>(mrpt::math::wrapToPi(phi_ref[idx] + mid_offset)),
-                             0.5f * (b.phi_offset_max - b.phi_offset_min),
-                             0.5f * (b.theta_min + b.theta_max),
-                             0.5f * (b.theta_max - b.theta_min)};
+        m_cells[idx] =
+            TCell{static_cast<float>(mrpt::math::wrapToPi(phi_ref[idx] + mid_offset)),
+                  0.5f * (b.phi_offset_max - b.phi_offset_min), 0.5f * (b.theta_min + b.theta_max),
+                  0.5f * (b.theta_max - b.theta_min)};
         m_valid_pixels++;
     }
 }

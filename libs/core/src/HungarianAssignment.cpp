@@ -52,9 +52,9 @@ void checkInputs(const Eigen::MatrixXd& cost, double unassigned_row_cost)
             const double c = cost(i, j);
             if (std::isnan(c) || c == -HUGE_VAL) {
                 throw std::invalid_argument("solveHungarianAssignment: cost(" + std::to_string(i) +
-                                            ", " + std::to_string(j) + ") is " +
-                                            std::to_string(c) + "; only finite values or +inf "
-                                                                "(forbidden pair) are allowed");
+                                            ", " + std::to_string(j) + ") is " + std::to_string(c) +
+                                            "; only finite values or +inf "
+                                            "(forbidden pair) are allowed");
             }
             if (std::isfinite(c)) max_abs = std::max(max_abs, std::abs(c));
         }

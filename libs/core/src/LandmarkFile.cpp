@@ -13,7 +13,8 @@ namespace mrpt_vslam::core {
 namespace {
 
 /// Whether a comment line names a `yaw` column (view maps).
-bool commentNamesYaw(const std::string& line) {
+bool commentNamesYaw(const std::string& line)
+{
     std::istringstream ss(line.substr(line.find('#') + 1));
     std::string token;
     while (ss >> token)
@@ -22,7 +23,8 @@ bool commentNamesYaw(const std::string& line) {
 }
 
 TLandmark landmarkFromValues(const std::vector<double>& v, int line_order, bool is_view,
-                             const std::string& where) {
+                             const std::string& where)
+{
     TLandmark lm;
     const size_t first = v.size() == 3 ? 0 : 1;
     if (first == 1) {
@@ -50,7 +52,8 @@ TLandmark landmarkFromValues(const std::vector<double>& v, int line_order, bool 
 
 }  // namespace
 
-LandmarkFile LandmarkFile::load(const std::string& file) {
+LandmarkFile LandmarkFile::load(const std::string& file)
+{
     std::ifstream in(file);
     if (!in) throw std::runtime_error(file + ": cannot open landmark file");
     LandmarkFile out;
@@ -87,7 +90,8 @@ LandmarkFile LandmarkFile::load(const std::string& file) {
     return out;
 }
 
-void LandmarkFile::save(const std::string& file, const std::string& header_comment) const {
+void LandmarkFile::save(const std::string& file, const std::string& header_comment) const
+{
     bool allCov = !landmarks.empty();
     for (const auto& lm : landmarks) allCov = allCov && lm.has_cov;
     const char* third = is_view_map ? "yaw" : "z";

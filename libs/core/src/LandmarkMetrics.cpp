@@ -9,7 +9,8 @@
 namespace mrpt_vslam::core {
 
 TLandmarkMetrics evaluateLandmarks(const std::vector<TLandmark>& estimated,
-                                   const std::vector<TLandmark>& truth, double cutoff) {
+                                   const std::vector<TLandmark>& truth, double cutoff)
+{
     if (!(cutoff > 0)) throw std::invalid_argument("evaluateLandmarks: cutoff must be > 0");
     constexpr double kInf = std::numeric_limits<double>::infinity();
     TLandmarkMetrics m;

@@ -1,7 +1,6 @@
-#include <mrpt_vslam/core/MetricsJson.h>
-
 #include <mrpt/core/bits_math.h>
 #include <mrpt_vslam/core/AtomicFile.h>
+#include <mrpt_vslam/core/MetricsJson.h>
 #include <mrpt_vslam/core/Version.h>
 
 #include <cmath>
@@ -16,7 +15,8 @@ using nlohmann::json;
 /// A number, or null when it is not finite (no frame or landmark to average over).
 json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-json errorSummary(const TTrajectoryMetrics& m) {
+json errorSummary(const TTrajectoryMetrics& m)
+{
     return {{"matched_poses", m.matchedPoses()},
             {"ate_rmse_m", num(m.ate_rmse)},
             {"ate_mean_m", num(m.ate_mean)},
@@ -27,7 +27,8 @@ json errorSummary(const TTrajectoryMetrics& m) {
             {"heading_share_under_threshold", num(m.heading_share_under_threshold)}};
 }
 
-json trajectoryBlock(const TTrajectoryResult& r) {
+json trajectoryBlock(const TTrajectoryResult& r)
+{
     json j = errorSummary(r.unaligned);
     j["file"] = r.file;
     j["poses"] = r.unaligned.estimate_poses;
@@ -39,7 +40,8 @@ json trajectoryBlock(const TTrajectoryResult& r) {
     return j;
 }
 
-json robotBlock(const TRobotResult& r) {
+json robotBlock(const TRobotResult& r)
+{
     json j = {{"ground_truth_file", r.files.ground_truth},
               {"ground_truth_poses", r.ground_truth.size()},
               {"estimate", trajectoryBlock(r.estimate)}};
@@ -47,7 +49,8 @@ json robotBlock(const TRobotResult& r) {
     return j;
 }
 
-json landmarkBlock(const TLandmarkMetrics& m, const std::string& truth_file) {
+json landmarkBlock(const TLandmarkMetrics& m, const std::string& truth_file)
+{
     json table = json::array();
     for (const auto& t : m.matches) {
         json row = {{"true_id", t.true_id},
@@ -88,7 +91,8 @@ json landmarkBlock(const TLandmarkMetrics& m, const std::string& truth_file) {
 }  // namespace
 
 void writeMetricsJson(const TEvalResult& result, const TEvalInputs& inputs,
-                      const TEvalParams& params, const std::string& file) {
+                      const TEvalParams& params, const std::string& file)
+{
     json j = {{"generator", "vslam-eval"},
               {"versions", {{"mrpt_vslam", projectVersion()}, {"mrpt", mrptVersion()}}},
               {"options",

@@ -61,8 +61,8 @@ std::string ProgressReporter::formatLine(size_t done, double elapsed_s, bool fin
     std::string line = "[" + m_app + "] " + m_unit + " " + std::to_string(done);
     char buf[64];
     if (m_total > 0) {
-        const int percent = static_cast<int>(100.0 * static_cast<double>(done) /
-                                             static_cast<double>(m_total));
+        const int percent =
+            static_cast<int>(100.0 * static_cast<double>(done) / static_cast<double>(m_total));
         line += "/" + std::to_string(m_total) + " (" + std::to_string(percent) + "%)";
     }
     const bool rate_known = elapsed_s > 0 && done > 0;

@@ -56,8 +56,8 @@ TGzipTrailer readGzipTrailer(const std::string& file)
     unsigned char isize[4] = {0, 0, 0, 0};
     in.seekg(-4, std::ios::end);
     in.read(reinterpret_cast<char*>(isize), 4);
-    t.uncompressedSize = uint32_t(isize[0]) | uint32_t(isize[1]) << 8 |
-                         uint32_t(isize[2]) << 16 | uint32_t(isize[3]) << 24;
+    t.uncompressedSize = uint32_t(isize[0]) | uint32_t(isize[1]) << 8 | uint32_t(isize[2]) << 16 |
+                         uint32_t(isize[3]) << 24;
     return t;
 }
 

@@ -36,8 +36,9 @@ void saveFinalMap(const mrpt::maps::CMetricMap& map, const std::string& out_dir)
     for (const auto& entry : fs::directory_iterator(out_dir)) {
         const std::string name = entry.path().filename().string();
         if (name.rfind(tmp, 0) == 0)
-            AtomicFile::commitRename(entry.path().string(),
-                                     (fs::path(out_dir) / ("map" + name.substr(tmp.size()))).string());
+            AtomicFile::commitRename(
+                entry.path().string(),
+                (fs::path(out_dir) / ("map" + name.substr(tmp.size()))).string());
     }
     saveObjectGz(map, (fs::path(out_dir) / "final_map.gz").string());
 }

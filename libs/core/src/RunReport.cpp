@@ -105,8 +105,8 @@ void RunReport::setResultJson(const std::string& name, const std::string& json_t
     try {
         m_impl->doc["results"][name] = Json::parse(json_text);
     } catch (const Json::parse_error& e) {
-        throw std::invalid_argument("run.json result '" + name + "' is not valid JSON: " +
-                                    e.what());
+        throw std::invalid_argument("run.json result '" + name +
+                                    "' is not valid JSON: " + e.what());
     }
 }
 

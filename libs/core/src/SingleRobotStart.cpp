@@ -22,7 +22,8 @@ void SingleRobotStart::resolve(const AppArguments& args, const std::string& rawl
     groundTruthPrefix = args.groundTruthPrefix(rawlog);
     const std::string tum =
         groundTruthPrefix + (robot.empty() ? ".groundtruth.tum" : ".groundtruth_" + robot + ".tum");
-    if (mrpt::system::fileExists(tum)) groundTruth = TumTrajectory::load(tum);
+    if (mrpt::system::fileExists(tum))
+        groundTruth = TumTrajectory::load(tum);
     else if (!args.groundTruth.empty())
         throw std::runtime_error(tum + ": ground truth file not found (--ground-truth)");
     if (m_from_ground_truth && groundTruth && !groundTruth->empty()) {

@@ -14,7 +14,8 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Mean, RMSE and max of |v|; NaN for an empty series.
-void summarize(const std::vector<double>& v, double& rmse, double& mean, double& max) {
+void summarize(const std::vector<double>& v, double& rmse, double& mean, double& max)
+{
     if (v.empty()) {
         rmse = mean = max = kNaN;
         return;
@@ -34,7 +35,8 @@ void summarize(const std::vector<double>& v, double& rmse, double& mean, double&
 
 std::vector<std::pair<size_t, size_t>> associateByTime(const TumTrajectory& estimate,
                                                        const TumTrajectory& ground_truth,
-                                                       double tolerance) {
+                                                       double tolerance)
+{
     std::vector<std::pair<size_t, size_t>> pairs;
     for (size_t i = 0; i < estimate.size(); i++) {
         const int j = ground_truth.nearestIndex(estimate.timestamps[i], tolerance);
@@ -44,7 +46,8 @@ std::vector<std::pair<size_t, size_t>> associateByTime(const TumTrajectory& esti
 }
 
 mrpt::math::TPose2D alignSE2(const std::vector<mrpt::math::TPoint2D>& a,
-                             const std::vector<mrpt::math::TPoint2D>& b) {
+                             const std::vector<mrpt::math::TPoint2D>& b)
+{
     if (a.size() != b.size() || a.size() < 2)
         throw std::invalid_argument("alignSE2: need two equally long lists of at least 2 points");
     mrpt::math::TPoint2D ca{0, 0}, cb{0, 0};
@@ -67,7 +70,8 @@ mrpt::math::TPose2D alignSE2(const std::vector<mrpt::math::TPoint2D>& a,
     return {cb.x - (c * ca.x - s * ca.y), cb.y - (s * ca.x + c * ca.y), th};
 }
 
-mrpt::math::TPose3D applySE2(const mrpt::math::TPose2D& t, const mrpt::math::TPose3D& p) {
+mrpt::math::TPose3D applySE2(const mrpt::math::TPose2D& t, const mrpt::math::TPose3D& p)
+{
     const double c = std::cos(t.phi), s = std::sin(t.phi);
     return {t.x + c * p.x - s * p.y,
             t.y + s * p.x + c * p.y,
@@ -79,7 +83,8 @@ mrpt::math::TPose3D applySE2(const mrpt::math::TPose2D& t, const mrpt::math::TPo
 
 TTrajectoryMetrics evaluateTrajectory(const TumTrajectory& estimate,
                                       const TumTrajectory& ground_truth,
-                                      const TTrajectoryMetricsOptions& options) {
+                                      const TTrajectoryMetricsOptions& options)
+{
     const auto pairs = associateByTime(estimate, ground_truth, options.time_tolerance);
     if (pairs.empty())
         throw std::runtime_error("no estimated pose has a ground-truth pose within " +
@@ -112,7 +117,8 @@ TTrajectoryMetrics evaluateTrajectory(const TumTrajectory& estimate,
     return m;
 }
 
-double nees(const Eigen::VectorXd& error, const Eigen::MatrixXd& cov) {
+double nees(const Eigen::VectorXd& error, const Eigen::MatrixXd& cov)
+{
     if (cov.rows() != error.size() || cov.cols() != error.size())
         throw std::invalid_argument("nees: covariance size does not match the error size");
     const Eigen::LLT<Eigen::MatrixXd> llt(cov);
@@ -123,14 +129,16 @@ double nees(const Eigen::VectorXd& error, const Eigen::MatrixXd& cov) {
 }
 
 double poseNEES(const mrpt::math::TPose2D& estimate, const mrpt::math::TPose2D& truth,
-                const Eigen::Matrix3d& cov) {
+                const Eigen::Matrix3d& cov)
+{
     Eigen::Vector3d e(estimate.x - truth.x, estimate.y - truth.y,
                       mrpt::math::wrapToPi(estimate.phi - truth.phi));
     return nees(e, cov);
 }
 
 double poseNEES(const mrpt::math::TPose3D& estimate, const mrpt::math::TPose3D& truth,
-                const Eigen::Matrix<double, 6, 6>& cov) {
+                const Eigen::Matrix<double, 6, 6>& cov)
+{
     Eigen::Matrix<double, 6, 1> e;
     e << estimate.x - truth.x, estimate.y - truth.y, estimate.z - truth.z,
         mrpt::math::wrapToPi(estimate.yaw - truth.yaw),
@@ -139,7 +147,8 @@ double poseNEES(const mrpt::math::TPose3D& estimate, const mrpt::math::TPose3D& 
     return nees(e, cov);
 }
 
-std::pair<double, double> chi2Bounds(unsigned int dof, double confidence, unsigned int runs) {
+std::pair<double, double> chi2Bounds(unsigned int dof, double confidence, unsigned int runs)
+{
     if (dof == 0 || runs == 0 || !(confidence > 0 && confidence < 1))
         throw std::invalid_argument("chi2Bounds: need dof > 0, runs > 0 and 0 < confidence < 1");
     const double alpha = 1 - confidence;

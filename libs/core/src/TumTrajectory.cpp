@@ -32,18 +32,21 @@ TumTrajectory TumTrajectory::load(const std::string& file)
         std::istringstream ss(line);
         double v[8];
         for (double& x : v) {
-            if (!(ss >> x)) throw std::runtime_error(where + "expected 8 numbers 't x y z qx qy qz qw'");
+            if (!(ss >> x))
+                throw std::runtime_error(where + "expected 8 numbers 't x y z qx qy qz qw'");
             if (!std::isfinite(x)) throw std::runtime_error(where + "non-finite value");
         }
         std::string extra;
         if (ss >> extra) throw std::runtime_error(where + "more than 8 columns");
         const double qnorm = std::sqrt(v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]);
-        if (std::abs(qnorm - 1.0) > 1e-3) throw std::runtime_error(where + "quaternion is not unit");
+        if (std::abs(qnorm - 1.0) > 1e-3)
+            throw std::runtime_error(where + "quaternion is not unit");
         if (!traj.timestamps.empty() && v[0] <= traj.timestamps.back())
             throw std::runtime_error(where + "timestamps must be strictly increasing");
-        const mrpt::math::CQuaternionDouble q(v[7] / qnorm, v[4] / qnorm, v[5] / qnorm, v[6] / qnorm);
-        traj.push_back(v[0], mrpt::poses::CPose3D(mrpt::poses::CPose3DQuat(v[1], v[2], v[3], q))
-                                 .asTPose());
+        const mrpt::math::CQuaternionDouble q(v[7] / qnorm, v[4] / qnorm, v[5] / qnorm,
+                                              v[6] / qnorm);
+        traj.push_back(
+            v[0], mrpt::poses::CPose3D(mrpt::poses::CPose3DQuat(v[1], v[2], v[3], q)).asTPose());
     }
     return traj;
 }

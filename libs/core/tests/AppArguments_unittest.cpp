@@ -1,8 +1,7 @@
+#include <gtest/gtest.h>
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/core/Version.h>
-
-#include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
@@ -47,10 +46,10 @@ TEST(AppArguments, MinimalCommandLineGetsDefaults)
 
 TEST(AppArguments, AllOptionsAreParsed)
 {
-    const auto a = parseArgs({"omni-fastslam", "a.ini", "data/run.rawlog", "--out", "res/x",
-                              "--seed", "42", "--set", "Filter.sampleSize=200", "--set",
-                              "Map.opts.sigma=0.1", "--ground-truth", "gt.tum", "--quiet",
-                              "--gui"});
+    const auto a =
+        parseArgs({"omni-fastslam", "a.ini", "data/run.rawlog", "--out", "res/x", "--seed", "42",
+                   "--set", "Filter.sampleSize=200", "--set", "Map.opts.sigma=0.1",
+                   "--ground-truth", "gt.tum", "--quiet", "--gui"});
     EXPECT_EQ(a.configFile, "a.ini");
     EXPECT_EQ(a.rawlogFile, "data/run.rawlog");
     EXPECT_EQ(a.outDir, "res/x");

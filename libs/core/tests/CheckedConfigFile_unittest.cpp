@@ -1,8 +1,7 @@
+#include <gtest/gtest.h>
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/UsageError.h>
-
-#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -17,14 +16,14 @@ using mrpt_vslam::core::UsageError;
 namespace {
 
 const char* const kIni =
-    "# example\n"              // 1
-    "[Filter]\n"               // 2
-    "sampleSize = 100\n"       // 3
-    "sigma_xy = 0.05 // [m]\n" // 4
-    "\n"                       // 5
-    "[Camera]\n"               // 6
-    "fx = 400\n"               // 7
-    "fxx = 401\n";             // 8
+    "# example\n"               // 1
+    "[Filter]\n"                // 2
+    "sampleSize = 100\n"        // 3
+    "sigma_xy = 0.05 // [m]\n"  // 4
+    "\n"                        // 5
+    "[Camera]\n"                // 6
+    "fx = 400\n"                // 7
+    "fxx = 401\n";              // 8
 
 struct TFilterOptions : public mrpt::config::CLoadableOptions {
     int sampleSize = 10;
@@ -145,8 +144,8 @@ TEST(CheckedConfigFile, MissingFileIsNamed)
 
 TEST(CheckedConfigFile, EffectiveConfigRoundTripsWithOverrides)
 {
-    const std::string file = ::testing::TempDir() + "CheckedConfigFile_effective_" +
-                             std::to_string(::getpid()) + ".ini";
+    const std::string file =
+        ::testing::TempDir() + "CheckedConfigFile_effective_" + std::to_string(::getpid()) + ".ini";
     std::remove(file.c_str());
     CheckedConfigFile cfg;
     cfg.loadText(kIni, "demo.ini", {TConfigOverride::parse("Camera.fx=512")});

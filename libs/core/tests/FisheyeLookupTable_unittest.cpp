@@ -200,7 +200,7 @@ TEST(FisheyeLookupTable, CentrePixelCoversAllAzimuths)
 TEST(FisheyeLookupTable, OutsideTheImageOrCircleIsInvalid)
 {
     const auto& lut = defaultTable();
-    EXPECT_FALSE(lut.lookup(0, 0).valid);     // corner: radius 400 px > r(max_theta) ≈ 244 px
+    EXPECT_FALSE(lut.lookup(0, 0).valid);  // corner: radius 400 px > r(max_theta) ≈ 244 px
     EXPECT_FALSE(lut.lookup(639, 479).valid);
     EXPECT_FALSE(lut.lookup(-3, 240).valid);  // left of the image
     EXPECT_FALSE(lut.lookup(320, 480.6).valid);

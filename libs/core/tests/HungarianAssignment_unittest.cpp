@@ -99,7 +99,8 @@ TEST(HungarianAssignment, MatchesBruteForceOnRandomSmallMatrices)
                 const TAssignment a = solveHungarianAssignment(c, drop_cost);
                 const double cost = checkValid(c, drop_cost, a);
                 ASSERT_EQ(cost, best.cost) << "rows=" << rows << " cols=" << cols << " rep=" << rep
-                                           << " drop=" << drop_cost << "\n" << c;
+                                           << " drop=" << drop_cost << "\n"
+                                           << c;
                 if (!std::isfinite(drop_cost)) {
                     ASSERT_EQ(a.unassigned_rows, best.dropped) << c;
                 }

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
-#include <mrpt_vslam/test/ScratchFolder.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
 
 #include <filesystem>
 #include <fstream>
@@ -22,7 +22,8 @@ std::string writeTemp(const std::string& name, const std::string& text)
     return scratch().write(name, text);
 }
 
-std::string loadError(const std::string& file) {
+std::string loadError(const std::string& file)
+{
     try {
         LandmarkFile::load(file);
     } catch (const std::runtime_error& e) {
@@ -33,7 +34,8 @@ std::string loadError(const std::string& file) {
 
 }  // namespace
 
-TEST(LandmarkFile, ReadsXyzWithLineOrderIds) {
+TEST(LandmarkFile, ReadsXyzWithLineOrderIds)
+{
     const auto f = LandmarkFile::load(writeTemp("xyz.txt", "# x y z\n1 2 3\n\n-4.5 5 0.25\n"));
     ASSERT_EQ(f.size(), 2u);
     EXPECT_FALSE(f.is_view_map);
@@ -44,7 +46,8 @@ TEST(LandmarkFile, ReadsXyzWithLineOrderIds) {
     EXPECT_FALSE(f.landmarks[0].has_cov);
 }
 
-TEST(LandmarkFile, ReadsIdXyz) {
+TEST(LandmarkFile, ReadsIdXyz)
+{
     const auto f = LandmarkFile::load(writeTemp("idxyz.txt", "# id x y z\n17 1 2 3\n4 5 6 7\n"));
     ASSERT_EQ(f.size(), 2u);
     EXPECT_EQ(f.landmarks[0].id, 17);
@@ -52,7 +55,8 @@ TEST(LandmarkFile, ReadsIdXyz) {
     EXPECT_DOUBLE_EQ(f.landmarks[1].position.y, 6.0);
 }
 
-TEST(LandmarkFile, ReadsMapWithCovariance) {
+TEST(LandmarkFile, ReadsMapWithCovariance)
+{
     const auto f = LandmarkFile::load(writeTemp(
         "map.txt", "# id x y z cxx cxy cxz cyy cyz czz\n3 1 2 3 0.1 0.01 0.02 0.2 0.03 0.3\n"));
     ASSERT_EQ(f.size(), 1u);
@@ -65,7 +69,8 @@ TEST(LandmarkFile, ReadsMapWithCovariance) {
     EXPECT_DOUBLE_EQ(lm.cov(2, 2), 0.3);
 }
 
-TEST(LandmarkFile, RecognisesViewMapFromHeader) {
+TEST(LandmarkFile, RecognisesViewMapFromHeader)
+{
     const auto f = LandmarkFile::load(writeTemp(
         "views.txt", "# id x y yaw cxx cxy cxyaw cyy cyyaw cyawyaw\n0 1 2 0.5 1 0 0 1 0 1\n"));
     ASSERT_EQ(f.size(), 1u);
@@ -74,7 +79,8 @@ TEST(LandmarkFile, RecognisesViewMapFromHeader) {
     EXPECT_DOUBLE_EQ(f.landmarks[0].position.z, 0.0);
 }
 
-TEST(LandmarkFile, SaveLoadRoundTrip) {
+TEST(LandmarkFile, SaveLoadRoundTrip)
+{
     LandmarkFile f;
     for (int i = 0; i < 3; i++) {
         mrpt_vslam::core::TLandmark lm;
@@ -96,37 +102,43 @@ TEST(LandmarkFile, SaveLoadRoundTrip) {
     }
 }
 
-TEST(LandmarkFile, BadColumnCountNamesFileAndLine) {
+TEST(LandmarkFile, BadColumnCountNamesFileAndLine)
+{
     const auto path = writeTemp("cols.txt", "1 2 3\n1 2\n");
     const auto msg = loadError(path);
     EXPECT_NE(msg.find(path + ":2:"), std::string::npos) << msg;
 }
 
-TEST(LandmarkFile, ChangingColumnCountIsAnError) {
+TEST(LandmarkFile, ChangingColumnCountIsAnError)
+{
     const auto path = writeTemp("mixed.txt", "1 2 3\n# c\n0 1 2 3\n");
     EXPECT_NE(loadError(path).find(path + ":3:"), std::string::npos);
 }
 
-TEST(LandmarkFile, NonNumberNamesFileAndLine) {
+TEST(LandmarkFile, NonNumberNamesFileAndLine)
+{
     const auto path = writeTemp("word.txt", "0 1 2 3\n1 1 two 3\n");
     const auto msg = loadError(path);
     EXPECT_NE(msg.find(path + ":2:"), std::string::npos) << msg;
     EXPECT_NE(msg.find("two"), std::string::npos) << msg;
 }
 
-TEST(LandmarkFile, RepeatedOrFractionalIdIsAnError) {
+TEST(LandmarkFile, RepeatedOrFractionalIdIsAnError)
+{
     const auto rep = writeTemp("rep.txt", "0 1 2 3\n0 4 5 6\n");
     EXPECT_NE(loadError(rep).find(rep + ":2:"), std::string::npos);
     const auto frac = writeTemp("frac.txt", "0.5 1 2 3\n");
     EXPECT_NE(loadError(frac).find(frac + ":1:"), std::string::npos);
 }
 
-TEST(LandmarkFile, NegativeVarianceIsAnError) {
+TEST(LandmarkFile, NegativeVarianceIsAnError)
+{
     const auto path = writeTemp("negvar.txt", "0 1 2 3 -1 0 0 1 0 1\n");
     EXPECT_NE(loadError(path).find(path + ":1:"), std::string::npos);
 }
 
-TEST(LandmarkFile, MissingFileNamesTheFile) {
+TEST(LandmarkFile, MissingFileNamesTheFile)
+{
     const auto path = (scratch().path() / "missing.txt").string();
     fs::remove(path);
     EXPECT_EQ(loadError(path).rfind(path + ":", 0), 0u);

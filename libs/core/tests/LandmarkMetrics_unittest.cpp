@@ -7,7 +7,8 @@ using namespace mrpt_vslam::core;
 
 namespace {
 
-TLandmark lm(int id, double x, double y, double z = 0) {
+TLandmark lm(int id, double x, double y, double z = 0)
+{
     TLandmark l;
     l.id = id;
     l.position = {x, y, z};
@@ -16,7 +17,8 @@ TLandmark lm(int id, double x, double y, double z = 0) {
 
 }  // namespace
 
-TEST(LandmarkMetrics, MatchesPermutedIdsByPosition) {
+TEST(LandmarkMetrics, MatchesPermutedIdsByPosition)
+{
     const std::vector<TLandmark> truth = {lm(0, 0, 0), lm(1, 5, 0), lm(2, 0, 5)};
     const std::vector<TLandmark> est = {lm(7, 0.1, 5), lm(8, 0, 0.2), lm(9, 5, 0, 0.3)};
     const auto m = evaluateLandmarks(est, truth, 1.5);
@@ -36,7 +38,8 @@ TEST(LandmarkMetrics, MatchesPermutedIdsByPosition) {
     EXPECT_NEAR(m.error_rmse, std::sqrt((0.01 + 0.04 + 0.09) / 3), 1e-12);
 }
 
-TEST(LandmarkMetrics, CountsFalseMissedAndDuplicates) {
+TEST(LandmarkMetrics, CountsFalseMissedAndDuplicates)
+{
     const std::vector<TLandmark> truth = {lm(0, 0, 0), lm(1, 10, 0), lm(2, 20, 0)};
     const std::vector<TLandmark> est = {
         lm(0, 0.5, 0),   // matches true 0
@@ -61,7 +64,8 @@ TEST(LandmarkMetrics, CountsFalseMissedAndDuplicates) {
     EXPECT_NEAR(m.error_max, 1.0, 1e-12);
 }
 
-TEST(LandmarkMetrics, PrefersMorePairsOverLowerCost) {
+TEST(LandmarkMetrics, PrefersMorePairsOverLowerCost)
+{
     // Greedy nearest would pair est 0 with true 0 (0.1) and leave true 1 alone; the optimal
     // matching pairs both (est 0 → true 1 at 1.0, est 1 → true 0 at 1.0).
     const std::vector<TLandmark> truth = {lm(0, 0, 0), lm(1, 1.1, 0)};
@@ -73,7 +77,8 @@ TEST(LandmarkMetrics, PrefersMorePairsOverLowerCost) {
     EXPECT_NEAR(m.error_max, 1.0, 1e-12);
 }
 
-TEST(LandmarkMetrics, CutoffForbidsFarPairs) {
+TEST(LandmarkMetrics, CutoffForbidsFarPairs)
+{
     const std::vector<TLandmark> truth = {lm(0, 0, 0)};
     const std::vector<TLandmark> est = {lm(5, 1.4, 0)};
     EXPECT_EQ(evaluateLandmarks(est, truth, 1.5).num_matched, 1u);
@@ -86,7 +91,8 @@ TEST(LandmarkMetrics, CutoffForbidsFarPairs) {
     EXPECT_THROW(evaluateLandmarks(est, truth, 0.0), std::invalid_argument);
 }
 
-TEST(LandmarkMetrics, EmptyListsAreHandled) {
+TEST(LandmarkMetrics, EmptyListsAreHandled)
+{
     const std::vector<TLandmark> truth = {lm(0, 0, 0), lm(1, 1, 1)};
     const auto noEst = evaluateLandmarks({}, truth, 1.0);
     EXPECT_EQ(noEst.num_missed, 2u);

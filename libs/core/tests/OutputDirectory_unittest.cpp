@@ -1,6 +1,5 @@
-#include <mrpt_vslam/core/OutputDirectory.h>
-
 #include <gtest/gtest.h>
+#include <mrpt_vslam/core/OutputDirectory.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -14,8 +13,8 @@ using mrpt_vslam::core::OutputDirectory;
 namespace {
 fs::path scratch()
 {
-    const fs::path p = fs::path(::testing::TempDir()) /
-                       ("OutputDirectory_unittest_" + std::to_string(::getpid()));
+    const fs::path p =
+        fs::path(::testing::TempDir()) / ("OutputDirectory_unittest_" + std::to_string(::getpid()));
     fs::remove_all(p);
     return p;
 }

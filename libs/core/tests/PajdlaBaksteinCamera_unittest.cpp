@@ -15,8 +15,7 @@ TEST(PajdlaBaksteinCamera, ProjectJacobianMatchesNumeric)
 {
     PajdlaBaksteinCamera cam;
     cam.beta = 1.1;  // exercise the β row scaling
-    const std::function<void(const Eigen::Vector2d&, const PajdlaBaksteinCamera&,
-                             Eigen::Vector2d&)>
+    const std::function<void(const Eigen::Vector2d&, const PajdlaBaksteinCamera&, Eigen::Vector2d&)>
         f = [](const Eigen::Vector2d& x, const PajdlaBaksteinCamera& c, Eigen::Vector2d& out) {
             out = c.project(x[0], x[1]);
         };
@@ -78,9 +77,9 @@ TEST(PajdlaBaksteinCamera, AnglesOfPointClosedForms)
 
     // A point along the ray (φ, θ) projects back to those angles.
     const double phi = -2.2, theta = 1.1;
-    const Eigen::Vector2d back = PajdlaBaksteinCamera::anglesOfPoint(TPoint3D(
-        5 * std::sin(theta) * std::cos(phi), 5 * std::sin(theta) * std::sin(phi),
-        5 * std::cos(theta)));
+    const Eigen::Vector2d back = PajdlaBaksteinCamera::anglesOfPoint(
+        TPoint3D(5 * std::sin(theta) * std::cos(phi), 5 * std::sin(theta) * std::sin(phi),
+                 5 * std::cos(theta)));
     EXPECT_NEAR(back.x(), phi, 1e-12);
     EXPECT_NEAR(back.y(), theta, 1e-12);
 }

@@ -1,6 +1,5 @@
-#include <mrpt_vslam/core/ProgressReporter.h>
-
 #include <gtest/gtest.h>
+#include <mrpt_vslam/core/ProgressReporter.h>
 
 #include <sstream>
 

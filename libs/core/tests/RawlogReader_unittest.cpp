@@ -1,3 +1,4 @@
+#include <gtest/gtest.h>
 #include <mrpt/img/CImage.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -8,8 +9,7 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt_vslam/core/RawlogReader.h>
-
-#include <gtest/gtest.h>
+#include <mrpt_vslam/test/RunFiles.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -17,8 +17,6 @@
 #include <iterator>
 #include <stdexcept>
 #include <string>
-
-#include <mrpt_vslam/test/RunFiles.h>
 
 using mrpt_vslam::test::readBytes;
 
@@ -189,7 +187,9 @@ TEST(RawlogReader, ReadsASingleCRawlogObject)
 TEST(RawlogReader, EmptyRawlogHasNoEntries)
 {
     const std::string file = (scratchDir() / "empty.rawlog").string();
-    { mrpt::io::CFileGZOutputStream f(file); }
+    {
+        mrpt::io::CFileGZOutputStream f(file);
+    }
     size_t n = 99;
     EXPECT_EQ(readAllError(file, &n), "");
     EXPECT_EQ(n, 0u);
@@ -209,9 +209,9 @@ TEST(RawlogReader, TruncatedFileIsAnError)
     // Only the gzip trailer is cut: every object decompresses, the size check catches it.
     const std::string no_trailer =
         writeBytes("no_trailer.rawlog", bytes.substr(0, bytes.size() - 4));
-    EXPECT_EQ(readAllError(no_trailer),
-              no_trailer +
-                  ": corrupt or truncated rawlog after entry 6: the compressed data ends early");
+    EXPECT_EQ(
+        readAllError(no_trailer),
+        no_trailer + ": corrupt or truncated rawlog after entry 6: the compressed data ends early");
 }
 
 TEST(RawlogReader, GarbageFileIsAnError)
@@ -242,8 +242,9 @@ TEST(RawlogReader, UnregisteredClassIsNamed)
         ar << static_cast<uint8_t>(0) << static_cast<uint8_t>(0x88);
     }
     EXPECT_EQ(readAllError(file),
-              file + ": entry 2 has class 'myplugin::CObservationThing', which is not registered "
-                     "(load the library that defines it)");
+              file +
+                  ": entry 2 has class 'myplugin::CObservationThing', which is not registered "
+                  "(load the library that defines it)");
 }
 
 TEST(RawlogReader, ExternalImagesFolderIsDetected)

@@ -1,7 +1,6 @@
+#include <gtest/gtest.h>
 #include <mrpt_vslam/core/RunReport.h>
 #include <mrpt_vslam/core/Version.h>
-
-#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -64,11 +63,11 @@ TEST(RunReport, AllFieldsAreWritten)
 TEST(RunReport, FieldOrderIsStable)
 {
     const std::string text = RunReport("app").toJson();
-    const char* const order[] = {"\"app\"",    "\"version\"",      "\"mrpt_version\"",
-                                 "\"opencv_version\"", "\"command_line\"", "\"config_file\"",
-                                 "\"config\"", "\"rawlog\"",       "\"seed\"",
-                                 "\"start_time\"", "\"counts\"",   "\"timing\"",
-                                 "\"results\""};
+    const char* const order[] = {
+        "\"app\"",          "\"version\"",     "\"mrpt_version\"", "\"opencv_version\"",
+        "\"command_line\"", "\"config_file\"", "\"config\"",       "\"rawlog\"",
+        "\"seed\"",         "\"start_time\"",  "\"counts\"",       "\"timing\"",
+        "\"results\""};
     size_t last = 0;
     for (const char* key : order) {
         const size_t at = text.find(key);

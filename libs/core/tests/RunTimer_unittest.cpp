@@ -1,6 +1,5 @@
-#include <mrpt_vslam/core/RunTimer.h>
-
 #include <gtest/gtest.h>
+#include <mrpt_vslam/core/RunTimer.h>
 
 #include <cmath>
 #include <stdexcept>

@@ -11,7 +11,8 @@ using mrpt::DEG2RAD;
 namespace {
 
 /// A curvy planar ground truth, 10 Hz.
-TumTrajectory makeGroundTruth(size_t n = 50) {
+TumTrajectory makeGroundTruth(size_t n = 50)
+{
     TumTrajectory gt;
     for (size_t i = 0; i < n; i++) {
         const double t = 0.1 * i;
@@ -21,14 +22,16 @@ TumTrajectory makeGroundTruth(size_t n = 50) {
 }
 
 /// Exact χ² CDF for an even number of dof: 1 - e^{-x/2} Σ_{k<n/2} (x/2)^k / k!.
-double chi2CdfEven(double x, unsigned int n) {
+double chi2CdfEven(double x, unsigned int n)
+{
     double term = 1, sum = 1;
     for (unsigned int k = 1; k < n / 2; k++) sum += (term *= (x / 2) / k);
     return 1 - std::exp(-x / 2) * sum;
 }
 
 /// Exact χ² quantile for an even number of dof, by bisection.
-double chi2QuantileEven(double p, unsigned int n) {
+double chi2QuantileEven(double p, unsigned int n)
+{
     double lo = 0, hi = 10.0 * n + 100;
     for (int it = 0; it < 200; it++) {
         const double mid = (lo + hi) / 2;
@@ -39,7 +42,8 @@ double chi2QuantileEven(double p, unsigned int n) {
 
 }  // namespace
 
-TEST(TrajectoryMetrics, ConstantOffsetGivesThatAte) {
+TEST(TrajectoryMetrics, ConstantOffsetGivesThatAte)
+{
     const auto gt = makeGroundTruth();
     auto est = gt;
     for (auto& p : est.poses) {
@@ -62,7 +66,8 @@ TEST(TrajectoryMetrics, ConstantOffsetGivesThatAte) {
     EXPECT_NEAR(a.alignment.y, 0.4, 1e-9);
 }
 
-TEST(TrajectoryMetrics, RigidlyMovedCopyAlignsToZero) {
+TEST(TrajectoryMetrics, RigidlyMovedCopyAlignsToZero)
+{
     const auto gt = makeGroundTruth();
     const mrpt::math::TPose2D moved{1.0, -2.0, DEG2RAD(30.0)};
     TumTrajectory est;
@@ -90,7 +95,8 @@ TEST(TrajectoryMetrics, RigidlyMovedCopyAlignsToZero) {
     EXPECT_NEAR(back.yaw, 0.2, 1e-9);
 }
 
-TEST(TrajectoryMetrics, AlignmentMatchesBruteForceOnNoisyPoints) {
+TEST(TrajectoryMetrics, AlignmentMatchesBruteForceOnNoisyPoints)
+{
     auto& rng = mrpt::random::getRandomGenerator();
     rng.randomize(1234);
     std::vector<mrpt::math::TPoint2D> a, b;
@@ -119,7 +125,8 @@ TEST(TrajectoryMetrics, AlignmentMatchesBruteForceOnNoisyPoints) {
     EXPECT_NEAR(best.phi, 0.7, 0.02);
 }
 
-TEST(TrajectoryMetrics, HeadingErrorWrapsAtPi) {
+TEST(TrajectoryMetrics, HeadingErrorWrapsAtPi)
+{
     TumTrajectory gt, est;
     gt.push_back(1, {0, 0, 0, DEG2RAD(179.0), 0, 0});
     est.push_back(1, {0, 0, 0, DEG2RAD(-179.0), 0, 0});
@@ -134,7 +141,8 @@ TEST(TrajectoryMetrics, HeadingErrorWrapsAtPi) {
     EXPECT_DOUBLE_EQ(m.heading_share_under_threshold, 1.0);
 }
 
-TEST(TrajectoryMetrics, AssociatesByNearestTimeWithinTolerance) {
+TEST(TrajectoryMetrics, AssociatesByNearestTimeWithinTolerance)
+{
     TumTrajectory gt, est;
     for (int i = 0; i < 5; i++) gt.push_back(i, {static_cast<double>(i), 0, 0, 0, 0, 0});
     est.push_back(0.02, {0, 1, 0, 0, 0, 0});  // matches gt 0, error 1
@@ -155,7 +163,8 @@ TEST(TrajectoryMetrics, AssociatesByNearestTimeWithinTolerance) {
     EXPECT_THROW(evaluateTrajectory(far, gt), std::runtime_error);
 }
 
-TEST(TrajectoryMetrics, NeesOfKnownErrorAndCovariance) {
+TEST(TrajectoryMetrics, NeesOfKnownErrorAndCovariance)
+{
     // e = (1, 2), P = diag(4, 1): NEES = 1/4 + 4/1.
     EXPECT_NEAR(nees(Eigen::Vector2d(1, 2), Eigen::Matrix2d(Eigen::Vector2d(4, 1).asDiagonal())),
                 4.25, 1e-12);
@@ -177,7 +186,8 @@ TEST(TrajectoryMetrics, NeesOfKnownErrorAndCovariance) {
     EXPECT_THROW(nees(Eigen::Vector2d(1, 1), Eigen::Matrix2d::Zero()), std::invalid_argument);
 }
 
-TEST(TrajectoryMetrics, Chi2BoundsMatchExactQuantiles) {
+TEST(TrajectoryMetrics, Chi2BoundsMatchExactQuantiles)
+{
     // Large dof (averaged over 50 runs of a 2-dof error): close to the exact quantiles.
     const auto [lo, hi] = chi2Bounds(2, 0.95, 50);
     EXPECT_NEAR(lo, chi2QuantileEven(0.025, 100) / 50, 0.002 * lo);

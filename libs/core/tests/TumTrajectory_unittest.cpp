@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
-#include <mrpt_vslam/test/ScratchFolder.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt_vslam/core/TumTrajectory.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -25,7 +25,8 @@ std::string writeTemp(const std::string& name, const std::string& text)
 }
 
 /// Message of the exception thrown by TumTrajectory::load(file), or "" if none.
-std::string loadError(const std::string& file) {
+std::string loadError(const std::string& file)
+{
     try {
         TumTrajectory::load(file);
     } catch (const std::runtime_error& e) {
@@ -36,7 +37,8 @@ std::string loadError(const std::string& file) {
 
 }  // namespace
 
-TEST(TumTrajectory, SaveLoadRoundTrip) {
+TEST(TumTrajectory, SaveLoadRoundTrip)
+{
     TumTrajectory traj;
     traj.push_back(1000.25, {1.5, -2.0, 0.0, mrpt::DEG2RAD(30.0), 0, 0});
     traj.push_back(1000.5, {1.75, -1.5, 0.1, mrpt::DEG2RAD(-170.0), 0, 0});
@@ -57,7 +59,8 @@ TEST(TumTrajectory, SaveLoadRoundTrip) {
     fs::remove(path);
 }
 
-TEST(TumTrajectory, ReadsYawFromQuaternion) {
+TEST(TumTrajectory, ReadsYawFromQuaternion)
+{
     // Rotation of 90° about z: q = (0, 0, sin 45°, cos 45°).
     const auto path = writeTemp("yaw.tum",
                                 "# t x y z qx qy qz qw\n\n"
@@ -69,44 +72,51 @@ TEST(TumTrajectory, ReadsYawFromQuaternion) {
     EXPECT_NEAR(traj.poses[0].z, 3.0, 1e-12);
 }
 
-TEST(TumTrajectory, MalformedLineNamesFileAndLine) {
+TEST(TumTrajectory, MalformedLineNamesFileAndLine)
+{
     const auto path = writeTemp("bad.tum", "# header\n1 0 0 0 0 0 0 1\n2 0 0 0 0 0 1\n");
     const auto msg = loadError(path);
     EXPECT_NE(msg.find(path + ":3:"), std::string::npos) << msg;
 }
 
-TEST(TumTrajectory, ExtraColumnIsAnError) {
+TEST(TumTrajectory, ExtraColumnIsAnError)
+{
     const auto path = writeTemp("extra.tum", "1 0 0 0 0 0 0 1 7\n");
     EXPECT_NE(loadError(path).find(path + ":1:"), std::string::npos);
 }
 
-TEST(TumTrajectory, NonUnitQuaternionIsAnError) {
+TEST(TumTrajectory, NonUnitQuaternionIsAnError)
+{
     const auto path = writeTemp("quat.tum", "1 0 0 0 0 0 0 1\n2 0 0 0 0 0 0 2\n");
     const auto msg = loadError(path);
     EXPECT_NE(msg.find(path + ":2:"), std::string::npos) << msg;
     EXPECT_NE(msg.find("quaternion"), std::string::npos) << msg;
 }
 
-TEST(TumTrajectory, NonIncreasingTimeIsAnError) {
+TEST(TumTrajectory, NonIncreasingTimeIsAnError)
+{
     const auto path = writeTemp("time.tum", "1 0 0 0 0 0 0 1\n2 0 0 0 0 0 0 1\n2 1 0 0 0 0 0 1\n");
     const auto msg = loadError(path);
     EXPECT_NE(msg.find(path + ":3:"), std::string::npos) << msg;
     EXPECT_NE(msg.find("increasing"), std::string::npos) << msg;
 }
 
-TEST(TumTrajectory, NonFiniteValueIsAnError) {
+TEST(TumTrajectory, NonFiniteValueIsAnError)
+{
     const auto path = writeTemp("nan.tum", "1 nan 0 0 0 0 0 1\n");
     EXPECT_NE(loadError(path).find(path + ":1:"), std::string::npos);
 }
 
-TEST(TumTrajectory, MissingFileNamesTheFile) {
+TEST(TumTrajectory, MissingFileNamesTheFile)
+{
     const auto path = (scratch().path() / "missing.tum").string();
     fs::remove(path);
     const auto msg = loadError(path);
     EXPECT_EQ(msg.rfind(path + ":", 0), 0u) << msg;
 }
 
-TEST(TumTrajectory, NearestIndexWithinTolerance) {
+TEST(TumTrajectory, NearestIndexWithinTolerance)
+{
     TumTrajectory traj;
     for (double t : {1.0, 2.0, 3.0}) traj.push_back(t, {});
     EXPECT_EQ(traj.nearestIndex(1.0, 0.0), 0);

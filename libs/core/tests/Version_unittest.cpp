@@ -1,7 +1,6 @@
+#include <gtest/gtest.h>
 #include <mrpt/version.h>
 #include <mrpt_vslam/core/Version.h>
-
-#include <gtest/gtest.h>
 
 #include <cstdio>
 #include <fstream>

@@ -29,8 +29,7 @@ TPose2D compose(const TPose2D& a, const TPose2D& b)
 
 void requireKey(bool ok, const std::string& section, const char* key, const char* what)
 {
-    if (!ok)
-        throw std::invalid_argument("[" + section + "] " + key + ": " + what);
+    if (!ok) throw std::invalid_argument("[" + section + "] " + key + ": " + what);
 }
 /** `<prefix>_std_range` [m], `<prefix>_std_bearing_deg`, `<prefix>_std_pitch_deg` (each > 0,
  *  or absent: the observation's own σ), `<prefix>_std_height` [m] (> 0). */
@@ -124,8 +123,8 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
     requireKey(min_seen >= 1, section, "map_along_path_min_times_seen", "must be >= 1");
     map_along_path_min_times_seen = static_cast<unsigned int>(min_seen);
     MRPT_LOAD_CONFIG_VAR(smooth_paths, bool, cfg, section);
-    const int rounds = cfg.read_int(section, "smooth_paths_rounds",
-                                    static_cast<int>(smooth_paths_rounds));
+    const int rounds =
+        cfg.read_int(section, "smooth_paths_rounds", static_cast<int>(smooth_paths_rounds));
     requireKey(rounds >= 1, section, "smooth_paths_rounds", "must be >= 1");
     smooth_paths_rounds = static_cast<unsigned int>(rounds);
     MRPT_LOAD_CONFIG_VAR(smooth_paths_huber, double, cfg, section);
@@ -227,8 +226,7 @@ void CMultiRobotVisualSLAM::reset(const std::vector<TPose2D>& start_poses, doubl
 {
     if (start_poses.size() != robotCount())
         throw std::invalid_argument("reset(): " + std::to_string(start_poses.size()) +
-                                    " start poses for " + std::to_string(robotCount()) +
-                                    " robots");
+                                    " start poses for " + std::to_string(robotCount()) + " robots");
     // a fresh pool shared by the template and every particle's map
     CVisualLandmarksMap empty(
         std::make_shared<LandmarkDescriptorPool>(m_template.insertionOptions.grid_cell_size));
@@ -258,15 +256,15 @@ void CMultiRobotVisualSLAM::reset(const std::vector<TPose2D>& start_poses, doubl
 
 const TTeamParticle& CMultiRobotVisualSLAM::bestParticle() const
 {
-    const auto best = std::max_element(m_particles.begin(), m_particles.end(),
-                                       [](const auto& a, const auto& b) {
-                                           return a.d->accumulated_log_w < b.d->accumulated_log_w;
-                                       });
+    const auto best =
+        std::max_element(m_particles.begin(), m_particles.end(), [](const auto& a, const auto& b) {
+            return a.d->accumulated_log_w < b.d->accumulated_log_w;
+        });
     return *best->d;
 }
 
 std::vector<std::pair<double, TPose2D>> CMultiRobotVisualSLAM::pathOf(const TTeamParticle& p,
-                                                                       size_t robot)
+                                                                      size_t robot)
 {
     std::vector<std::pair<double, TPose2D>> path;
     for (const TTeamPathNode* n = p.path.get(); n; n = n->previous.get())
@@ -293,7 +291,8 @@ CMultiRobotVisualSLAM::TMotionGaussian CMultiRobotVisualSLAM::motionOf(
                                  ": odometry with a non-finite increment or covariance");
     const Eigen::LLT<Eigen::Matrix3d> llt(g.cov);
     if (llt.info() != Eigen::Success)
-        throw std::runtime_error(options.robots[k] + ": odometry covariance is not positive definite");
+        throw std::runtime_error(options.robots[k] +
+                                 ": odometry covariance is not positive definite");
     g.L = llt.matrixL();
     return g;
 }
@@ -364,8 +363,7 @@ void CMultiRobotVisualSLAM::sampleMotion(size_t k, const TMotionGaussian& motion
 {
     for (auto& p : m_particles) {  // Alg. 1 line 18, p(x_t | x_{t-1}, u_t) per robot
         const Eigen::Vector3d dx = drawGaussian(motion.L);
-        p.d->poses[k] = compose(p.d->poses[k], TPose2D(motion.mean.x + dx[0],
-                                                       motion.mean.y + dx[1],
+        p.d->poses[k] = compose(p.d->poses[k], TPose2D(motion.mean.x + dx[0], motion.mean.y + dx[1],
                                                        motion.mean.phi + dx[2]));
     }
 }
@@ -538,14 +536,14 @@ void CMultiRobotVisualSLAM::runStep(
                                  std::to_string(action ? action->size() : 0));
     double timestamp = 0;
     for (size_t k = 0; k < K; k++) {  // Alg. 1 lines 7-9
-        const auto* odo =
-            dynamic_cast<const mrpt::obs::CActionRobotMovement2D*>(&action->get(k));
-        if (!odo) throw std::runtime_error("action " + std::to_string(k) +
-                                           " of a step is not a CActionRobotMovement2D");
+        const auto* odo = dynamic_cast<const mrpt::obs::CActionRobotMovement2D*>(&action->get(k));
+        if (!odo)
+            throw std::runtime_error("action " + std::to_string(k) +
+                                     " of a step is not a CActionRobotMovement2D");
         timestamp = std::max(timestamp, mrpt::Clock::toDouble(odo->timestamp));
         const TMotionGaussian motion = motionOf(k, *odo);
-        const auto z = observation ? measurementsOf(k, *observation)
-                                   : std::vector<TLandmarkMeasurement>();
+        const auto z =
+            observation ? measurementsOf(k, *observation) : std::vector<TLandmarkMeasurement>();
         const auto readings =
             observation ? robotReadingsOf(k, *observation) : std::vector<TRobotReading>();
         lastStepStats.robot_readings += readings.size();

@@ -79,15 +79,15 @@ TMeasurementCandidates CVisualLandmarksMap::findCandidates(const TLandmarkMeasur
     return c;
 }
 
-
 CVisualLandmarksMap::TAssociation CVisualLandmarksMap::evaluate(const TMapMeasurement& m,
                                                                 uint32_t id) const
 {
     const TVisualLandmark* lm = m_store.find(id);
     if (!lm) throw std::invalid_argument("landmark " + std::to_string(id) + " is not in the map");
     const Cholesky3 L(lm->cov + m.R);  // Eq. 6-8
-    if (!L.ok) throw std::invalid_argument("landmark " + std::to_string(id) +
-                                           ": innovation covariance not positive definite");
+    if (!L.ok)
+        throw std::invalid_argument("landmark " + std::to_string(id) +
+                                    ": innovation covariance not positive definite");
     const double D = L.whiten(m.z - lm->mean).squaredNorm();  // Eq. 15
     return TAssociation{id, D, L.logGaussian(D)};             // Eq. 13
 }
@@ -108,8 +108,8 @@ std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     float best_E = 0;
     for (const auto& c : candidates.candidates) {
         if (best && c.E > best_E) break;
-        if (!m_store.find(c.id) || (excluded && std::find(excluded->begin(), excluded->end(),
-                                                          c.id) != excluded->end()))
+        if (!m_store.find(c.id) ||
+            (excluded && std::find(excluded->begin(), excluded->end(), c.id) != excluded->end()))
             continue;
         const TAssociation a = evaluate(m, c.id);
         if (!(a.D <= insertionOptions.D0) || (best && a.D >= best->D)) continue;  // line 28
@@ -119,9 +119,9 @@ std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     return best;
 }
 
-std::vector<std::optional<CVisualLandmarksMap::TAssociation>>
-CVisualLandmarksMap::associateJointly(const std::vector<TMapMeasurement>& m,
-                                      const std::vector<TMeasurementCandidates>& candidates) const
+std::vector<std::optional<CVisualLandmarksMap::TAssociation>> CVisualLandmarksMap::associateJointly(
+    const std::vector<TMapMeasurement>& m,
+    const std::vector<TMeasurementCandidates>& candidates) const
 {
     if (m.size() != candidates.size())
         throw std::invalid_argument("associateJointly(): one candidate list per point needed");
@@ -134,9 +134,8 @@ CVisualLandmarksMap::associateJointly(const std::vector<TMapMeasurement>& m,
     ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
 
     constexpr double kForbidden = std::numeric_limits<double>::infinity();
-    Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(m.size()),
-                                                     static_cast<Eigen::Index>(ids.size()),
-                                                     kForbidden);
+    Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(
+        static_cast<Eigen::Index>(m.size()), static_cast<Eigen::Index>(ids.size()), kForbidden);
     std::vector<std::vector<TAssociation>> pairs(m.size());
     for (size_t j = 0; j < m.size(); j++)
         for (const auto& l : candidates[j].candidates) {
@@ -147,8 +146,7 @@ CVisualLandmarksMap::associateJointly(const std::vector<TMapMeasurement>& m,
             cost(static_cast<Eigen::Index>(j), col) = -a.log_likelihood;
             pairs[j].push_back(a);
         }
-    const auto assignment =
-        core::solveHungarianAssignment(cost, -std::log(insertionOptions.p0));
+    const auto assignment = core::solveHungarianAssignment(cost, -std::log(insertionOptions.p0));
     std::vector<std::optional<TAssociation>> out(m.size());
     for (size_t j = 0; j < m.size(); j++) {
         const int col = assignment.row_to_col[j];
@@ -159,11 +157,11 @@ CVisualLandmarksMap::associateJointly(const std::vector<TMapMeasurement>& m,
     return out;
 }
 
-TFusionResult CVisualLandmarksMap::fuse(const TLandmarkMeasurement& m, const TMapMeasurement& in_map,
+TFusionResult CVisualLandmarksMap::fuse(const TLandmarkMeasurement& m,
+                                        const TMapMeasurement& in_map,
                                         TMeasurementCandidates& candidates, unsigned robot)
 {
-    return fuseAs(m, in_map, candidates, robot,
-                  associate(in_map, candidates, nullptr, m.identity));
+    return fuseAs(m, in_map, candidates, robot, associate(in_map, candidates, nullptr, m.identity));
 }
 
 TFusionResult CVisualLandmarksMap::fuseAs(const TLandmarkMeasurement& m,
@@ -189,15 +187,14 @@ TFusionResult CVisualLandmarksMap::fuseAs(const TLandmarkMeasurement& m,
         r.log_w = std::log(insertionOptions.p0);
         return r;
     }
-    TVisualLandmark& lm = m_store.modify(a->id);  // lines 39-42
+    TVisualLandmark& lm = m_store.modify(a->id);                                // lines 39-42
     const Eigen::Matrix3d K = lm.cov * Cholesky3(lm.cov + in_map.R).inverse();  // Σ Z⁻¹
     lm.mean += K * (in_map.z - lm.mean);
     const Eigen::Matrix3d cov = lm.cov - K * lm.cov;
     lm.cov = 0.5 * (cov + cov.transpose());
     lm.times_seen++;
     lm.seen_by |= 1u << robot;
-    if (m.track_id >= 0 && lm.identity >= 0 && m.track_id != lm.identity)
-        lm.identity_conflicts++;
+    if (m.track_id >= 0 && lm.identity >= 0 && m.track_id != lm.identity) lm.identity_conflicts++;
     r.id = a->id;
     r.log_w = a->log_likelihood;  // Eq. 13
     return r;
@@ -216,8 +213,8 @@ std::vector<TFusionResult> CVisualLandmarksMap::fuseFrame(
     }
     std::vector<uint32_t> taken;
     for (size_t j = 0; j < z.size(); j++) {
-        const auto a = associate(in_map[j], candidates[j], distinct ? &taken : nullptr,
-                                 z[j].identity);
+        const auto a =
+            associate(in_map[j], candidates[j], distinct ? &taken : nullptr, z[j].identity);
         if (a && distinct) taken.push_back(a->id);
         results[j] = fuseAs(z[j], in_map[j], candidates[j], robot, a);
     }

@@ -10,8 +10,8 @@ void CVisualLandmarksMap::serializeTo(mrpt::serialization::CArchive& out) const
     out << genericMapParams;
     // Options travel with the map: CMultiMetricMap copies (particle resampling) serialize it.
     const auto& io = insertionOptions;
-    out << io.D0 << io.E0 << io.p0 << io.search_radius << io.grid_cell_size
-        << io.joint_association << io.associate_by_identity;
+    out << io.D0 << io.E0 << io.p0 << io.search_radius << io.grid_cell_size << io.joint_association
+        << io.associate_by_identity;
     out << renderOptions.draw_ellipsoids << renderOptions.ellipsoid_quantiles
         << renderOptions.point_size;
     out << static_cast<uint32_t>(m_store.size());

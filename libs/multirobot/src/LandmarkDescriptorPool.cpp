@@ -100,8 +100,9 @@ void LandmarkDescriptorPool::findCandidates(const Eigen::Vector3d& center, doubl
                     if (E <= max_E) out.push_back({id, E});
                 }
             }
-    std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
-              [](const auto& a, const auto& b) { return a.E < b.E || (a.E == b.E && a.id < b.id); });
+    std::sort(
+        out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
+        [](const auto& a, const auto& b) { return a.E < b.E || (a.E == b.E && a.id < b.id); });
 }
 
 }  // namespace mrpt_vslam::multirobot

@@ -19,8 +19,8 @@ std::vector<TLandmarkMeasurement> measurementsFromObservation(
     out.reserve(obs.landmarks.landmarks.size());
     for (const auto& lm : obs.landmarks.landmarks) {
         const auto fail = [&](const std::string& what) {
-            throw std::runtime_error(obs.sensorLabel + ": landmark " + std::to_string(lm.ID) +
-                                     " " + what);
+            throw std::runtime_error(obs.sensorLabel + ": landmark " + std::to_string(lm.ID) + " " +
+                                     what);
         };
         if (lm.features.empty() || !lm.features[0].descriptors.SURF ||
             lm.features[0].descriptors.SURF->size() != core::USurfDescriptor::kSize)
@@ -31,7 +31,8 @@ std::vector<TLandmarkMeasurement> measurementsFromObservation(
         C << lm.pose_cov_11, lm.pose_cov_12, lm.pose_cov_13, lm.pose_cov_12, lm.pose_cov_22,
             lm.pose_cov_23, lm.pose_cov_13, lm.pose_cov_23, lm.pose_cov_33;
         if (!p.allFinite() || !C.allFinite()) fail("has a non-finite point or covariance");
-        if (C.llt().info() != Eigen::Success) fail("has a covariance that is not positive definite");
+        if (C.llt().info() != Eigen::Success)
+            fail("has a covariance that is not positive definite");
         if (!(p.z() > 0)) fail("is not in front of the camera");
         m.z = rot * p + t;
         m.R = rot * C * rot.transpose();
@@ -86,7 +87,7 @@ std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
         }
         const double r = s.range, cb = std::cos(s.yaw), sb_ = std::sin(s.yaw);
         const double cp = std::cos(s.pitch), sp_ = std::sin(s.pitch);
-        Eigen::Matrix3d J;  // ∂(x, y, z)/∂(r, b, p)
+        Eigen::Matrix3d J;                           // ∂(x, y, z)/∂(r, b, p)
         J << cp * cb, -r * cp * sb_, -r * sp_ * cb,  //
             cp * sb_, r * cp * cb, -r * sp_ * sb_,   //
             -sp_, 0, -r * cp;

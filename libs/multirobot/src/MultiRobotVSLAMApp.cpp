@@ -26,11 +26,11 @@
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
 #include <mrpt_vslam/multirobot/MultiRobotVSLAMApp.h>
 #include <mrpt_vslam/multirobot/StereoFrontEnd.h>
-#include <opencv2/core/version.hpp>
 
 #include <bitset>
 #include <cstdio>
 #include <map>
+#include <opencv2/core/version.hpp>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -47,9 +47,11 @@ enum class TInput { Auto, Landmarks, Stereo };
 
 mrpt::math::TPose3D to3D(const mrpt::math::TPose2D& p) { return {p.x, p.y, 0, p.phi, 0, 0}; }
 
-const std::vector<mrpt::img::TColorf> kRobotColours{
-    {0.0f, 0.6f, 0.0f}, {0.0f, 0.3f, 0.9f}, {0.8f, 0.4f, 0.0f}, {0.6f, 0.0f, 0.6f},
-    {0.0f, 0.6f, 0.6f}};
+const std::vector<mrpt::img::TColorf> kRobotColours{{0.0f, 0.6f, 0.0f},
+                                                    {0.0f, 0.3f, 0.9f},
+                                                    {0.8f, 0.4f, 0.0f},
+                                                    {0.6f, 0.0f, 0.6f},
+                                                    {0.0f, 0.6f, 0.6f}};
 mrpt::img::TColorf robotColour(size_t k) { return kRobotColours[k % kRobotColours.size()]; }
 }  // namespace
 
@@ -119,15 +121,21 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
 {
     cfg.loadFile(args.configFile, args.overrides);
     const std::string& name = cfg.name();
-    const auto usage = [&](const std::string& what) { return core::UsageError(name + ": " + what); };
+    const auto usage = [&](const std::string& what) {
+        return core::UsageError(name + ": " + what);
+    };
 
     rawlog = args.resolveRawlog(cfg, kAppSection);
     seed = args.resolveSeed(static_cast<uint32_t>(cfg.read_int(kAppSection, "random_seed", 0)));
     const std::string in = cfg.read_string(kAppSection, "input", "auto");
-    if (in == "auto") input = TInput::Auto;
-    else if (in == "landmarks") input = TInput::Landmarks;
-    else if (in == "stereo") input = TInput::Stereo;
-    else throw usage("[MultiRobotVSLAM] input must be auto, landmarks or stereo, not '" + in + "'");
+    if (in == "auto")
+        input = TInput::Auto;
+    else if (in == "landmarks")
+        input = TInput::Landmarks;
+    else if (in == "stereo")
+        input = TInput::Stereo;
+    else
+        throw usage("[MultiRobotVSLAM] input must be auto, landmarks or stereo, not '" + in + "'");
     startFromGroundTruth =
         cfg.read_bool(kAppSection, "start_poses_from_ground_truth", startFromGroundTruth);
     gtMatchRadius = cfg.read_double(kAppSection, "gt_match_radius", gtMatchRadius);
@@ -159,8 +167,9 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
         throw usage("[ParticleFilter] adaptiveSampleSize is not supported (use 0)");
     if (pf.m_options.PF_algorithm != mrpt::bayes::CParticleFilter::pfStandardProposal &&
         pf.m_options.PF_algorithm != mrpt::bayes::CParticleFilter::pfOptimalProposal)
-        throw usage("[ParticleFilter] PF_algorithm must be pfStandardProposal (Gil et al. 2010, "
-                    "Sec. 3.1) or pfOptimalProposal (FastSLAM 2.0 proposal per robot)");
+        throw usage(
+            "[ParticleFilter] PF_algorithm must be pfStandardProposal (Gil et al. 2010, "
+            "Sec. 3.1) or pfOptimalProposal (FastSLAM 2.0 proposal per robot)");
 
     // Every particle's map comes from the .ini through MRPT's map registry.
     mrpt::maps::TSetOfMetricMapInitializers inits;
@@ -176,8 +185,9 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
                     "] must define exactly one map: visualLandmarksMap_count = 1");
     mapTemplate = *map;
     if (!odometryLabel.empty() && filterOptions.robots.size() != 1)
-        throw usage("[MultiRobotVSLAM] odometry_label is for one robot; a team's odometry is "
-                    "labelled <ROBOT>_ODOM");
+        throw usage(
+            "[MultiRobotVSLAM] odometry_label is for one robot; a team's odometry is "
+            "labelled <ROBOT>_ODOM");
     cfg.throwIfUnreadKeys();
 }
 
@@ -198,12 +208,13 @@ void MultiRobotVSLAMApp::Impl::findGroundTruth()
         }
     }
     if (found == 0 && !args.groundTruth.empty())
-        throw std::runtime_error(groundTruthPrefix + ".groundtruth_<ROBOT>.tum: no ground truth "
+        throw std::runtime_error(groundTruthPrefix +
+                                 ".groundtruth_<ROBOT>.tum: no ground truth "
                                  "file found (--ground-truth)");
     if (startFromGroundTruth && found < filterOptions.robots.size())
         for (size_t k = 1; k < filterOptions.robots.size(); k++)
-            if (!groundTruth[k] && !cfg.keyExists(kAppSection,
-                                                  "start_pose_" + filterOptions.robots[k]))
+            if (!groundTruth[k] &&
+                !cfg.keyExists(kAppSection, "start_pose_" + filterOptions.robots[k]))
                 throw core::UsageError(cfg.name() + ": [MultiRobotVSLAM] no ground truth for " +
                                        filterOptions.robots[k] + ": give start_pose_" +
                                        filterOptions.robots[k] + " = x y yaw_deg");
@@ -220,7 +231,7 @@ void MultiRobotVSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
             sf, o.inputLabel(k, "_STEREO"));
         const bool hasLandmarks =
             ObservationSelector::firstIn<mrpt::obs::CObservationVisualLandmarks>(sf,
-                                                                                landmarksLabel) ||
+                                                                                 landmarksLabel) ||
             ObservationSelector::firstIn<mrpt::obs::CObservationBearingRange>(
                 sf, o.inputLabel(k, o.range_bearing_suffix));
         if (stereo) stereoFrames++;
@@ -273,8 +284,8 @@ void MultiRobotVSLAMApp::initialize()
     d.findGroundTruth();
     outDir = d.args.outDir;
     robots = d.filterOptions.robots;
-    d.filter = std::make_unique<CMultiRobotVisualSLAM>(d.mapTemplate, d.pf.m_options.sampleSize,
-                                                       d.seed);
+    d.filter =
+        std::make_unique<CMultiRobotVisualSLAM>(d.mapTemplate, d.pf.m_options.sampleSize, d.seed);
     // CParticleFilter's resampling draws from MRPT's global generator.
     mrpt::random::getRandomGenerator().randomize(d.seed);
     d.filter->options = d.filterOptions;
@@ -299,8 +310,8 @@ core::TumTrajectory MultiRobotVSLAMApp::Impl::bestParticlePath(size_t robot) con
 }
 
 void MultiRobotVSLAMApp::Impl::drawTeam(mrpt::opengl::COpenGLScene& scene,
-                                       const CVisualLandmarksMap& map,
-                                       const std::vector<core::TumTrajectory>& paths) const
+                                        const CVisualLandmarksMap& map,
+                                        const std::vector<core::TumTrajectory>& paths) const
 {
     scene.insert(mrpt::opengl::CGridPlaneXY::Create(-15, 15, -10, 10, 0, 1));
     scene.insert(map.getVisualization());
@@ -356,8 +367,8 @@ void MultiRobotVSLAMApp::run()
         timer.endStep();
 
         for (size_t k = 0; k < robots.size(); k++) {
-            const auto move = std::dynamic_pointer_cast<mrpt::obs::CActionRobotMovement2D>(
-                actions->get(k));
+            const auto move =
+                std::dynamic_pointer_cast<mrpt::obs::CActionRobotMovement2D>(actions->get(k));
             odometry[k] = odometry[k] + move->poseChange->getMeanVal();
             odometryPaths[k].push_back(t, to3D(odometry[k].asTPose()));
         }
@@ -404,7 +415,7 @@ void MultiRobotVSLAMApp::run()
 }
 
 std::string MultiRobotVSLAMApp::Impl::landmarkMergingJson(const CVisualLandmarksMap& map,
-                                                         const core::LandmarkFile& truth) const
+                                                          const core::LandmarkFile& truth) const
 {
     // each map landmark goes to its nearest true landmark within gt_match_radius
     std::vector<size_t> count(truth.landmarks.size(), 0);
@@ -434,8 +445,10 @@ std::string MultiRobotVSLAMApp::Impl::landmarkMergingJson(const CVisualLandmarks
         (count[i] == 1 ? once : duplicated)++;
         if (std::bitset<32>(robotsOf[i]).count() < 2) continue;
         byTeam++;  // measured by several robots, through one landmark or several
-        if (count[i] == 1 && std::bitset<32>(bitsOfOne[i]).count() >= 2) byTeamMerged++;
-        else byTeamDuplicated++;
+        if (count[i] == 1 && std::bitset<32>(bitsOfOne[i]).count() >= 2)
+            byTeamMerged++;
+        else
+            byTeamDuplicated++;
     }
     std::ostringstream j;
     j << "{\"match_radius_m\": " << gtMatchRadius << ", \"map_landmarks\": " << map.size()
@@ -465,11 +478,10 @@ std::string MultiRobotVSLAMApp::Impl::identityAssociationJson(const CVisualLandm
     size_t duplicatedIdentities = 0;
     for (const auto& [id, n] : landmarksOf) duplicatedIdentities += n > 1 ? 1 : 0;
     std::ostringstream j;
-    j << "{\"landmarks_with_identity\": " << landmarks
-      << ", \"identities\": " << landmarksOf.size()
+    j << "{\"landmarks_with_identity\": " << landmarks << ", \"identities\": " << landmarksOf.size()
       << ", \"identities_with_several_landmarks\": " << duplicatedIdentities
-      << ", \"fused_measurements\": " << fused
-      << ", \"fused_with_another_identity\": " << conflicts << "}";
+      << ", \"fused_measurements\": " << fused << ", \"fused_with_another_identity\": " << conflicts
+      << "}";
     return j.str();
 }
 
@@ -479,16 +491,16 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
     const auto& best = filter->bestParticle();
     for (size_t k = 0; k < app.robots.size(); k++) {
         const std::string& r = app.robots[k];
-        app.estimatedPaths[k].save(out.file("estimated_path_" + r + ".tum"),
-                                   "multirobot-vslam: " +
-                                       std::string(smoothed ? "smoothed" : "best particle's") +
-                                       " path of " + r);
+        app.estimatedPaths[k].save(
+            out.file("estimated_path_" + r + ".tum"),
+            "multirobot-vslam: " + std::string(smoothed ? "smoothed" : "best particle's") +
+                " path of " + r);
         app.odometryPaths[k].save(out.file("odometry_path_" + r + ".tum"),
                                   "multirobot-vslam: dead reckoning of " + r);
         if (smoothed)
-            filterPaths[k].save(out.file("filter_path_" + r + ".tum"),
-                                "multirobot-vslam: best particle's path of " + r +
-                                    ", before smoothing");
+            filterPaths[k].save(
+                out.file("filter_path_" + r + ".tum"),
+                "multirobot-vslam: best particle's path of " + r + ", before smoothing");
     }
     // the output map: the best particle's own, or the one made along its final path, or
     // along the smoothed paths

@@ -4,7 +4,6 @@
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <Eigen/SparseCholesky>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -59,8 +58,8 @@ size_t PlanarPoseLandmarkGraph::addPoint(const Eigen::Vector2d& initial)
 }
 
 size_t PlanarPoseLandmarkGraph::addOdometryScale(const Eigen::Vector2d& initial,
-                                                const Eigen::Vector2d& mean,
-                                                const Eigen::Matrix2d& cov)
+                                                 const Eigen::Vector2d& mean,
+                                                 const Eigen::Matrix2d& cov)
 {
     m_scales.push_back(initial);
     m_scalePriors.push_back({m_scales.size() - 1, mean, sqrtInformation<2>(cov)});

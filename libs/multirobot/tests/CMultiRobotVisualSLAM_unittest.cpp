@@ -58,8 +58,9 @@ TEST(CMultiRobotVisualSLAM, TeamWeightIsTheProductOverRobotsAndMeasurements)
         const auto& p = *filter.m_particles[i].d;
         double expected = 0;
         for (size_t k = 0; k < 2; k++) {
-            auto obs = sf.getObservationBySensorLabelAs<mrpt::obs::CObservationVisualLandmarks::Ptr>(
-                "R" + std::to_string(k + 1) + "_LANDMARKS");
+            auto obs =
+                sf.getObservationBySensorLabelAs<mrpt::obs::CObservationVisualLandmarks::Ptr>(
+                    "R" + std::to_string(k + 1) + "_LANDMARKS");
             for (const auto& m : selectNearest(measurementsFromObservation(*obs), 6)) {
                 const auto in_map = toMapFrame(m, p.poses[k]);
                 // wide search: the result must not depend on the filter's spread radius

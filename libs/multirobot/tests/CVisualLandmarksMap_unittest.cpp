@@ -226,15 +226,15 @@ TEST(CVisualLandmarksMap, EkfUpdateAndWeightMatchTheCameraFrameEquations)
     m.R = B * B.transpose();
     m.d = unitDescriptor(4);
 
-    const Eigen::Matrix3d G = Rot.transpose();                          // Eq. 7
-    const Eigen::Vector3d z_hat = G * (lm.mean - t);                     // Eq. 6
-    const Eigen::Matrix3d Z = G * lm.cov * G.transpose() + m.R;          // Eq. 8
-    const Eigen::Matrix3d K = lm.cov * G.transpose() * Z.inverse();      // Eq. 9
-    const Eigen::Vector3d mu = lm.mean + K * (m.z - z_hat);              // Eq. 10
+    const Eigen::Matrix3d G = Rot.transpose();                                     // Eq. 7
+    const Eigen::Vector3d z_hat = G * (lm.mean - t);                               // Eq. 6
+    const Eigen::Matrix3d Z = G * lm.cov * G.transpose() + m.R;                    // Eq. 8
+    const Eigen::Matrix3d K = lm.cov * G.transpose() * Z.inverse();                // Eq. 9
+    const Eigen::Vector3d mu = lm.mean + K * (m.z - z_hat);                        // Eq. 10
     const Eigen::Matrix3d Sigma = (Eigen::Matrix3d::Identity() - K * G) * lm.cov;  // Eq. 11
     const Eigen::Vector3d v = m.z - z_hat;
     const double w = std::exp(-0.5 * v.dot(Z.inverse() * v)) /
-                     std::sqrt((2 * M_PI * Z).determinant());            // Eq. 13
+                     std::sqrt((2 * M_PI * Z).determinant());  // Eq. 13
 
     const TMapMeasurement in_map = toMapFrame(m, robot);
     auto candidates = map.findCandidates(m, in_map);
@@ -272,8 +272,8 @@ TEST(CVisualLandmarksMap, JointAssociationKeepsTwoNearbyLandmarksApart)
     map.insertionOptions.E0 = 4;  // descriptors play no part here
     const uint32_t a = map.addLandmark(landmarkAt({2, 0, 1}, 0.01), unitDescriptor(1));
     const uint32_t b = map.addLandmark(landmarkAt({2, 0.2, 1}, 0.01), unitDescriptor(1));
-    const auto f = frameOf(map, {measurement({2, 0.12, 1}, 0.05, 1),
-                                 measurement({2, 0.3, 1}, 0.05, 1)});
+    const auto f =
+        frameOf(map, {measurement({2, 0.12, 1}, 0.05, 1), measurement({2, 0.3, 1}, 0.05, 1)});
 
     std::vector<uint32_t> taken;
     const auto first = map.associate(f.in_map[0], f.candidates[0], &taken);
@@ -306,8 +306,8 @@ TEST(CVisualLandmarksMap, JointAssociationMatchesBruteForce)
         const int n_landmarks = 1 + trial % 5, n_points = 1 + (trial / 5) % 4;
         std::vector<uint32_t> ids;
         for (int l = 0; l < n_landmarks; l++)
-            ids.push_back(map.addLandmark(landmarkAt({2 + u(gen), u(gen), 1}, 0.03),
-                                          unitDescriptor(1)));
+            ids.push_back(
+                map.addLandmark(landmarkAt({2 + u(gen), u(gen), 1}, 0.03), unitDescriptor(1)));
         std::vector<TLandmarkMeasurement> z;
         for (int j = 0; j < n_points; j++)
             z.push_back(measurement({2 + u(gen), u(gen), 1 + 0.1 * u(gen)}, 0.1, 1));
@@ -458,8 +458,9 @@ TEST(CVisualLandmarksMap, RejectsImpossibleOptions)
         }
         return "";
     };
-    EXPECT_NE(errorOf("E0 = -1").find("[Map_visualLandmarksMap_00_insertOpts] E0: must be in [0, 4]"),
-              std::string::npos);
+    EXPECT_NE(
+        errorOf("E0 = -1").find("[Map_visualLandmarksMap_00_insertOpts] E0: must be in [0, 4]"),
+        std::string::npos);
     EXPECT_NE(errorOf("D0 = 0").find("D0: must be finite and > 0"), std::string::npos);
     EXPECT_NE(errorOf("p0 = nan").find("p0: must be finite and > 0"), std::string::npos);
     EXPECT_NE(errorOf("grid_cell_size = -2").find("grid_cell_size"), std::string::npos);

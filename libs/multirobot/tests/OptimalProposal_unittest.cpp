@@ -92,7 +92,7 @@ struct TOneMeasurementCase {
 /// R1 reads R2, whose pose every particle knows exactly (it starts there, no spread).
 struct TRobotReadingCase {
     mrpt::math::TPose2D seen{2.0, 0.6, 0.3};  // R2's start pose
-    float range = 2.14f, bearing = 0.30f;    // true R1 pose ≈ (−0.05, 0.03, −1°)
+    float range = 2.14f, bearing = 0.30f;     // true R1 pose ≈ (−0.05, 0.03, −1°)
     TRangeBearingNoise noise{0.04, mrpt::DEG2RAD(1.0), 0.01, {}};
     double std_xy = 0.06, std_phi = mrpt::DEG2RAD(3.0);
 
@@ -119,10 +119,10 @@ struct TRobotReadingCase {
 
 /** One step of `filter` (the framework's resampling not called); returns the first robot's
  *  prior covariance: its odometry's plus the filter's floor. */
-Eigen::Matrix3d stepWithoutResampling(CMultiRobotVisualSLAM& filter,
-                                      const mrpt::obs::CActionCollection& acts,
-                                      const mrpt::obs::CSensoryFrame& sf,
-                                      mrpt::bayes::CParticleFilter::TParticleFilterAlgorithm algorithm)
+Eigen::Matrix3d stepWithoutResampling(
+    CMultiRobotVisualSLAM& filter, const mrpt::obs::CActionCollection& acts,
+    const mrpt::obs::CSensoryFrame& sf,
+    mrpt::bayes::CParticleFilter::TParticleFilterAlgorithm algorithm)
 {
     mrpt::bayes::CParticleFilter::TParticleFilterOptions opts;
     opts.PF_algorithm = algorithm;
@@ -255,8 +255,8 @@ void expectMeanWeightIsTheEvidence(const CMultiRobotVisualSLAM& filter, const TB
 {
     double sum = 0;
     for (const auto& p : filter.m_particles) sum += std::exp(p.log_w);
-    EXPECT_NEAR(std::log(sum / static_cast<double>(filter.m_particles.size())),
-                exact.log_evidence, 0.05);
+    EXPECT_NEAR(std::log(sum / static_cast<double>(filter.m_particles.size())), exact.log_evidence,
+                0.05);
 }
 }  // namespace
 

@@ -84,8 +84,8 @@ TMeasurements measure(const TWorld& w, double noise, uint32_t seed,
 
 /// The graph of the measurements with the given values; sigma: every factor's σ. With
 /// `scales`, one odometry scale variable per robot (starting at 1, prior N(1, 10²)).
-PlanarPoseLandmarkGraph makeGraph(const TWorld& values, const TWorld& truth,
-                                  const TMeasurements& m, double sigma, bool scales = false)
+PlanarPoseLandmarkGraph makeGraph(const TWorld& values, const TWorld& truth, const TMeasurements& m,
+                                  double sigma, bool scales = false)
 {
     PlanarPoseLandmarkGraph g;
     const size_t steps = values.poses[0].size();
@@ -186,10 +186,12 @@ TEST(PlanarPoseLandmarkGraph, TheResultIsAStationaryPointAndALocalMinimumOfTheCo
             double* a = nullptr;
             double* b = nullptr;
             if (r < 2) {
-                a = comp == 0 ? &plus.poses[r][i].x : comp == 1 ? &plus.poses[r][i].y
-                                                                : &plus.poses[r][i].phi;
-                b = comp == 0 ? &minus.poses[r][i].x : comp == 1 ? &minus.poses[r][i].y
-                                                                 : &minus.poses[r][i].phi;
+                a = comp == 0   ? &plus.poses[r][i].x
+                    : comp == 1 ? &plus.poses[r][i].y
+                                : &plus.poses[r][i].phi;
+                b = comp == 0   ? &minus.poses[r][i].x
+                    : comp == 1 ? &minus.poses[r][i].y
+                                : &minus.poses[r][i].phi;
             } else {
                 a = &plus.points[i % 6][comp % 2];
                 b = &minus.points[i % 6][comp % 2];
@@ -203,9 +205,9 @@ TEST(PlanarPoseLandmarkGraph, TheResultIsAStationaryPointAndALocalMinimumOfTheCo
             EXPECT_NEAR(gradient, 0, 1e-2) << "huber " << huber << " trial " << trial;
         }
         for (int trial = 0; trial < 20; trial++)
-            EXPECT_GT(makeGraph(perturbed(best, 0.01, 0.005, 10 + trial), truth, m, 0.05)
-                          .cost(huber),
-                      c0);
+            EXPECT_GT(
+                makeGraph(perturbed(best, 0.01, 0.005, 10 + trial), truth, m, 0.05).cost(huber),
+                c0);
     }
 }
 

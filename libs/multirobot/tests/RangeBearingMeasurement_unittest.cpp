@@ -52,9 +52,10 @@ TEST(RangeBearingMeasurement, PointAndCovarianceMatchTheClosedForm)
     EXPECT_NEAR(z[0].z.z(), 0.3, 1e-12);
     // in the sensor frame: radial variance σ_r², tangential (r σ_b)²; the turn swaps them
     const double radial = 0.01, tangential = r * r * 0.0025;
-    const Eigen::Vector2d u_radial(-std::sin(b), std::cos(b)), u_tangent(-std::cos(b), -std::sin(b));
-    const Eigen::Matrix2d expected = radial * u_radial * u_radial.transpose() +
-                                     tangential * u_tangent * u_tangent.transpose();
+    const Eigen::Vector2d u_radial(-std::sin(b), std::cos(b)),
+        u_tangent(-std::cos(b), -std::sin(b));
+    const Eigen::Matrix2d expected =
+        radial * u_radial * u_radial.transpose() + tangential * u_tangent * u_tangent.transpose();
     EXPECT_LT((z[0].R.topLeftCorner<2, 2>() - expected).norm(), 1e-9);
     EXPECT_NEAR(z[0].R(2, 2), 0.0004, 1e-12);
     EXPECT_NEAR(z[0].R(0, 2), 0, 1e-12);
@@ -79,8 +80,8 @@ TEST(RangeBearingMeasurement, BadMeasurementsNameTheLabel)
     EXPECT_THROW(measurementsFromBearingRange(pitched, noise), std::runtime_error);
     // a range <= 0 (noise on a landmark at the sensor) is left out and counted
     size_t non_positive = 0;
-    const auto kept = measurementsFromBearingRange(observation({{-0.1, 0.1, 1}, {2, 0.1, 2}, {0, 0, 3}}),
-                                                   noise, &non_positive);
+    const auto kept = measurementsFromBearingRange(
+        observation({{-0.1, 0.1, 1}, {2, 0.1, 2}, {0, 0, 3}}), noise, &non_positive);
     ASSERT_EQ(kept.size(), 1u);
     EXPECT_EQ(kept[0].track_id, 2);
     EXPECT_EQ(non_positive, 2u);
@@ -132,8 +133,8 @@ TEST(RangeBearingMeasurement, SpatialModelMatchesTheSphericalCoordinates)
     const Eigen::Vector3d expected = point(rf, bf, pf);
     EXPECT_LT((z[0].z - expected).norm(), 1e-6);
     double range = 0, yaw = 0, pitch = 0;  // and MRPT maps it back to the measurement
-    obs.sensorLocationOnRobot.sphericalCoordinates({z[0].z.x(), z[0].z.y(), z[0].z.z()}, range,
-                                                   yaw, pitch);
+    obs.sensorLocationOnRobot.sphericalCoordinates({z[0].z.x(), z[0].z.y(), z[0].z.z()}, range, yaw,
+                                                   pitch);
     EXPECT_NEAR(range, rf, 1e-6);
     EXPECT_NEAR(yaw, bf, 1e-6);
     EXPECT_NEAR(pitch, pf, 1e-6);
@@ -235,7 +236,8 @@ TEST(RangeBearingMeasurement, TeamFilterMapsAPlanarWorldWithHiddenIdentities)
                 if (r > 5 || std::abs(b) > mrpt::DEG2RAD(30)) continue;
                 mrpt::obs::CObservationBearingRange::TMeasurement m;
                 m.range = static_cast<float>(r + 0.05 * rng.drawGaussian1D_normalized());
-                m.yaw = static_cast<float>(b + mrpt::DEG2RAD(2.0) * rng.drawGaussian1D_normalized());
+                m.yaw =
+                    static_cast<float>(b + mrpt::DEG2RAD(2.0) * rng.drawGaussian1D_normalized());
                 m.pitch = 0;
                 m.landmarkID = -1;
                 obs->sensedData.push_back(m);
@@ -257,7 +259,8 @@ TEST(RangeBearingMeasurement, TeamFilterMapsAPlanarWorldWithHiddenIdentities)
             const auto& x = path[t + 1].second;
             const auto& g = true_path[k][t];
             se += std::pow(std::hypot(x.x - g.x(), x.y - g.y()), 2);
-            se_odo += std::pow(std::hypot(odo_path[k][t].x() - g.x(), odo_path[k][t].y() - g.y()), 2);
+            se_odo +=
+                std::pow(std::hypot(odo_path[k][t].x() - g.x(), odo_path[k][t].y() - g.y()), 2);
         }
     }
     const double rmse = std::sqrt(se / (2 * steps)), rmse_odo = std::sqrt(se_odo / (2 * steps));

@@ -167,8 +167,7 @@ BearingMeasurementModel::Vector2 BearingMeasurementModel::innovation(const Vecto
     return {wrapAngle(z[0] - z_predicted[0]), z[1] - z_predicted[1]};
 }
 
-BearingMeasurementModel::Vector2 BearingMeasurementModel::anglesOfYawPitch(double yaw,
-                                                                           double pitch)
+BearingMeasurementModel::Vector2 BearingMeasurementModel::anglesOfYawPitch(double yaw, double pitch)
 {
     return {wrapAngle(yaw), M_PI / 2 + pitch};
 }

@@ -158,8 +158,8 @@ void CCeilingLightsMap::getVisualizationInto(mrpt::opengl::CSetOfObjects& o) con
     if (!genericMapParams.enableSaveAs3DObject) return;
     for (const auto& lm : m_landmarks) {
         const bool type_i = lm.type == TLandmarkType::TypeI;
-        const mrpt::img::TColorf colour = type_i ? mrpt::img::TColorf(0.1f, 0.3f, 1.0f)
-                                                 : mrpt::img::TColorf(1.0f, 0.5f, 0.0f);
+        const mrpt::img::TColorf colour =
+            type_i ? mrpt::img::TColorf(0.1f, 0.3f, 1.0f) : mrpt::img::TColorf(1.0f, 0.5f, 0.0f);
         auto ellipsoid = mrpt::opengl::CEllipsoid3D::Create();
         ellipsoid->setCovMatrixAndMean(mrpt::math::CMatrixDouble33(lm.cov),
                                        mrpt::math::CMatrixFixed<double, 3, 1>(lm.mean));
@@ -195,8 +195,8 @@ std::string CCeilingLightsMap::asString() const
     });
     std::ostringstream s;
     s << "CCeilingLightsMap: " << m_landmarks.size() << " landmarks (" << n_type_i << " type I, "
-      << (static_cast<long>(m_landmarks.size()) - n_type_i) << " type II), "
-      << m_candidates.size() << " candidates, step " << m_step;
+      << (static_cast<long>(m_landmarks.size()) - n_type_i) << " type II), " << m_candidates.size()
+      << " candidates, step " << m_step;
     return s.str();
 }
 

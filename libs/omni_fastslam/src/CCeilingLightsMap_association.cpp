@@ -4,7 +4,6 @@
 #include <mrpt_vslam/omni_fastslam/RayCrossPoint.h>
 
 #include <Eigen/LU>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -24,9 +23,10 @@ std::vector<TBearingMeasurement> CCeilingLightsMap::measurementsFromObservation(
     const mrpt::obs::CObservationBearingRange& obs) const
 {
     m_sensor_in_robot = sensorOptions.sensor_in_robot.value_or(obs.sensorLocationOnRobot);
-    Eigen::Matrix2d Q_sensor = Eigen::Vector2d(sensorOptions.sigma_phi * sensorOptions.sigma_phi,
-                                               sensorOptions.sigma_theta * sensorOptions.sigma_theta)
-                                   .asDiagonal();
+    Eigen::Matrix2d Q_sensor =
+        Eigen::Vector2d(sensorOptions.sigma_phi * sensorOptions.sigma_phi,
+                        sensorOptions.sigma_theta * sensorOptions.sigma_theta)
+            .asDiagonal();
     if (!obs.validCovariances && obs.sensor_std_yaw > 0 && obs.sensor_std_pitch > 0) {
         const double sy = obs.sensor_std_yaw, sp = obs.sensor_std_pitch;
         Q_sensor = Eigen::Vector2d(sy * sy, sp * sp).asDiagonal();
@@ -137,9 +137,8 @@ Eigen::MatrixXd CCeilingLightsMap::landmarkLogLikelihoods(
 
 Eigen::Vector2d CCeilingLightsMap::segmentInnovation(const BearingMeasurementModel& model,
                                                      const Eigen::Vector3d& origin,
-                                                     const Eigen::Vector3d& dir,
-                                                     double s_lo, double s_hi,
-                                                     const TRayCrossPoint& x,
+                                                     const Eigen::Vector3d& dir, double s_lo,
+                                                     double s_hi, const TRayCrossPoint& x,
                                                      const Eigen::Vector2d& z,
                                                      const mrpt::math::TPose2D& robot_in_map)
 {
@@ -199,8 +198,8 @@ Eigen::MatrixXd CCeilingLightsMap::candidateLogLikelihoods(
                 // agrees with all the candidate's measurements, and the azimuth of that segment
                 // closest to z_l is predicted (z_l itself when its ray crosses it).
                 out(l, c) = measurementLogLikelihood(
-                    segmentInnovation(model, last_origin, last_dir, cand.depth_min,
-                                      cand.depth_max, x, z[l].z, robot_in_map),
+                    segmentInnovation(model, last_origin, last_dir, cand.depth_min, cand.depth_max,
+                                      x, z[l].z, robot_in_map),
                     z[l].Q + last.measurement.Q);
                 continue;
             }
@@ -208,9 +207,8 @@ Eigen::MatrixXd CCeilingLightsMap::candidateLogLikelihoods(
                 (!x.parallel && x.s1 > 0)
                     ? model.predict(last_origin + x.s1 * last_dir, robot_in_map)
                     : BearingMeasurementModel::anglesOfDirection(R_camera_T * last_dir);
-            out(l, c) =
-                measurementLogLikelihood(BearingMeasurementModel::innovation(z[l].z, z_pred),
-                                         z[l].Q + last.measurement.Q);
+            out(l, c) = measurementLogLikelihood(
+                BearingMeasurementModel::innovation(z[l].z, z_pred), z[l].Q + last.measurement.Q);
         }
     }
     return out;

@@ -59,8 +59,8 @@ void CCeilingLightsMap::TSensorOptions::dumpToTextStream(std::ostream& out) cons
 void CCeilingLightsMap::TInsertionOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section)
 {
-    association_method = cfg.read_enum<TAssociationMethod>(section, "association_method",
-                                                           association_method);
+    association_method =
+        cfg.read_enum<TAssociationMethod>(section, "association_method", association_method);
     MRPT_LOAD_CONFIG_VAR(nz_min, uint64_t, cfg, section);
     MRPT_LOAD_CONFIG_VAR(ncross_valid, uint64_t, cfg, section);
     ang_min = mrpt::DEG2RAD(cfg.read_double(section, "ang_min_deg", mrpt::RAD2DEG(ang_min)));

@@ -143,8 +143,8 @@ void CCeilingLightsMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t
         case 2: {
             in >> genericMapParams;
             readPose3D(in, m_sensor_in_robot);
-            in >> sensorOptions.sigma_phi >> sensorOptions.sigma_theta >>
-                sensorOptions.max_theta >> sensorOptions.max_horizontal_distance;
+            in >> sensorOptions.sigma_phi >> sensorOptions.sigma_theta >> sensorOptions.max_theta >>
+                sensorOptions.max_horizontal_distance;
             auto& io = insertionOptions;
             uint8_t method;
             uint32_t nz_min, ncross, miss_dec, max_meas;

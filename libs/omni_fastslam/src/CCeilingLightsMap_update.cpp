@@ -3,7 +3,6 @@
 #include <mrpt_vslam/omni_fastslam/RayCrossPoint.h>
 
 #include <Eigen/LU>
-
 #include <algorithm>
 #include <cmath>
 
@@ -249,7 +248,8 @@ bool CCeilingLightsMap::tryPromote(const TCandidateLight& cand)
         Eigen::Vector2d nu;
         Eigen::Matrix2d S;
         BearingMeasurementModel::Matrix23 H_x;
-        for (const auto& o : cand.observations) ekfUpdate(lm, o.measurement, o.robot_in_map, nu, S, H_x);
+        for (const auto& o : cand.observations)
+            ekfUpdate(lm, o.measurement, o.robot_in_map, nu, S, H_x);
     }
     return true;
 }

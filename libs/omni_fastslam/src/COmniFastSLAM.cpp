@@ -116,10 +116,10 @@ void COmniFastSLAM::reset(const TPose2D& robot_in_map, double timestamp)
 
 const TOmniFastSLAMParticle& COmniFastSLAM::bestParticle() const
 {
-    const auto best = std::max_element(m_particles.begin(), m_particles.end(),
-                                       [](const auto& a, const auto& b) {
-                                           return a.d->accumulated_log_w < b.d->accumulated_log_w;
-                                       });
+    const auto best =
+        std::max_element(m_particles.begin(), m_particles.end(), [](const auto& a, const auto& b) {
+            return a.d->accumulated_log_w < b.d->accumulated_log_w;
+        });
     return *best->d;
 }
 
@@ -230,7 +230,7 @@ TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
         const double tb = lms[landmark_of_measurement[b]].cov.trace();
         return ta != tb ? ta < tb : z[a].z[0] < z[b].z[0];
     });
-    TPose2D mu = x_hat;        // line 5
+    TPose2D mu = x_hat;         // line 5
     Eigen::Matrix3d Sigma = R;  // line 4
     for (const size_t l : order) {
         const auto& lm = lms[landmark_of_measurement[l]];
@@ -296,12 +296,12 @@ void COmniFastSLAM::runStep(const mrpt::obs::CActionCollection* action,
             x_t = sampleMotion(p.robot_in_map, motion);
             Eigen::VectorXd log_p_new(z.size());
             for (size_t l = 0; l < z.size(); l++) log_p_new(l) = p.map.logPNew(z[l]);
-            assoc = CCeilingLightsMap::solveAssociation(
-                p.map.landmarkLogLikelihoods(z, x_t), log_p_new,
-                p.map.insertionOptions.association_method);
+            assoc =
+                CCeilingLightsMap::solveAssociation(p.map.landmarkLogLikelihoods(z, x_t), log_p_new,
+                                                    p.map.insertionOptions.association_method);
         }
-        const auto n_assoc =
-            static_cast<size_t>(std::count_if(assoc.begin(), assoc.end(), [](int j) { return j >= 0; }));
+        const auto n_assoc = static_cast<size_t>(
+            std::count_if(assoc.begin(), assoc.end(), [](int j) { return j >= 0; }));
         lastStepStats.associated_to_landmarks += n_assoc;
         if (n_assoc == 0) lastStepStats.motion_only_samples++;
         updateParticle(p, part.log_w, x_t, timestamp, z, assoc, R_t);

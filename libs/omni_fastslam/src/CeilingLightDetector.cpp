@@ -1,10 +1,10 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt_vslam/omni_fastslam/CeilingLightDetector.h>
-#include <opencv2/imgproc.hpp>
 
 #include <Eigen/Dense>
 #include <cmath>
 #include <limits>
+#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
 namespace mrpt_vslam::omni_fastslam {
@@ -20,8 +20,7 @@ void CeilingLightDetector::TOptions::loadFromConfigFile(const mrpt::config::CCon
     if (intensity_threshold < 0 || intensity_threshold > 254)
         throw std::invalid_argument("[" + section + "] intensity_threshold must be in [0, 254]");
     if (min_blob_area < 1 || max_blob_area < min_blob_area)
-        throw std::invalid_argument("[" + section +
-                                    "] need 1 <= min_blob_area <= max_blob_area");
+        throw std::invalid_argument("[" + section + "] need 1 <= min_blob_area <= max_blob_area");
     if (!(pixel_std > 0)) throw std::invalid_argument("[" + section + "] pixel_std must be > 0");
 }
 

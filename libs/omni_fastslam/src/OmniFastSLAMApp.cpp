@@ -32,9 +32,9 @@
 #include <mrpt_vslam/omni_fastslam/COmniFastSLAM.h>
 #include <mrpt_vslam/omni_fastslam/CeilingLightDetector.h>
 #include <mrpt_vslam/omni_fastslam/OmniFastSLAMApp.h>
-#include <opencv2/core/version.hpp>
 
 #include <cstdio>
+#include <opencv2/core/version.hpp>
 #include <optional>
 #include <stdexcept>
 
@@ -95,15 +95,21 @@ void OmniFastSLAMApp::Impl::loadConfig()
 {
     cfg.loadFile(args.configFile, args.overrides);
     const std::string& name = cfg.name();
-    const auto usage = [&](const std::string& what) { return core::UsageError(name + ": " + what); };
+    const auto usage = [&](const std::string& what) {
+        return core::UsageError(name + ": " + what);
+    };
 
     rawlog = args.resolveRawlog(cfg, kAppSection);
     seed = args.resolveSeed(static_cast<uint32_t>(cfg.read_int(kAppSection, "random_seed", 0)));
     const std::string in = cfg.read_string(kAppSection, "input", "auto");
-    if (in == "auto") input = TInput::Auto;
-    else if (in == "bearings") input = TInput::Bearings;
-    else if (in == "images") input = TInput::Images;
-    else throw usage("[OmniFastSLAM] input must be auto, bearings or images, not '" + in + "'");
+    if (in == "auto")
+        input = TInput::Auto;
+    else if (in == "bearings")
+        input = TInput::Bearings;
+    else if (in == "images")
+        input = TInput::Images;
+    else
+        throw usage("[OmniFastSLAM] input must be auto, bearings or images, not '" + in + "'");
     imageLabel = cfg.read_string(kAppSection, "image_label", imageLabel);
     robot = cfg.read_string(kAppSection, "robot", "");
     start.loadFromConfig(cfg, kAppSection);
@@ -152,8 +158,8 @@ void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
 {
     using core::ObservationSelector;
     const auto image = ObservationSelector::firstIn<mrpt::obs::CObservationImage>(sf, imageLabel);
-    const bool hasBearings = static_cast<bool>(
-        ObservationSelector::firstIn<mrpt::obs::CObservationBearingRange>(
+    const bool hasBearings =
+        static_cast<bool>(ObservationSelector::firstIn<mrpt::obs::CObservationBearingRange>(
             sf, filterOptions.bearings_label));
     if (image) framesWithImages++;
     if (input == TInput::Bearings || (input == TInput::Auto && hasBearings)) return;
@@ -164,12 +170,12 @@ void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
         bearings = detector->detect(*image, filterOptions.bearings_label);
     } catch (const std::exception& e) {
         const auto& img = image->image;
-        throw std::runtime_error(
-            rawlog + ": frame " + std::to_string(frames) + ": cannot use the " + imageLabel +
-            " image" +
-            (img.isExternallyStored() ? " '" + img.getExternalStorageFileAbsolutePath() + "'"
+        throw std::runtime_error(rawlog + ": frame " + std::to_string(frames) +
+                                 ": cannot use the " + imageLabel + " image" +
+                                 (img.isExternallyStored()
+                                      ? " '" + img.getExternalStorageFileAbsolutePath() + "'"
                                       : std::string()) +
-            ": " + core::oneLineMessage(e));
+                                 ": " + core::oneLineMessage(e));
     }
     // the image's bearings replace any the frame had
     ObservationSelector::of<mrpt::obs::CObservationBearingRange>(filterOptions.bearings_label)
@@ -215,7 +221,8 @@ void OmniFastSLAMApp::run()
     using core::ObservationSelector;
     core::ActionFrameSource source(
         reader,
-        {ObservationSelector::of<mrpt::obs::CObservationBearingRange>(d.filterOptions.bearings_label),
+        {ObservationSelector::of<mrpt::obs::CObservationBearingRange>(
+             d.filterOptions.bearings_label),
          ObservationSelector::of<mrpt::obs::CObservationImage>(d.imageLabel)},
         d.motionModel,
         d.robot.empty() ? std::vector<std::string>{} : std::vector<std::string>{d.robot + "_ODOM"});
@@ -250,9 +257,9 @@ void OmniFastSLAMApp::run()
     if (d.frames == 0)
         throw std::runtime_error(d.rawlog +
                                  ": no frames with odometry (action / sensory-frame pairs, or "
-                                 "CObservationOdometry with " + d.filterOptions.bearings_label +
-                                 " or " + d.imageLabel + "); the rawlog has: " +
-                                 reader.summary().describe());
+                                 "CObservationOdometry with " +
+                                 d.filterOptions.bearings_label + " or " + d.imageLabel +
+                                 "); the rawlog has: " + reader.summary().describe());
     if (d.measurements == 0)
         throw std::runtime_error(d.rawlog + ": no ceiling-light measurements (" +
                                  d.filterOptions.bearings_label + " or " + d.imageLabel +
@@ -303,13 +310,12 @@ void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTi
     // which camera pose the measurement model used: the config's, or the observations' own
     const auto& pose = best.map.sensorPoseInUse();
     const bool configured = best.map.sensorOptions.sensor_in_robot.has_value();
-    report.setResultJson(
-        "camera_pose_on_robot",
-        mrpt::format("{\"source\": \"%s\", \"x_y_z_m_yaw_pitch_roll_deg\": "
-                     "[%g, %g, %g, %g, %g, %g]}",
-                     configured ? "config" : "observations", pose.x(), pose.y(), pose.z(),
-                     mrpt::RAD2DEG(pose.yaw()), mrpt::RAD2DEG(pose.pitch()),
-                     mrpt::RAD2DEG(pose.roll())));
+    report.setResultJson("camera_pose_on_robot",
+                         mrpt::format("{\"source\": \"%s\", \"x_y_z_m_yaw_pitch_roll_deg\": "
+                                      "[%g, %g, %g, %g, %g, %g]}",
+                                      configured ? "config" : "observations", pose.x(), pose.y(),
+                                      pose.z(), mrpt::RAD2DEG(pose.yaw()),
+                                      mrpt::RAD2DEG(pose.pitch()), mrpt::RAD2DEG(pose.roll())));
     if (!args.quiet)
         std::printf("omni-fastslam: camera pose on the robot from the %s: %s\n",
                     configured ? "config (sensor_in_robot)" : "observations",
@@ -324,8 +330,8 @@ void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTi
             table += (table.size() > 1 ? ", \"" : "\"") + std::to_string(landmark) + "\": {";
             bool first = true;
             for (const auto& [id, count] : ids) {
-                table += (first ? "\"" : ", \"") + std::to_string(id) + "\": " +
-                         std::to_string(count);
+                table +=
+                    (first ? "\"" : ", \"") + std::to_string(id) + "\": " + std::to_string(count);
                 first = false;
             }
             table += "}";
@@ -341,7 +347,6 @@ void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTi
         eval.ground_truth = start.groundTruthPrefix;
         core::evaluateRunFolder(eval);
     }
-
 }
 
 }  // namespace mrpt_vslam::omni_fastslam

@@ -1,7 +1,6 @@
 #include <mrpt_vslam/omni_fastslam/RayCrossPoint.h>
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 
@@ -50,7 +49,8 @@ bool crossPointHasParallax(double angle, const TCrossPointLimits& limits)
 bool crossPointInFront(const TRayCrossPoint& x, const Eigen::Vector3d& origin1,
                        const Eigen::Vector3d& origin2, const TCrossPointLimits& limits)
 {
-    if (x.parallel || !(x.s1 > limits.min_range && x.s2 > limits.min_range) || !(x.s1 > 0 && x.s2 > 0))
+    if (x.parallel || !(x.s1 > limits.min_range && x.s2 > limits.min_range) ||
+        !(x.s1 > 0 && x.s2 > 0))
         return false;
     if (!limits.planar && !(x.point.z() > std::max(origin1.z(), origin2.z()))) return false;
     // unit directions: s_i is the distance from origin i along its ray

@@ -59,10 +59,12 @@ void expectJacobiansMatch(const BearingMeasurementModel& model, const TPose2D& r
     const auto Hx_num = numericJacobian(c, true);
     const auto Hm_num = numericJacobian(c, false);
     const double scale = 1.0 + pred.H_x.cwiseAbs().maxCoeff() + pred.H_m.cwiseAbs().maxCoeff();
-    EXPECT_LT((pred.H_x - Hx_num).cwiseAbs().maxCoeff(), 1e-5 * scale)
-        << "H_x\n" << pred.H_x << "\nnumeric\n" << Hx_num;
-    EXPECT_LT((pred.H_m - Hm_num).cwiseAbs().maxCoeff(), 1e-5 * scale)
-        << "H_m\n" << pred.H_m << "\nnumeric\n" << Hm_num;
+    EXPECT_LT((pred.H_x - Hx_num).cwiseAbs().maxCoeff(), 1e-5 * scale) << "H_x\n"
+                                                                       << pred.H_x << "\nnumeric\n"
+                                                                       << Hx_num;
+    EXPECT_LT((pred.H_m - Hm_num).cwiseAbs().maxCoeff(), 1e-5 * scale) << "H_m\n"
+                                                                       << pred.H_m << "\nnumeric\n"
+                                                                       << Hm_num;
 }
 
 }  // namespace
@@ -111,11 +113,13 @@ TEST(BearingMeasurementModel, JacobiansMatchNearZenithAndAzimuthPi)
     const TPose2D robot(0.5, -1.0, 0.3);
     const Eigen::Vector3d camera = model.rayOriginInMap(robot);
     // 1 cm off the optical axis, 5 m up: θ ≈ 2 mrad, |∂φ/∂m| ≈ 100 rad/m
-    expectJacobiansMatch(model, robot, camera + Eigen::Vector3d(0.01 * std::cos(1.0), 0.01 * std::sin(1.0), 5));
+    expectJacobiansMatch(model, robot,
+                         camera + Eigen::Vector3d(0.01 * std::cos(1.0), 0.01 * std::sin(1.0), 5));
     // azimuth just either side of ±π in the camera frame
     for (const double eps : {-1e-4, 1e-4}) {
         const double phi = M_PI + eps + robot.phi;  // camera axes follow the robot yaw
-        const Eigen::Vector3d light = camera + Eigen::Vector3d(4 * std::cos(phi), 4 * std::sin(phi), 3);
+        const Eigen::Vector3d light =
+            camera + Eigen::Vector3d(4 * std::cos(phi), 4 * std::sin(phi), 3);
         const auto pred = model.predictWithJacobians(light, robot);
         EXPECT_GT(std::abs(pred.z[0]), M_PI - 2e-4);
         expectJacobiansMatch(model, robot, light);
@@ -134,8 +138,8 @@ TEST(BearingMeasurementModel, RayDirectionInvertsPrediction)
     EXPECT_LT((dir - expected).norm(), 1e-12);
     // directionOfAngles / anglesOfDirection round trip
     const Eigen::Vector2d angles(-2.9, 1.1);
-    const Eigen::Vector2d back =
-        BearingMeasurementModel::anglesOfDirection(BearingMeasurementModel::directionOfAngles(angles));
+    const Eigen::Vector2d back = BearingMeasurementModel::anglesOfDirection(
+        BearingMeasurementModel::directionOfAngles(angles));
     EXPECT_NEAR(back[0], angles[0], 1e-12);
     EXPECT_NEAR(back[1], angles[1], 1e-12);
 }

@@ -35,8 +35,9 @@ struct TCrossedCase {
         const Eigen::Matrix3d R = model.cameraInMap(robot).getRotationMatrix().asEigen();
         const double phi0 = 0.3, theta = 0.5;
         for (const double phi : {phi0, phi0 + 3 * kSigma})
-            map.addLandmark(camera + 5.0 * R * BearingMeasurementModel::directionOfAngles({phi, theta}),
-                            Eigen::Matrix3d::Identity() * 1e-10);
+            map.addLandmark(
+                camera + 5.0 * R * BearingMeasurementModel::directionOfAngles({phi, theta}),
+                Eigen::Matrix3d::Identity() * 1e-10);
         z = {measurement(phi0 + 1.6 * kSigma, theta), measurement(phi0 + 3.2 * kSigma, theta),
              measurement(-2.0, 1.2)};
     }
@@ -77,9 +78,9 @@ TEST(CCeilingLightsMap, SolveAssociationUsesNewLandmarkColumns)
 {
     // 3 measurements, 2 landmarks; P_new = −5 for every measurement
     Eigen::MatrixXd ll(3, 2);
-    ll << -1, -2,   //
-        -1.5, -9,   //
-        -20, -30;   // row 2 fits nothing better than P_new
+    ll << -1, -2,  //
+        -1.5, -9,  //
+        -20, -30;  // row 2 fits nothing better than P_new
     const Eigen::VectorXd p_new = Eigen::VectorXd::Constant(3, -5);
     // Hungarian: costs {1,2},{1.5,9},{20,30} + new = 5 → r0→L1 (2), r1→L0 (1.5), r2→new
     EXPECT_EQ(CCeilingLightsMap::solveAssociation(ll, p_new, TAssociationMethod::Hungarian),

@@ -3,9 +3,9 @@
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
 
-#include "LightsTestUtils.h"
-
 #include <Eigen/LU>
+
+#include "LightsTestUtils.h"
 
 using mrpt::math::TPose2D;
 using mrpt_vslam::omni_fastslam::CCeilingLightsMap;
@@ -60,7 +60,7 @@ TEST(CCeilingLightsMap, LandmarkDeletedWhenCounterGoesNegative)
     ASSERT_EQ(map.landmarks().size(), 2u);
     EXPECT_EQ(map.landmarks()[0].counter, 0);
     EXPECT_EQ(map.landmarks()[1].counter, 0);  // out of the perceptual range: unchanged
-    map.insertMeasurements(none, robot);  // 0 → −1: deleted
+    map.insertMeasurements(none, robot);       // 0 → −1: deleted
     ASSERT_EQ(map.landmarks().size(), 1u);
     EXPECT_EQ(map.landmarks()[0].id, 1);
 }

@@ -11,9 +11,9 @@
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
 
-#include "LightsTestUtils.h"
-
 #include <type_traits>
+
+#include "LightsTestUtils.h"
 
 using mrpt::math::TPose2D;
 using mrpt_vslam::omni_fastslam::CCeilingLightsMap;
@@ -65,8 +65,8 @@ CCeilingLightsMap makePopulatedMap()
     const std::vector<Eigen::Vector3d> lights{{1, 2, 6.5}, {-3, 1, 6.0}, {4, -4, 6.5}};
     for (int k = 0; k < 3; k++) {
         const TPose2D robot(0.3 * k, 0, 0.1 * k);
-        const auto obs = mrpt_vslam::omni_fastslam::test::makeBearingObservation(
-            model, robot, lights, 0.01);
+        const auto obs =
+            mrpt_vslam::omni_fastslam::test::makeBearingObservation(model, robot, lights, 0.01);
         map.insertMeasurements(map.measurementsFromObservation(obs), robot);
     }
     return map;
@@ -294,14 +294,16 @@ TEST(CCeilingLightsMap, VisualizationHasAnEllipsoidPerLandmark)
 TEST(CCeilingLightsMap, LikelihoodIsFiniteAndPeaksAtTheTruePose)
 {
     CCeilingLightsMap map;
-    const std::vector<Eigen::Vector3d> lights{{3, 3, 6.5}, {-3, 3, 6.5}, {3, -3, 6.5}, {-3, -3, 6.5}};
+    const std::vector<Eigen::Vector3d> lights{
+        {3, 3, 6.5}, {-3, 3, 6.5}, {3, -3, 6.5}, {-3, -3, 6.5}};
     for (const auto& l : lights) map.addLandmark(l, Eigen::Matrix3d::Identity() * 1e-3);
     const TPose2D truth(0.5, -0.2, 0.3);
     const auto obs = mrpt_vslam::omni_fastslam::test::makeBearingObservation(
         map.measurementModel(), truth, lights, mrpt::DEG2RAD(0.5));
     ASSERT_TRUE(map.canComputeObservationLikelihood(obs));
     auto ll = [&](const TPose2D& p) {
-        return map.computeObservationLikelihood(obs, mrpt::poses::CPose3D(p.x, p.y, 0, p.phi, 0, 0));
+        return map.computeObservationLikelihood(obs,
+                                                mrpt::poses::CPose3D(p.x, p.y, 0, p.phi, 0, 0));
     };
     const double at_truth = ll(truth);
     EXPECT_TRUE(std::isfinite(at_truth));

@@ -55,7 +55,8 @@ TRunResult runFrames(size_t frames, mrpt::bayes::CParticleFilter::TParticleFilte
     const auto& best = filter.bestParticle();
     const auto& truth = gt.poses[frames - 1];
     TRunResult r;
-    r.final_position_error = std::hypot(best.robot_in_map.x - truth.x, best.robot_in_map.y - truth.y);
+    r.final_position_error =
+        std::hypot(best.robot_in_map.x - truth.x, best.robot_in_map.y - truth.y);
     r.odometry_position_error = std::hypot(odometry.x() - truth.x, odometry.y() - truth.y);
     for (const auto& lm : best.map.landmarks())
         r.landmarks.emplace_back(lm.mean.x(), lm.mean.y(), lm.mean.z());

@@ -28,12 +28,12 @@ const std::string kSource = MRPT_VSLAM_SOURCE_DIR;
 const std::string kConfig = kSource + "/share/mrpt-vslam/config/omni-fastslam/sports-hall.ini";
 const std::string kRawlog = kSource + "/datasets/sports-hall/hall.rawlog";
 
-
 core::AppArguments args(const std::vector<std::string>& extra)
 {
     std::vector<const char*> argv{"omni-fastslam"};
     for (const auto& a : extra) argv.push_back(a.c_str());
-    return core::AppArguments::parse(static_cast<int>(argv.size()), argv.data(), "omni-fastslam", "");
+    return core::AppArguments::parse(static_cast<int>(argv.size()), argv.data(), "omni-fastslam",
+                                     "");
 }
 }  // namespace
 
@@ -69,13 +69,14 @@ TEST(OmniFastSLAMApp, ReadsObservationOnlyRawlogs)
     test::rewriteRawlog(kRawlog, rawlog, true, false, [](const mrpt::obs::CObservation& o) {
         return o.sensorLabel != "OMNICAM";  // bearings + ground truth
     });
-    omni_fastslam::OmniFastSLAMApp app(args({kConfig, rawlog, "--out", scratch.file("out"),
-                                             "--quiet", "--ground-truth",
-                                             kSource + "/datasets/sports-hall/hall"}));
+    omni_fastslam::OmniFastSLAMApp app(
+        args({kConfig, rawlog, "--out", scratch.file("out"), "--quiet", "--ground-truth",
+              kSource + "/datasets/sports-hall/hall"}));
     app.initialize();
     app.run();
     EXPECT_EQ(app.estimatedPath.size(), 320u);
-    const auto gt = core::TumTrajectory::load(kSource + "/datasets/sports-hall/hall.groundtruth.tum");
+    const auto gt =
+        core::TumTrajectory::load(kSource + "/datasets/sports-hall/hall.groundtruth.tum");
     const auto& last = app.estimatedPath.poses.back();
     const auto& truth = gt.poses.back();
     EXPECT_LT(std::hypot(last.x - truth.x, last.y - truth.y), 0.6);
@@ -104,9 +105,9 @@ TEST(OmniFastSLAMApp, FailsOnARawlogWithoutLightMeasurements)
     // A rawlog whose frames hold neither bearings nor images of the configured labels.
     const test::ScratchFolder scratch("OmniFastSLAMApp_nolights");
     const auto out = scratch.file("out");
-    omni_fastslam::OmniFastSLAMApp app(args({kConfig, kRawlog, "--out", out, "--quiet", "--set",
-                                             "OmniFastSLAM.bearings_label=NONE", "--set",
-                                             "OmniFastSLAM.image_label=NONE"}));
+    omni_fastslam::OmniFastSLAMApp app(
+        args({kConfig, kRawlog, "--out", out, "--quiet", "--set",
+              "OmniFastSLAM.bearings_label=NONE", "--set", "OmniFastSLAM.image_label=NONE"}));
     app.initialize();
     EXPECT_THROW(app.run(), std::runtime_error);
     EXPECT_FALSE(mrpt::system::fileExists(out + "/run.json"));

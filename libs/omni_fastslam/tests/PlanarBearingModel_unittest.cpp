@@ -26,8 +26,7 @@ BearingMeasurementModel planarModel(double x = 0, double y = 0, double yaw = 0)
                                    TMeasurementModelKind::Planar);
 }
 
-TCrossPointLimits limitsOf(double min_angle, double max_range, bool planar,
-                           double min_range = 0)
+TCrossPointLimits limitsOf(double min_angle, double max_range, bool planar, double min_range = 0)
 {
     TCrossPointLimits limits;
     limits.min_angle = min_angle;
@@ -53,7 +52,7 @@ Eigen::RowVector3d numericAzimuthJacobian(const BearingMeasurementModel& model,
     for (int i = 0; i < 3; i++)
         x0[i] = wrt_pose ? (i == 0 ? robot.x : i == 1 ? robot.y : robot.phi) : landmark[i];
     const std::function<void(const Vec3&, const int&, Vec1&)> f = [&](const Vec3& x, const int&,
-                                                                       Vec1& out) {
+                                                                      Vec1& out) {
         const TPose2D r = wrt_pose ? TPose2D(x[0], x[1], x[2]) : robot;
         const Vector3d m = wrt_pose ? landmark : Vector3d(x[0], x[1], x[2]);
         out[0] = wrap(model.predict(m, r)[0] - phi0);
@@ -245,15 +244,15 @@ TEST(PlanarCrossPoint, LowParallaxAndFarCrossingsAreRejected)
     const TCrossPointLimits limits = limitsOf(5 * kDeg, 6.0, true);
     const Vector3d landmark(5, 0, 0);
     // 0.3 m of baseline across the line of sight at 5 m: parallax atan(0.3/5) = 3.4° < 5°
-    const auto low = cross(rayTo(model, TPose2D(0, 0, 0), landmark),
-                           rayTo(model, TPose2D(0, 0.3, 0), landmark));
+    const auto low =
+        cross(rayTo(model, TPose2D(0, 0, 0), landmark), rayTo(model, TPose2D(0, 0.3, 0), landmark));
     ASSERT_FALSE(low.parallel);
     EXPECT_NEAR(low.angle, std::atan2(0.3, 5), 1e-12);
     EXPECT_LT((low.point - landmark).norm(), 1e-9);
     EXPECT_FALSE(mrpt_vslam::omni_fastslam::crossPointHasParallax(low.angle, limits));
     // 0.6 m: 6.8° passes
-    const auto ok = cross(rayTo(model, TPose2D(0, 0, 0), landmark),
-                          rayTo(model, TPose2D(0, 0.6, 0), landmark));
+    const auto ok =
+        cross(rayTo(model, TPose2D(0, 0, 0), landmark), rayTo(model, TPose2D(0, 0.6, 0), landmark));
     EXPECT_TRUE(mrpt_vslam::omni_fastslam::crossPointHasParallax(ok.angle, limits));
     // two rays meeting nearly head-on (the landmark between the robots): the directions are
     // 177.1° apart, the lines only 2.9°; the spherical test (directions) would accept it
@@ -262,8 +261,8 @@ TEST(PlanarCrossPoint, LowParallaxAndFarCrossingsAreRejected)
         cross(rayTo(model, TPose2D(0, 0, 0), between), rayTo(model, TPose2D(4, 0.1, 0), between));
     EXPECT_GT(head_on.angle, M_PI - 5 * kDeg);
     EXPECT_FALSE(mrpt_vslam::omni_fastslam::crossPointHasParallax(head_on.angle, limits));
-    EXPECT_TRUE(mrpt_vslam::omni_fastslam::crossPointHasParallax(
-        head_on.angle, limitsOf(5 * kDeg, 6.0, false)));
+    EXPECT_TRUE(mrpt_vslam::omni_fastslam::crossPointHasParallax(head_on.angle,
+                                                                 limitsOf(5 * kDeg, 6.0, false)));
     // a good parallax but 8 m away from the first robot: beyond max_range = 6 m
     const Vector3d far(8, 0, 0);
     const TPose2D a(0, 0, 0), b(5, -3, 0);

@@ -41,7 +41,8 @@ std::string outputOf(const std::string& cmd)
 
 TEST(StockMrptApps, RawlogEditReadsTheMapOnlyWithThePlugin)
 {
-    if (!mrpt::system::fileExists("/usr/bin/rawlog-edit")) GTEST_SKIP() << "rawlog-edit not installed";
+    if (!mrpt::system::fileExists("/usr/bin/rawlog-edit"))
+        GTEST_SKIP() << "rawlog-edit not installed";
     const test::ScratchFolder scratch("StockRawlogEdit");
     omni_fastslam::CCeilingLightsMap map;
     map.addLandmark({1, 2, 6.5}, Eigen::Matrix3d::Identity() * 0.01);
@@ -50,8 +51,8 @@ TEST(StockMrptApps, RawlogEditReadsTheMapOnlyWithThePlugin)
 
     const auto without = outputOf(stockAppEnv() + "rawlog-edit --info -i " + file);
     EXPECT_NE(without.find("not registered"), std::string::npos) << without;
-    const auto with = outputOf(stockAppEnv() + "rawlog-edit -p " + OMNI_FASTSLAM_PLUGIN +
-                               " --info -i " + file);
+    const auto with =
+        outputOf(stockAppEnv() + "rawlog-edit -p " + OMNI_FASTSLAM_PLUGIN + " --info -i " + file);
     EXPECT_EQ(with.find("not registered"), std::string::npos) << with;
     EXPECT_NE(with.find("Overall number of objects         : 1"), std::string::npos) << with;
 }
@@ -66,10 +67,11 @@ TEST(StockMrptApps, RbpfSlamBuildsACeilingLightsMapWithThePluginPreloaded)
     const std::string out = scratch.file("out");
     // rbpf-slam has no --set: a copy of the config names the output folder
     const std::string ini = out + ".ini";
-    ASSERT_EQ(std::system(("sed 's#^logOutput_dir = .*#logOutput_dir = " + out + "#' " + src +
-                           "/share/mrpt-vslam/config/omni-fastslam/rbpf-slam-sports-hall.ini > " +
-                           ini).c_str()),
-              0);
+    ASSERT_EQ(
+        std::system(("sed 's#^logOutput_dir = .*#logOutput_dir = " + out + "#' " + src +
+                     "/share/mrpt-vslam/config/omni-fastslam/rbpf-slam-sports-hall.ini > " + ini)
+                        .c_str()),
+        0);
     const std::string run = "cd " + src + "/datasets/sports-hall && " +
                             stockAppEnv(OMNI_FASTSLAM_PLUGIN) + "rbpf-slam " + ini +
                             " hall.rawlog > " + out + ".log 2>&1";
@@ -82,10 +84,9 @@ TEST(StockMrptApps, RbpfSlamBuildsACeilingLightsMapWithThePluginPreloaded)
     const auto gt = core::TumTrajectory::load(src + "/datasets/sports-hall/hall.groundtruth.tum");
     const auto& p0 = gt.poses.front();
     size_t near = 0;
-    for (const auto& t : core::LandmarkFile::load(src + "/datasets/sports-hall/hall.landmarks.txt")
-                             .landmarks) {
-        const mrpt::math::TPoint3D in_start{t.position.x - p0.x, t.position.y - p0.y,
-                                            t.position.z};
+    for (const auto& t :
+         core::LandmarkFile::load(src + "/datasets/sports-hall/hall.landmarks.txt").landmarks) {
+        const mrpt::math::TPoint3D in_start{t.position.x - p0.x, t.position.y - p0.y, t.position.z};
         for (const auto& e : map.landmarks)
             if ((e.position - in_start).norm() < 1.0) {
                 near++;

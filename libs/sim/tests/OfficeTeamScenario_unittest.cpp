@@ -14,6 +14,7 @@
 #include <mrpt_vslam/sim/DatasetWriter.h>
 #include <mrpt_vslam/sim/OfficeTeamScenario.h>
 #include <mrpt_vslam/sim/ScenarioFactory.h>
+#include <mrpt_vslam/test/RunFiles.h>
 
 #include <Eigen/LU>
 #include <algorithm>
@@ -25,8 +26,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "TestConfig.h"
-
-#include <mrpt_vslam/test/RunFiles.h>
 
 using mrpt_vslam::test::readBytes;
 

@@ -10,6 +10,7 @@
 #include <mrpt_vslam/sim/DatasetWriter.h>
 #include <mrpt_vslam/sim/OmniViewsScenario.h>
 #include <mrpt_vslam/sim/ScenarioFactory.h>
+#include <mrpt_vslam/test/RunFiles.h>
 
 #include <Eigen/LU>
 #include <algorithm>
@@ -19,8 +20,6 @@
 #include <iostream>
 #include <iterator>
 #include <opencv2/core.hpp>
-
-#include <mrpt_vslam/test/RunFiles.h>
 
 using mrpt_vslam::test::readBytes;
 

@@ -11,14 +11,13 @@
 #include <mrpt_vslam/sim/DatasetWriter.h>
 #include <mrpt_vslam/sim/ScenarioFactory.h>
 #include <mrpt_vslam/sim/SportsHallScenario.h>
+#include <mrpt_vslam/test/RunFiles.h>
 
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 
 #include "TestConfig.h"
-
-#include <mrpt_vslam/test/RunFiles.h>
 
 using mrpt_vslam::test::readBytes;
 

@@ -30,8 +30,7 @@ void COmniViewSLAM::TOptions::validate() const
     require(max_candidates >= 1, "max_candidates", "must be >= 1");
     require(min_baseline > 0 && min_baseline < candidate_distance, "min_baseline",
             "must be > 0 and < candidate_distance");
-    require(gate_probability > 0 && gate_probability < 1, "gate_probability",
-            "must be in (0, 1)");
+    require(gate_probability > 0 && gate_probability < 1, "gate_probability", "must be in (0, 1)");
     require(initial_sigma_xy > 0 && std::isfinite(initial_sigma_xy), "initial_sigma_xy",
             "must be finite and > 0");
     require(initial_sigma_yaw > 0 && std::isfinite(initial_sigma_yaw), "initial_sigma_yaw_deg",
@@ -138,10 +137,12 @@ std::vector<size_t> COmniViewSLAM::candidateViews() const
     for (size_t i = 0; i < m_ekf.viewCount(); i++) {
         const auto v = m_ekf.viewPose(i);
         const double d = std::hypot(v.x - robot.x, v.y - robot.y);
-        if (d >= m_options.min_baseline && d <= m_options.candidate_distance) near.emplace_back(d, i);
+        if (d >= m_options.min_baseline && d <= m_options.candidate_distance)
+            near.emplace_back(d, i);
     }
     std::sort(near.begin(), near.end());
-    if (near.size() > size_t(m_options.max_candidates)) near.resize(size_t(m_options.max_candidates));
+    if (near.size() > size_t(m_options.max_candidates))
+        near.resize(size_t(m_options.max_candidates));
     std::vector<size_t> views;
     for (const auto& n : near) views.push_back(n.second);
     return views;

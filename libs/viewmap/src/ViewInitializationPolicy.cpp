@@ -17,13 +17,20 @@ void require(bool ok, const char* key, const char* what)
 const char* TViewDecision::reasonName(TReason r)
 {
     switch (r) {
-        case TReason::None: return "none";
-        case TReason::FirstView: return "first_view";
-        case TReason::NoObservation: return "no_observation";
-        case TReason::FewInliers: return "few_inliers";
-        case TReason::TooFar: return "too_far";
-        case TReason::InformationDeficit: return "information_deficit";
-        case TReason::LowExistence: return "low_existence";
+        case TReason::None:
+            return "none";
+        case TReason::FirstView:
+            return "first_view";
+        case TReason::NoObservation:
+            return "no_observation";
+        case TReason::FewInliers:
+            return "few_inliers";
+        case TReason::TooFar:
+            return "too_far";
+        case TReason::InformationDeficit:
+            return "information_deficit";
+        case TReason::LowExistence:
+            return "low_existence";
     }
     return "?";
 }
@@ -35,8 +42,8 @@ void ViewInitializationPolicy::TOptions::validate() const
     require(min_inliers >= 1, "min_inliers", "must be >= 1");
     require(max_view_distance > min_view_spacing && std::isfinite(max_view_distance),
             "max_view_distance", "must be finite and > min_view_spacing");
-    require(information_deficit >= 0 && std::isfinite(information_deficit),
-            "information_deficit", "must be finite and >= 0");
+    require(information_deficit >= 0 && std::isfinite(information_deficit), "information_deficit",
+            "must be finite and >= 0");
     require(deficit_frames >= 1, "deficit_frames", "must be >= 1");
     require(trend_frames >= 1, "trend_frames", "must be >= 1");
     require(min_sure_points >= 0 && std::isfinite(min_sure_points), "min_sure_points",
@@ -48,12 +55,13 @@ void ViewInitializationPolicy::TOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section)
 {
     const std::string kind = cfg.read_string(section, "policy", "information");
-    if (kind == "traditional") policy = TKind::Traditional;
-    else if (kind == "information") policy = TKind::Information;
+    if (kind == "traditional")
+        policy = TKind::Traditional;
+    else if (kind == "information")
+        policy = TKind::Information;
     else
-        throw std::invalid_argument("[" + section +
-                                    "] policy must be traditional or information, not '" + kind +
-                                    "'");
+        throw std::invalid_argument(
+            "[" + section + "] policy must be traditional or information, not '" + kind + "'");
     MRPT_LOAD_CONFIG_VAR(min_view_spacing, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(min_inliers, int, cfg, section);
     MRPT_LOAD_CONFIG_VAR(max_view_distance, double, cfg, section);
@@ -112,9 +120,12 @@ TViewDecision TraditionalViewPolicy::decide(const TViewPolicyInputs& in,
     size_t best = 0;
     for (const auto& o : in.observed) best = std::max(best, o.inliers);
     using R = TViewDecision::TReason;
-    if (in.observed.empty()) d.reason = R::NoObservation;
-    else if (best < size_t(m_options.min_inliers)) d.reason = R::FewInliers;
-    else if (in.nearest_view_distance > m_options.max_view_distance) d.reason = R::TooFar;
+    if (in.observed.empty())
+        d.reason = R::NoObservation;
+    else if (best < size_t(m_options.min_inliers))
+        d.reason = R::FewInliers;
+    else if (in.nearest_view_distance > m_options.max_view_distance)
+        d.reason = R::TooFar;
     d.add = d.reason != R::None;
     return d;
 }
@@ -129,9 +140,8 @@ TViewDecision InformationViewPolicy::decide(const TViewPolicyInputs& in,
 {
     using R = TViewDecision::TReason;
     // Step 1: the existence model learns from every image, also the ones no rule looks at.
-    const auto content = in.features
-                             ? m_existence.fit(in.features->rays, in.consistent, rng)
-                             : FeatureExistenceModel::TContent();
+    const auto content = in.features ? m_existence.fit(in.features->rays, in.consistent, rng)
+                                     : FeatureExistenceModel::TContent();
     const double n = content.sure_points;
     // Trend: the mean decline per frame over the last trend_frames frames since the last view.
     m_recent_sure_points.push_back(n);
@@ -148,14 +158,16 @@ TViewDecision InformationViewPolicy::decide(const TViewPolicyInputs& in,
     }
     TViewDecision d;
     d.sure_points = n;
-    if (in.observed.empty()) d.reason = R::NoObservation;
-    else if (n_next < m_options.min_sure_points) d.reason = R::LowExistence;
+    if (in.observed.empty())
+        d.reason = R::NoObservation;
+    else if (n_next < m_options.min_sure_points)
+        d.reason = R::LowExistence;
     else {
         // Steps 2-3: the observed views' hypothetical update after the next motion.
         std::vector<ViewMapEKF::THypotheticalObservation> next;
         for (const auto& o : in.observed) next.push_back({o.view, o.R * (n / n_next)});
-        const Eigen::Matrix3d P_next = in.ekf->robotCovarianceAfterUpdates(
-            next, in.P_vv_predicted - in.P_vv_previous);
+        const Eigen::Matrix3d P_next =
+            in.ekf->robotCovarianceAfterUpdates(next, in.P_vv_predicted - in.P_vv_previous);
         // Step 4: gain minus loss (the 2πe terms cancel), doc/view-slam.md §4.2.
         d.information_balance =
             0.5 * std::log(in.ekf->robotCovariance().determinant() / P_next.determinant());

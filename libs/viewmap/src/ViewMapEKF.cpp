@@ -142,8 +142,8 @@ ViewMapEKF::TObservationTerms ViewMapEKF::observationTerms(size_t view) const
     // robot's and the view's columns of P, and H P Hᵀ only their rows of P Hᵀ.
     const Eigen::Index l = viewOffset(view);
     const TPose2D robot = robotPose(), landmark = viewPose(view);
-    TObservationTerms o{predictViewObservation(robot, landmark),
-                        viewObservationJacobians(robot, landmark), {}, {}};
+    TObservationTerms o{
+        predictViewObservation(robot, landmark), viewObservationJacobians(robot, landmark), {}, {}};
     o.PHt = m_P.leftCols<3>() * o.J.H_v.transpose() + m_P.middleCols<3>(l) * o.J.H_l.transpose();
     o.HPHt = o.J.H_v * o.PHt.topRows<3>() + o.J.H_l * o.PHt.middleRows<3>(l);
     return o;
@@ -186,8 +186,7 @@ Eigen::Matrix3d ViewMapEKF::robotCovarianceAfterUpdates(
     }
     const Eigen::MatrixXd PHt_v = P.topRows<3>() * H.transpose();
     S += H * P * H.transpose();
-    const Eigen::Matrix3d P_vv =
-        P.topLeftCorner<3, 3>() - PHt_v * S.llt().solve(PHt_v.transpose());
+    const Eigen::Matrix3d P_vv = P.topLeftCorner<3, 3>() - PHt_v * S.llt().solve(PHt_v.transpose());
     return 0.5 * (P_vv + P_vv.transpose());
 }
 

@@ -26,10 +26,10 @@
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/viewmap/COmniViewSLAM.h>
 #include <mrpt_vslam/viewmap/ViewSLAMApp.h>
-#include <opencv2/core/version.hpp>
 
 #include <cmath>
 #include <cstdio>
+#include <opencv2/core/version.hpp>
 #include <optional>
 #include <stdexcept>
 
@@ -88,7 +88,9 @@ void ViewSLAMApp::Impl::loadConfig()
 {
     cfg.loadFile(args.configFile, args.overrides);
     const std::string& name = cfg.name();
-    const auto usage = [&](const std::string& what) { return core::UsageError(name + ": " + what); };
+    const auto usage = [&](const std::string& what) {
+        return core::UsageError(name + ": " + what);
+    };
 
     rawlog = args.resolveRawlog(cfg, kAppSection);
     seed = args.resolveSeed(static_cast<uint32_t>(cfg.read_int(kAppSection, "random_seed", 0)));
@@ -132,13 +134,14 @@ void ViewSLAMApp::run()
     core::RawlogReader reader(d.rawlog);
     core::ProgressReporter progress("view-slam", 0, d.args.quiet);
     core::AtomicFile steps(out.file("steps.txt")), observations(out.file("observations.txt"));
-    steps.stream() << "# view-slam: one line per frame. t [s]; x y [m] yaw [rad] of the EKF robot "
-                      "estimate; sqrt_trace_Pvv; nees of the robot pose (nan without ground "
-                      "truth); features; candidates; accepted observations; best inliers; views "
-                      "after the frame; new_view (1 if one was started); reason; sure_points "
-                      "(information policy); information_balance [nats]; step_ms\n"
-                      "# t x y yaw sqrt_trace_Pvv nees features candidates accepted "
-                      "best_inliers views new_view reason sure_points information_balance step_ms\n";
+    steps.stream()
+        << "# view-slam: one line per frame. t [s]; x y [m] yaw [rad] of the EKF robot "
+           "estimate; sqrt_trace_Pvv; nees of the robot pose (nan without ground "
+           "truth); features; candidates; accepted observations; best inliers; views "
+           "after the frame; new_view (1 if one was started); reason; sure_points "
+           "(information policy); information_balance [nats]; step_ms\n"
+           "# t x y yaw sqrt_trace_Pvv nees features candidates accepted "
+           "best_inliers views new_view reason sure_points information_balance step_ms\n";
     observations.stream()
         << "# view-slam: one line per attempted view observation. frame; t [s]; view; "
            "matches; inliers; estimated (RANSAC found phi, beta); accepted (passed the gate); "
@@ -160,8 +163,8 @@ void ViewSLAMApp::run()
             ObservationSelector::firstIn<mrpt::obs::CObservationImage>(*frame, d.imageLabel);
         const auto move = actions->getBestMovementEstimation();
         const auto [Q, u] = move->poseChange->getCovarianceAndMean();
-        const double t = mrpt::Clock::toDouble(image ? image->timestamp
-                                                     : actions->begin()->get()->timestamp);
+        const double t =
+            mrpt::Clock::toDouble(image ? image->timestamp : actions->begin()->get()->timestamp);
         if (!started) {
             d.slam->reset(d.start.pose);
             started = true;
@@ -209,10 +212,10 @@ void ViewSLAMApp::run()
             d.estimated += o.estimated;
             d.accepted += o.accepted;
             if (o.accepted) bestInliers = std::max(bestInliers, o.inliers);
-            std::snprintf(line, sizeof(line), "%zu %.6f %zu %zu %zu %d %d %.6f %.6f %.6g %.6g %.4g\n",
-                          d.frames, t, o.view, o.matches, o.inliers, int(o.estimated),
-                          int(o.accepted), o.z.phi, o.z.beta, std::sqrt(o.R(0, 0)),
-                          std::sqrt(o.R(1, 1)), o.nis);
+            std::snprintf(line, sizeof(line),
+                          "%zu %.6f %zu %zu %zu %d %d %.6f %.6f %.6g %.6g %.4g\n", d.frames, t,
+                          o.view, o.matches, o.inliers, int(o.estimated), int(o.accepted), o.z.phi,
+                          o.z.beta, std::sqrt(o.R(0, 0)), std::sqrt(o.R(1, 1)), o.nis);
             observations.stream() << line;
         }
         std::snprintf(line, sizeof(line),
@@ -284,19 +287,19 @@ void ViewSLAMApp::Impl::writeOutputs(ViewSLAMApp& app, const core::RunTimer& tim
                      mrpt::RAD2DEG(rotation.yaw()), mrpt::RAD2DEG(rotation.pitch()),
                      mrpt::RAD2DEG(rotation.roll())));
     if (!args.quiet)
-        std::printf("view-slam: camera orientation on the robot from the %s: yaw %g, pitch %g, "
-                    "roll %g deg\n",
-                    slam->cameraOnRobotConfigured() ? "config ([CameraOnRobot])" : source,
-                    mrpt::RAD2DEG(rotation.yaw()), mrpt::RAD2DEG(rotation.pitch()),
-                    mrpt::RAD2DEG(rotation.roll()));
+        std::printf(
+            "view-slam: camera orientation on the robot from the %s: yaw %g, pitch %g, "
+            "roll %g deg\n",
+            slam->cameraOnRobotConfigured() ? "config ([CameraOnRobot])" : source,
+            mrpt::RAD2DEG(rotation.yaw()), mrpt::RAD2DEG(rotation.pitch()),
+            mrpt::RAD2DEG(rotation.roll()));
     report.setResult("mean_sqrt_trace_Pvv", sqrtTrace.mean());
-    report.setResult("final_sqrt_trace_Pvv",
-                     std::sqrt(slam->ekf().robotCovariance().trace()));
+    report.setResult("final_sqrt_trace_Pvv", std::sqrt(slam->ekf().robotCovariance().trace()));
     if (start.groundTruth) {
         report.setGroundTruth(start.groundTruthPrefix);
         report.setResult("nees_mean", nees.mean());
-        report.setResult("nees_in_95_bounds", nees.n ? double(neesInBounds) / double(nees.n)
-                                                     : std::nan(""));
+        report.setResult("nees_in_95_bounds",
+                         nees.n ? double(neesInBounds) / double(nees.n) : std::nan(""));
         report.setResult("view_position_rmse", viewError.rms());
         report.setResult("view_position_max", viewError.n ? viewError.max : std::nan(""));
     }

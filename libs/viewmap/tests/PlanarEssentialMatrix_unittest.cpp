@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 #include <mrpt/random/RandomGenerators.h>
+#include <mrpt_vslam/test/PlanarScene.h>
 #include <mrpt_vslam/viewmap/PlanarEssentialMatrix.h>
 
 #include <Eigen/Geometry>
@@ -8,8 +9,6 @@
 #include <numeric>
 #include <stdexcept>
 #include <vector>
-
-#include <mrpt_vslam/test/PlanarScene.h>
 
 using mrpt_vslam::viewmap::PlanarEssentialMatrix;
 using mrpt_vslam::viewmap::predictViewObservation;

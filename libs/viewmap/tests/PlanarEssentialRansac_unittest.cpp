@@ -3,6 +3,7 @@
 #include <mrpt/core/bits_math.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/core/UnifiedSphereCamera.h>
+#include <mrpt_vslam/test/PlanarScene.h>
 #include <mrpt_vslam/viewmap/PlanarEssentialRansac.h>
 
 #include <algorithm>
@@ -11,8 +12,6 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <mrpt_vslam/test/PlanarScene.h>
 
 using mrpt::random::CRandomGenerator;
 using mrpt_vslam::core::UnifiedSphereCamera;

@@ -42,13 +42,12 @@ TCraftedRun runAway(ViewInitializationPolicy& policy)
     features.rays.resize(3, n);
     for (int k = 0; k < n; k++) {
         const double a = 2 * M_PI * (k + 0.5) / n, e = mrpt::DEG2RAD(20.0 + (k % 5) * 10);
-        features.rays.col(k) << std::cos(e) * std::cos(a), std::cos(e) * std::sin(a),
-            std::sin(e);
+        features.rays.col(k) << std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e);
     }
     in.features = &features;
-    const Eigen::Matrix3d Q = Eigen::Vector3d(std::pow(0.01, 2), std::pow(0.005, 2),
-                                              std::pow(mrpt::DEG2RAD(0.5), 2))
-                                  .asDiagonal();
+    const Eigen::Matrix3d Q =
+        Eigen::Vector3d(std::pow(0.01, 2), std::pow(0.005, 2), std::pow(mrpt::DEG2RAD(0.5), 2))
+            .asDiagonal();
     const double sigma0 = mrpt::DEG2RAD(0.5);
     for (int step = 1; step <= 25; step++) {
         in.P_vv_previous = ekf.robotCovariance();
@@ -105,16 +104,16 @@ TEST(ViewInitializationPolicy, InformationStartsAViewAfterKFramesInDeficit)
     // Driving away from the only view, each frame gains less than the motion loses.
     auto o = options(ViewInitializationPolicy::TKind::Information);
     std::vector<int> steps;
-    for (const auto& [tau, K] : std::vector<std::pair<double, int>>{
-             {0.02, 3}, {0.02, 5}, {0.12, 3}}) {
+    for (const auto& [tau, K] :
+         std::vector<std::pair<double, int>>{{0.02, 3}, {0.02, 5}, {0.12, 3}}) {
         o.information_deficit = tau;
         o.deficit_frames = K;
         auto policy = ViewInitializationPolicy::create(o);
         const auto r = runAway(*policy);
         std::cout << "tau " << tau << " nats, K " << K << ": view at step " << r.step << " ("
                   << TViewDecision::reasonName(r.decision.reason) << ", balance "
-                  << r.decision.information_balance << ", sure points "
-                  << r.decision.sure_points << ", sqrt trace P_vv " << r.sqrt_trace << ")\n";
+                  << r.decision.information_balance << ", sure points " << r.decision.sure_points
+                  << ", sqrt trace P_vv " << r.sqrt_trace << ")\n";
         ASSERT_GT(r.step, 2);  // beyond the 0.4 m spacing
         EXPECT_EQ(r.decision.reason, TReason::InformationDeficit);
         EXPECT_LT(r.decision.information_balance, -tau);
@@ -159,8 +158,8 @@ TEST(ViewInitializationPolicy, CommonRulesAndOptions)
     EXPECT_EQ(o.deficit_frames, 4);
     EXPECT_EQ(o.existence.max_points, 50);
     for (const char* bad : {"[P]\npolicy = sometimes\n", "[P]\ninformation_deficit = -0.1\n",
-                            "[P]\ndeficit_frames = 0\n",
-                            "[P]\nmax_view_distance = 0.2\n", "[P]\nmin_sure_points = -1\n"}) {
+                            "[P]\ndeficit_frames = 0\n", "[P]\nmax_view_distance = 0.2\n",
+                            "[P]\nmin_sure_points = -1\n"}) {
         mrpt::config::CConfigFileMemory c(bad);
         ViewInitializationPolicy::TOptions b;
         try {

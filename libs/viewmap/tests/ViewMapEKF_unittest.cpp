@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 #include <mrpt/core/bits_math.h>
+#include <mrpt_vslam/test/PlanarScene.h>
 #include <mrpt_vslam/viewmap/ViewMapEKF.h>
 
 #include <Eigen/Eigenvalues>
@@ -11,8 +12,6 @@
 #include <random>
 #include <stdexcept>
 #include <vector>
-
-#include <mrpt_vslam/test/PlanarScene.h>
 
 using mrpt::DEG2RAD;
 using mrpt::math::TPose2D;
@@ -287,9 +286,9 @@ TEST(ViewMapEKF, PredictionAndHypotheticalUpdateMatchTheDenseEKF)
         ViewMapEKF moved = ekf;
         moved.predict(TPose2D(0, 0, 0), Q);
         const TDenseUpdate after_motion = denseUpdate(moved, j, h, R);
-        max_P = std::max(max_P, maxAbs(ekf.robotCovarianceAfterUpdates(
-                                           {{j, R}}, F_u * Q * F_u.transpose()) -
-                                       after_motion.P.topLeftCorner(3, 3)));
+        max_P = std::max(
+            max_P, maxAbs(ekf.robotCovarianceAfterUpdates({{j, R}}, F_u * Q * F_u.transpose()) -
+                          after_motion.P.topLeftCorner(3, 3)));
     }
     EXPECT_LT(max_S, 1e-12);
     EXPECT_LT(max_P, 1e-12);
@@ -297,8 +296,8 @@ TEST(ViewMapEKF, PredictionAndHypotheticalUpdateMatchTheDenseEKF)
     EXPECT_THROW(ekf.predictObservation(2), std::invalid_argument);
     EXPECT_THROW(ekf.robotCovarianceAfterUpdates({{0, Eigen::Matrix2d::Zero()}}),
                  std::invalid_argument);
-    EXPECT_THROW(ekf.robotCovarianceAfterUpdates({{1, Eigen::Matrix2d::Identity()},
-                                                  {1, Eigen::Matrix2d::Identity()}}),
+    EXPECT_THROW(ekf.robotCovarianceAfterUpdates(
+                     {{1, Eigen::Matrix2d::Identity()}, {1, Eigen::Matrix2d::Identity()}}),
                  std::invalid_argument);
 }
 
@@ -315,9 +314,11 @@ TEST(ViewMapEKF, HypotheticalJointUpdateMatchesTheInformationForm)
         for (size_t j = size_t(trial) % 2; j < 5; j += 2)
             obs.push_back({j, randomObservationCovariance(rng)});
         const Eigen::Index n = ekf.mean().size(), m = Eigen::Index(obs.size());
-        Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2 * m, n), R_inv = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+        Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2 * m, n),
+                        R_inv = Eigen::MatrixXd::Zero(2 * m, 2 * m);
         for (Eigen::Index k = 0; k < m; k++) {
-            const auto J = viewObservationJacobians(ekf.robotPose(), ekf.viewPose(obs[size_t(k)].view));
+            const auto J =
+                viewObservationJacobians(ekf.robotPose(), ekf.viewPose(obs[size_t(k)].view));
             H.block(2 * k, 0, 2, 3) = J.H_v;
             H.block(2 * k, Eigen::Index(3 + 3 * obs[size_t(k)].view), 2, 3) = J.H_l;
             R_inv.block(2 * k, 2 * k, 2, 2) = obs[size_t(k)].R.inverse();

@@ -1,11 +1,10 @@
 #include <gtest/gtest.h>
 #include <mrpt/random/RandomGenerators.h>
+#include <mrpt_vslam/test/PlanarScene.h>
 #include <mrpt_vslam/viewmap/ViewObservation.h>
 
 #include <cmath>
 #include <stdexcept>
-
-#include <mrpt_vslam/test/PlanarScene.h>
 
 using mrpt::math::TPose2D;
 using mrpt_vslam::viewmap::predictViewObservation;

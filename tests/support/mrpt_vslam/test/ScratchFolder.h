@@ -12,10 +12,9 @@ namespace mrpt_vslam::test {
 /** A per-process scratch folder under the system's temp dir (parallel test runs do not share
  *  files), created on construction and removed with its contents on destruction. */
 class ScratchFolder {
-public:
+  public:
     explicit ScratchFolder(const std::string& name)
-        : m_path(std::filesystem::temp_directory_path() /
-                 (name + "_" + std::to_string(::getpid())))
+        : m_path(std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid())))
     {
         std::filesystem::create_directories(m_path);
     }
@@ -38,7 +37,7 @@ public:
         return f;
     }
 
-private:
+  private:
     std::filesystem::path m_path;
 };
 

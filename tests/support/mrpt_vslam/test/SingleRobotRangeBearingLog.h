@@ -28,11 +28,11 @@ struct SingleRobotRangeBearingLog {
     enum class Format { ActionsAndFrames, ObservationsOnly };
     Format format = Format::ActionsAndFrames;
     size_t steps = 160;
-    double std_range = 0.05;            ///< [m], true noise and sensor_std_range
-    double std_bearing = 0.01;          ///< [rad], true noise and sensor_std_yaw
-    double max_range = 4.5;             ///< [m]
-    double odometry_std_xy = 0.02;      ///< [m] per step
-    double odometry_std_phi = 0.01;     ///< [rad] per step
+    double std_range = 0.05;                            ///< [m], true noise and sensor_std_range
+    double std_bearing = 0.01;                          ///< [rad], true noise and sensor_std_yaw
+    double max_range = 4.5;                             ///< [m]
+    double odometry_std_xy = 0.02;                      ///< [m] per step
+    double odometry_std_phi = 0.01;                     ///< [rad] per step
     mrpt::poses::CPose3D sensor{0.2, 0, 0.3, 0, 0, 0};  ///< on the robot
     uint32_t seed = 1;
 
@@ -62,8 +62,8 @@ struct SingleRobotRangeBearingLog {
         const double t0 = 1.0e9, dt = 0.5;
         for (size_t i = 0; i < steps; i++) {
             // 0.25 m per step on a circle of radius 3 m about (0, 3)
-            const mrpt::poses::CPose2D delta = i == 0 ? mrpt::poses::CPose2D() :
-                                                        mrpt::poses::CPose2D(0.25, 0, 0.25 / 3);
+            const mrpt::poses::CPose2D delta =
+                i == 0 ? mrpt::poses::CPose2D() : mrpt::poses::CPose2D(0.25, 0, 0.25 / 3);
             pose = pose + delta;
             const mrpt::poses::CPose2D noisy(
                 delta.x() + rng.drawGaussian1D(0, i ? odometry_std_xy : 0),

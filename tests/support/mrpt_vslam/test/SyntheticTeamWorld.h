@@ -32,9 +32,9 @@ inline mrpt::poses::CPose2D noisyOdometry(
     mrpt::poses::CPose2D mean;
     probe.poseChange->getCovarianceAndMean(cov, mean);
     const Eigen::Matrix3d L = cov.asEigen().llt().matrixL();
-    const Eigen::Vector3d e = L * Eigen::Vector3d(rng.drawGaussian1D_normalized(),
-                                                  rng.drawGaussian1D_normalized(),
-                                                  rng.drawGaussian1D_normalized());
+    const Eigen::Vector3d e =
+        L * Eigen::Vector3d(rng.drawGaussian1D_normalized(), rng.drawGaussian1D_normalized(),
+                            rng.drawGaussian1D_normalized());
     return {mean.x() + e[0], mean.y() + e[1], mean.phi() + e[2]};
 }
 
@@ -44,7 +44,7 @@ inline mrpt::poses::CPose2D noisyOdometry(
  *  front-end does: project to (r, c, d), add pixel noise, triangulate (Eq. 12), R_t from
  *  StereoGeometry with the paper's σ, descriptor plus noise. Deterministic for a seed. */
 class SyntheticTeamWorld {
-public:
+  public:
     struct TParams {
         size_t robots = 2;
         size_t landmarks = 600;
@@ -59,7 +59,8 @@ public:
     };
 
     explicit SyntheticTeamWorld(const TParams& p)
-        : params(p), geometry(280, 280, 160, 120, 0.12),
+        : params(p),
+          geometry(280, 280, 160, 120, 0.12),
           camera_on_robot(0.1, 0, 0.5, -M_PI / 2, 0, -M_PI / 2)  // z forward along robot x
     {
         rng.randomize(p.seed);
@@ -68,10 +69,14 @@ public:
             const int wall = static_cast<int>(rng.drawUniform(0, 4)) % 4;
             const double u = rng.drawUniform(-1, 1), z = rng.drawUniform(0.2, 2.3);
             Eigen::Vector3d pt;
-            if (wall == 0) pt = {u * p.half_x, p.half_y, z};
-            else if (wall == 1) pt = {u * p.half_x, -p.half_y, z};
-            else if (wall == 2) pt = {p.half_x, u * p.half_y, z};
-            else pt = {-p.half_x, u * p.half_y, z};
+            if (wall == 0)
+                pt = {u * p.half_x, p.half_y, z};
+            else if (wall == 1)
+                pt = {u * p.half_x, -p.half_y, z};
+            else if (wall == 2)
+                pt = {p.half_x, u * p.half_y, z};
+            else
+                pt = {-p.half_x, u * p.half_y, z};
             points.push_back(pt);
             descriptors.push_back(randomUnitDescriptor());
         }
@@ -193,7 +198,7 @@ public:
     std::vector<mrpt::math::TPose2D> truth, odometry;
     double time = 1000;
 
-private:
+  private:
     std::array<float, 64> randomUnitDescriptor()
     {
         std::array<float, 64> d;

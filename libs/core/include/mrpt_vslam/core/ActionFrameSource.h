@@ -26,7 +26,7 @@ namespace mrpt_vslam::core {
  *  motion);` then `while (src.next(acts, sf)) ...`.
  */
 class ActionFrameSource {
-public:
+  public:
     ActionFrameSource(RawlogReader& reader, std::vector<ObservationSelector> steps,
                       const mrpt::obs::CActionRobotMovement2D::TMotionModelOptions& motion_model,
                       std::vector<std::string> odometry_labels = {});
@@ -41,7 +41,7 @@ public:
      *  the rawlog for an action collection without odometry. */
     bool next(mrpt::obs::CActionCollection::Ptr& actions, mrpt::obs::CSensoryFrame::Ptr& frame);
 
-private:
+  private:
     /// The pending format-#2 frame as a step, built from the odometry since the last step.
     void emitPending(mrpt::obs::CActionCollection::Ptr& actions,
                      mrpt::obs::CSensoryFrame::Ptr& frame);

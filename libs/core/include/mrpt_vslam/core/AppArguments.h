@@ -21,22 +21,22 @@ namespace mrpt_vslam::core {
  *  Parsing never prints and never exits.
  */
 class AppArguments {
-public:
+  public:
     enum class Request { Run, ShowHelp, ShowVersion };
 
     Request request = Request::Run;
     std::string message;  ///< help or version text when request != Run
 
     std::string appName;
-    std::string configFile;                   ///< positional CONFIG (required)
-    std::string rawlogFile;                   ///< positional RAWLOG; empty: config's `rawlog_file`
-    std::string outDir;                       ///< `--out`, else defaultOutDir()
-    uint32_t seed = 0;                        ///< `--seed`; 0: not given (see resolveSeed())
-    std::vector<TConfigOverride> overrides;   ///< every `--set`, in order
-    std::string groundTruth;                  ///< `--ground-truth`; empty: look beside the rawlog
-    bool quiet = false;                       ///< `--quiet`: no progress line, no chatter
-    bool gui = false;                         ///< `--gui`: live 3D view
-    std::vector<std::string> commandLine;     ///< argv as given, for run.json
+    std::string configFile;                  ///< positional CONFIG (required)
+    std::string rawlogFile;                  ///< positional RAWLOG; empty: config's `rawlog_file`
+    std::string outDir;                      ///< `--out`, else defaultOutDir()
+    uint32_t seed = 0;                       ///< `--seed`; 0: not given (see resolveSeed())
+    std::vector<TConfigOverride> overrides;  ///< every `--set`, in order
+    std::string groundTruth;                 ///< `--ground-truth`; empty: look beside the rawlog
+    bool quiet = false;                      ///< `--quiet`: no progress line, no chatter
+    bool gui = false;                        ///< `--gui`: live 3D view
+    std::vector<std::string> commandLine;    ///< argv as given, for run.json
 
     /** Parses argv. Throws UsageError with a one-line reason ending in "(see APP --help)" for
      *  unknown options, a missing CONFIG, extra positionals, or a malformed `--seed`/`--set`. */

@@ -9,7 +9,7 @@ namespace mrpt_vslam::core {
  *  commit() flushes, checks and renames it; destruction without commit() removes the temporary,
  *  so an interrupted or failed run never leaves a partial file that looks whole. */
 class AtomicFile {
-public:
+  public:
     explicit AtomicFile(const std::string& file);
     ~AtomicFile();
     AtomicFile(const AtomicFile&) = delete;
@@ -22,7 +22,7 @@ public:
     /// Renames an already written temporary `tmp_file` to `file` (for files written by MRPT).
     static void commitRename(const std::string& tmp_file, const std::string& file);
 
-private:
+  private:
     std::string m_file, m_tmp;
     std::ofstream m_out;
     bool m_committed = false;

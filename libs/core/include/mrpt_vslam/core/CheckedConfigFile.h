@@ -48,7 +48,7 @@ struct TUnreadKey {
  *  config parser (`@define`, `${VAR}`, `$eval{}`, `$env{}`).
  */
 class CheckedConfigFile : public mrpt::config::CConfigFileMemory {
-public:
+  public:
     CheckedConfigFile() = default;
 
     /** Loads a file, replacing any previous content and read marks. */
@@ -77,12 +77,12 @@ public:
     /** Writes effectiveText() atomically to `file`. */
     void writeEffectiveConfig(const std::string& file) const;
 
-protected:
+  protected:
     std::string readString(const std::string& section, const std::string& name,
                            const std::string& defaultStr,
                            bool failIfNotFound = false) const override;
 
-private:
+  private:
     using CConfigFileMemory::setContent;  // content changes go through loadFile/loadText
 
     using TKeyId = std::pair<std::string, std::string>;  ///< lower-case (section, key)

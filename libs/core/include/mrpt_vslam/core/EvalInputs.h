@@ -37,8 +37,7 @@ struct TEvalInputs {
 /** The ground-truth file of `robot` for the prefix NAME: NAME.groundtruth.tum for a
  *  single-robot run (`robot` empty), else NAME.groundtruth_<robot>.tum, or, for the only robot
  *  of a run (`only_robot`) when that file does not exist, NAME.groundtruth.tum. */
-std::string groundTruthFileOf(const std::string& prefix, const std::string& robot,
-                              bool only_robot);
+std::string groundTruthFileOf(const std::string& prefix, const std::string& robot, bool only_robot);
 
 /** Finds the files to evaluate from the parameters: estimates in the run folder, ground truth
  *  from `--ground-truth` or run.json. Throws std::runtime_error "FILE: problem". */

@@ -37,7 +37,7 @@ namespace mrpt_vslam::core {
  *   3. For each feature centroid (u, v): `auto z = lut.lookup(u, v); if (z.valid) ...`.
  */
 class FisheyeLookupTable {
-public:
+  public:
     /** Sampling steps of the table. 0 (the default) picks the largest step that keeps
      *  neighbouring samples ≤ ½ px apart for the given camera. */
     struct TOptions : public mrpt::config::CLoadableOptions {
@@ -94,7 +94,7 @@ public:
     size_t memoryBytes() const { return m_cells.size() * sizeof(TCell); }
     /// @}
 
-private:
+  private:
     void build();
 
     PajdlaBaksteinCamera m_camera;

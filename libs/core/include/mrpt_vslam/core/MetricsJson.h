@@ -1,8 +1,8 @@
 #pragma once
 
-#include <string>
-
 #include <mrpt_vslam/core/RunEvaluation.h>
+
+#include <string>
 
 namespace mrpt_vslam::core {
 

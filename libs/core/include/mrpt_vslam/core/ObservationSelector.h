@@ -27,7 +27,8 @@ struct ObservationSelector {
 
     bool matches(const mrpt::obs::CObservation& obs) const
     {
-        return obs.GetRuntimeClass()->derivedFrom(cls) && (label.empty() || obs.sensorLabel == label);
+        return obs.GetRuntimeClass()->derivedFrom(cls) &&
+               (label.empty() || obs.sensorLabel == label);
     }
 
     /// Removes the observations of `frame` that match; returns how many.

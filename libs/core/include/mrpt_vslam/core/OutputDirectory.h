@@ -10,7 +10,7 @@ namespace mrpt_vslam::core {
  *  Usage: `OutputDirectory out(args.outDir); report.write(out.file("run.json"));`
  */
 class OutputDirectory {
-public:
+  public:
     /** Creates `dir` and any missing parents. Throws std::runtime_error
      *  `"<dir>: cannot create output folder: <reason>"` if it cannot, or if `dir` exists and is
      *  not a folder. */
@@ -20,7 +20,7 @@ public:
     /** `<dir>/<name>`. */
     std::string file(const std::string& name) const;
 
-private:
+  private:
     std::string m_dir;
 };
 

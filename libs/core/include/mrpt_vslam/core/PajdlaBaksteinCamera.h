@@ -21,13 +21,13 @@ namespace mrpt_vslam::core {
  * Parameters are read from an `.ini` section (keys = member names, angles in degrees with `_deg`).
  */
 class PajdlaBaksteinCamera : public mrpt::config::CLoadableOptions {
-public:
+  public:
     /// @name Model parameters (Eq. 1)
     /// @{
-    double a = 150.0;  ///< [px] tan-term gain
-    double b = 2.5;    ///< [-] tan-term angle divisor
-    double c = 180.0;  ///< [px] sin-term gain
-    double d = 1.8;    ///< [-] sin-term angle divisor
+    double a = 150.0;   ///< [px] tan-term gain
+    double b = 2.5;     ///< [-] tan-term angle divisor
+    double c = 180.0;   ///< [px] sin-term gain
+    double d = 1.8;     ///< [-] sin-term angle divisor
     double u0 = 320.0;  ///< [px] image centre, column
     double v0 = 240.0;  ///< [px] image centre, row (before the β scaling)
     double beta = 1.0;  ///< [-] pixel aspect ratio (width / height)
@@ -35,8 +35,8 @@ public:
 
     /// @name Image geometry
     /// @{
-    int width = 640;                   ///< [px]
-    int height = 480;                  ///< [px]
+    int width = 640;                        ///< [px]
+    int height = 480;                       ///< [px]
     double max_theta = 1.5533430342749532;  ///< [rad] field of view half-angle (ini: max_theta_deg)
     /// @}
 

@@ -18,7 +18,7 @@ namespace mrpt_vslam::core {
  *  The stream and the clock can be injected (tests).
  */
 class ProgressReporter {
-public:
+  public:
     using Clock = std::chrono::steady_clock;
     using TimeSource = std::function<Clock::time_point()>;
 
@@ -45,7 +45,7 @@ public:
     /** The line text for `done` units after `elapsed_s` seconds (no '\r'). */
     std::string formatLine(size_t done, double elapsed_s, bool final_line) const;
 
-private:
+  private:
     void draw(const std::string& line);
 
     std::string m_app;

@@ -38,11 +38,11 @@ struct TRawlogEntry {
 
 /** What a rawlog holds, to tell the user what was found when it does not fit the app. */
 struct TRawlogSummary {
-    size_t objects = 0;             ///< top-level objects read from the file
-    size_t actionCollections = 0;   ///< top-level CActionCollection
-    size_t sensoryFrames = 0;       ///< top-level CSensoryFrame
-    size_t observations = 0;        ///< top-level CObservation (format #2)
-    size_t others = 0;              ///< top-level objects of any other class
+    size_t objects = 0;            ///< top-level objects read from the file
+    size_t actionCollections = 0;  ///< top-level CActionCollection
+    size_t sensoryFrames = 0;      ///< top-level CSensoryFrame
+    size_t observations = 0;       ///< top-level CObservation (format #2)
+    size_t others = 0;             ///< top-level objects of any other class
     /** Count per (class, sensorLabel) of every observation (top-level or inside a frame) and
      *  every action ("" label); classes of `mrpt::obs` without their namespace. */
     std::map<std::pair<std::string, std::string>, size_t> byClassAndLabel;
@@ -75,7 +75,7 @@ struct TRawlogSummary {
  *  \endcode
  */
 class RawlogReader {
-public:
+  public:
     explicit RawlogReader(const std::string& file);
     ~RawlogReader();
     RawlogReader(const RawlogReader&) = delete;
@@ -97,7 +97,7 @@ public:
     /** Reads a whole rawlog and returns its summary. */
     static TRawlogSummary summarize(const std::string& file);
 
-private:
+  private:
     /** Next object from the file or the pending queue; nullptr at the end. */
     mrpt::serialization::CSerializable::Ptr nextObject();
     mrpt::serialization::CSerializable::Ptr readFromFile();

@@ -13,15 +13,15 @@ namespace mrpt_vslam::core {
 /** The `run.json` of a run folder: what was run, with what, and how long it took.
  *
  *  Fields, in this order (doc/app-conventions.md): app, version, mrpt_version, opencv_version,
- *  command_line, config_file, config (effective text), rawlog, ground_truth, seed, start_time (ISO 8601 UTC),
- *  counts {name: number}, timing {total_s, steps, per_step_ms {mean, median, p95, max}},
+ *  command_line, config_file, config (effective text), rawlog, ground_truth, seed, start_time (ISO
+ * 8601 UTC), counts {name: number}, timing {total_s, steps, per_step_ms {mean, median, p95, max}},
  *  results {name: value}. Fields never set are null; non-finite numbers are written as null.
  *
  *  Usage: create at start-up (records the start time), fill it as the run goes, write() at
  *  the end (atomically, so a run.json is always complete).
  */
 class RunReport {
-public:
+  public:
     explicit RunReport(const std::string& app_name);
     ~RunReport();
     RunReport(const RunReport&) = delete;
@@ -60,7 +60,7 @@ public:
     /** "YYYY-MM-DDTHH:MM:SSZ". */
     static std::string isoTimeUtc(std::chrono::system_clock::time_point t);
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> m_impl;
 };

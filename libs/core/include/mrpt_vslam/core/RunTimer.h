@@ -22,7 +22,7 @@ struct TStepStatistics {
  *  at the end read elapsedSeconds() and stepStatistics() (RunReport::setTiming() takes it whole).
  */
 class RunTimer {
-public:
+  public:
     using Clock = std::chrono::steady_clock;
 
     RunTimer();
@@ -40,7 +40,7 @@ public:
     const std::vector<double>& stepDurationsMs() const { return m_steps_ms; }
     TStepStatistics stepStatistics() const;
 
-private:
+  private:
     Clock::time_point m_run_start;
     Clock::time_point m_step_start;
     bool m_step_running = false;

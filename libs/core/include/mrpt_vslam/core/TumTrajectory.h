@@ -13,9 +13,9 @@ namespace mrpt_vslam::core {
  *  Timestamps are Unix seconds as double (`mrpt::Clock::toDouble()` of the rawlog's stamps).
  */
 class TumTrajectory {
-public:
-    std::vector<double> timestamps;            ///< [s], strictly increasing
-    std::vector<mrpt::math::TPose3D> poses;    ///< pose of the robot in the map frame
+  public:
+    std::vector<double> timestamps;          ///< [s], strictly increasing
+    std::vector<mrpt::math::TPose3D> poses;  ///< pose of the robot in the map frame
 
     size_t size() const { return poses.size(); }
     bool empty() const { return poses.empty(); }

@@ -8,7 +8,7 @@ namespace mrpt_vslam::core {
  *  unknown key, malformed `--set`). A driver app prints what() and exits with code 2; every
  *  other std::exception means a runtime failure and exit code 1 (see doc/app-conventions.md). */
 class UsageError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 

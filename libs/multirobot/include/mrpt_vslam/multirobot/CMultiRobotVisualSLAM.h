@@ -56,7 +56,7 @@ class CMultiRobotVisualSLAM
           CMultiRobotVisualSLAM,
           mrpt::bayes::CParticleFilterData<
               TTeamParticle, mrpt::bayes::particle_storage_mode::POINTER>::CParticleList> {
-public:
+  public:
     struct TOptions : public mrpt::config::CLoadableOptions {
         /// Robot names, the prefix of their sensor labels (ini: `robots = R1 R2`). One name: a
         /// single-robot rawlog, whose observations are found by class (see sensor_label).
@@ -90,12 +90,12 @@ public:
         /// most precise for a stereo pair, or a uniform random subset.
         enum class TSelection { Nearest, Random } observation_selection = TSelection::Nearest;
         /// Added to the odometry covariance (std) so the proposal never degenerates.
-        double min_motion_std_xy = 0.002;               ///< [m]
-        double min_motion_std_phi = 0.1 * M_PI / 180;   ///< [rad] (ini: min_motion_std_phi_deg)
+        double min_motion_std_xy = 0.002;              ///< [m]
+        double min_motion_std_phi = 0.1 * M_PI / 180;  ///< [rad] (ini: min_motion_std_phi_deg)
         /// Spread of the initial poses of every robot but the first, whose start defines the
         /// map frame (Sec. 6.1: "the initial position ... is known approximately").
-        double initial_std_xy = 0.05;                   ///< [m]
-        double initial_std_phi = 1.0 * M_PI / 180;      ///< [rad] (ini: initial_std_phi_deg)
+        double initial_std_xy = 0.05;               ///< [m]
+        double initial_std_phi = 1.0 * M_PI / 180;  ///< [rad] (ini: initial_std_phi_deg)
         /// Resample (if N_eff < BETA) after each robot's measurements too (ours; paper: once
         /// per step). Pays off with 3 robots (doc/multirobot.md).
         bool resample_per_robot = false;
@@ -135,12 +135,12 @@ public:
 
     /// Counters of the last step (summed over particles where marked).
     struct TStepStats {
-        size_t measurements = 0;          ///< integrated (after the B limit), all robots
-        size_t candidates = 0;            ///< pool candidates, summed over measurements
-        size_t created = 0;               ///< new landmarks, summed over particles
-        size_t associated = 0;            ///< EKF updates, summed over particles
-        size_t robot_readings = 0;        ///< readings of team robots used, all robots
-        size_t non_positive_ranges = 0;   ///< range-bearing readings left out (range ≤ 0)
+        size_t measurements = 0;         ///< integrated (after the B limit), all robots
+        size_t candidates = 0;           ///< pool candidates, summed over measurements
+        size_t created = 0;              ///< new landmarks, summed over particles
+        size_t associated = 0;           ///< EKF updates, summed over particles
+        size_t robot_readings = 0;       ///< readings of team robots used, all robots
+        size_t non_positive_ranges = 0;  ///< range-bearing readings left out (range ≤ 0)
     } lastStepStats;
 
     /** \param map_template options every particle's map starts with (must be empty)
@@ -157,7 +157,7 @@ public:
     const TTeamParticle& bestParticle() const;
     /// One robot's path in a particle, oldest first: (timestamp, pose).
     static std::vector<std::pair<double, mrpt::math::TPose2D>> pathOf(const TTeamParticle& p,
-                                                                       size_t robot);
+                                                                      size_t robot);
     /** The map of every measurement fused since reset(), made again along the final path of
      *  particle `p` (ours; mapping with known poses, doc/multirobot.md §3): frame by frame in
      *  the order of the run, each robot's measurements at that particle's pose of the step,
@@ -172,7 +172,7 @@ public:
     struct TSmoothedTeam {
         /// one per robot, oldest first, as pathOf()
         std::vector<std::vector<std::pair<double, mrpt::math::TPose2D>>> paths;
-        CVisualLandmarksMap map;  ///< mapped along `paths` as mapAlongPath() maps
+        CVisualLandmarksMap map;      ///< mapped along `paths` as mapAlongPath() maps
         size_t iterations = 0;        ///< least-squares iterations, all rounds
         size_t outlier_readings = 0;  ///< beyond the Huber threshold after the last round
         size_t reanchored = 0;        ///< parts of paths reanchorAfterGaps() moved, all rounds
@@ -191,7 +191,7 @@ public:
      *  mapping; finally map along the result. \pre options.map_along_path since reset() */
     TSmoothedTeam smoothPaths(const TTeamParticle& p) const;
 
-protected:
+  protected:
     void prediction_and_update_pfStandardProposal(
         const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
         const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options) override;
@@ -199,7 +199,7 @@ protected:
         const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
         const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options) override;
 
-private:
+  private:
     /// One robot's odometry increment as a Gaussian (with the floor), L its Cholesky factor.
     struct TMotionGaussian {
         mrpt::math::TPose2D mean;

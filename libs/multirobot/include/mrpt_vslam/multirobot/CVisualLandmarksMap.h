@@ -55,7 +55,7 @@ struct TMeasurementCandidates {
 class CVisualLandmarksMap : public mrpt::maps::CMetricMap {
     DEFINE_SERIALIZABLE(CVisualLandmarksMap, mrpt_vslam::multirobot)
 
-public:
+  public:
     /** Data association and initialization ("<prefix>_insertOpts"). The paper gives no values
      *  for D0, E0 and p0 ("selected experimentally"); ours are in doc/multirobot.md. */
     struct TInsertionOptions : public mrpt::config::CLoadableOptions {
@@ -183,17 +183,17 @@ public:
     mrpt_vslam::multirobot::CVisualLandmarksMap::TRenderOptions renderOpts;
     MAP_DEFINITION_END(CVisualLandmarksMap)
 
-protected:
+  protected:
     void internal_clear() override;
     bool internal_insertObservation(
         const mrpt::obs::CObservation& obs,
         const std::optional<const mrpt::poses::CPose3D>& robotPose = std::nullopt) override;
-    double internal_computeObservationLikelihood(const mrpt::obs::CObservation& obs,
-                                                 const mrpt::poses::CPose3D& takenFrom) const override;
+    double internal_computeObservationLikelihood(
+        const mrpt::obs::CObservation& obs, const mrpt::poses::CPose3D& takenFrom) const override;
     bool internal_canComputeObservationLikelihood(
         const mrpt::obs::CObservation& obs) const override;
 
-private:
+  private:
     LandmarkStore m_store;
     std::shared_ptr<LandmarkDescriptorPool> m_pool;
 };

@@ -1,7 +1,6 @@
 #pragma once
 
 #include <Eigen/Core>
-
 #include <cmath>
 
 namespace mrpt_vslam::multirobot {

@@ -3,7 +3,6 @@
 #include <mrpt_vslam/core/USurfDescriptor.h>
 
 #include <Eigen/Core>
-
 #include <cstdint>
 #include <optional>
 #include <unordered_map>
@@ -33,7 +32,7 @@ struct TLandmarkCandidate {
  *  With known correspondences (CVisualLandmarksMap's associate_by_identity) the pool also
  *  records which landmark id each identity started, so that all particles use that one. */
 class LandmarkDescriptorPool {
-public:
+  public:
     using TDescriptor = core::USurfDescriptor::TDescriptor;
 
     /// \param cell_size edge of the spatial hash cells [m]
@@ -71,7 +70,7 @@ public:
 
     double cellSize() const { return m_cell; }
 
-private:
+  private:
     int64_t cellKey(int64_t ix, int64_t iy, int64_t iz) const;
     int64_t cellIndex(double v) const;
     void index(uint32_t id);

@@ -7,7 +7,6 @@
 #include <mrpt_vslam/core/USurfDescriptor.h>
 
 #include <Eigen/Core>
-
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -21,7 +20,7 @@ struct TLandmarkMeasurement {
     Eigen::Vector3d z = Eigen::Vector3d::Zero();  ///< point in the robot frame [m]
     Eigen::Matrix3d R = Eigen::Matrix3d::Zero();  ///< its covariance R_t in the robot frame [m²]
     core::USurfDescriptor::TDescriptor d{};       ///< U-SURF descriptor d_t
-    double depth = 0;      ///< distance along the optical axis or range [m]: B-selection key
+    double depth = 0;  ///< distance along the optical axis or range [m]: B-selection key
     /// Front-end track, or the landmark's identity in range-bearing data that keeps it (−1:
     /// hidden). Diagnostics (association errors).
     int64_t track_id = -1;

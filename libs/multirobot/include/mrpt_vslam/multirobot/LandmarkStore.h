@@ -19,7 +19,7 @@ namespace mrpt_vslam::multirobot {
  *  one step touches few blocks: the cost of a step grows with the measurements, not with the
  *  map size, and M particles share every block none of them changed since they split. */
 class LandmarkStore {
-public:
+  public:
     static constexpr uint32_t kBlockSize = 32;
 
     /// The landmark with this id, or nullptr if this particle has none.
@@ -56,7 +56,7 @@ public:
     /// Blocks this store holds alone (not shared with any copy): for tests and statistics.
     size_t unsharedBlocks() const;
 
-private:
+  private:
     struct Block {
         std::array<TVisualLandmark, kBlockSize> items;
         uint32_t present = 0;  ///< bit i: items[i] holds a landmark

@@ -19,7 +19,7 @@ namespace mrpt_vslam::multirobot {
  *  (stereo → landmarks) → filter step → progress; at the end paths, map, scene, run.json and
  *  metrics.json. Tests drive this class exactly as the binary does. */
 class MultiRobotVSLAMApp {
-public:
+  public:
     explicit MultiRobotVSLAMApp(core::AppArguments args);
     ~MultiRobotVSLAMApp();
 
@@ -37,7 +37,7 @@ public:
     std::string outDir;
     /// @}
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> m_impl;
 };

@@ -3,7 +3,6 @@
 #include <mrpt/math/TPose2D.h>
 
 #include <Eigen/Core>
-
 #include <cstddef>
 #include <optional>
 #include <vector>
@@ -23,7 +22,7 @@ namespace mrpt_vslam::multirobot {
  *  Readings are robust (Huber on the whitened residual's norm, by iteratively reweighted least
  *  squares): a few wrong associations pull with a bounded force. */
 class PlanarPoseLandmarkGraph {
-public:
+  public:
     size_t addPose(const mrpt::math::TPose2D& initial);
     size_t addPoint(const Eigen::Vector2d& initial);
     /// An odometry scale (distance, turn), starting at `initial`, with a prior N(mean, cov).
@@ -74,7 +73,7 @@ public:
     size_t pointCount() const { return m_points.size(); }
     const Eigen::Vector2d& odometryScale(size_t s) const { return m_scales[s]; }
 
-private:
+  private:
     struct TPrior {
         size_t pose;
         mrpt::math::TPose2D mean;
@@ -107,7 +106,7 @@ private:
 
     double m_huber = 0;  ///< threshold of the current optimize()
 
-    Eigen::Vector3d priorError(const TPrior& f) const;    ///< whitened residuals
+    Eigen::Vector3d priorError(const TPrior& f) const;  ///< whitened residuals
     Eigen::Vector3d odometryError(const TOdometry& f) const;
     Eigen::Vector2d readingError(const TReading& f) const;
     Eigen::Vector2d targetOf(const TReading& r) const;

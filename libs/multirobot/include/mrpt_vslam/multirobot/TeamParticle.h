@@ -11,8 +11,8 @@ namespace mrpt_vslam::multirobot {
 /** The team's poses at one step of a particle's history; nodes are shared between the copies
  *  resampling makes, so a copy costs one pointer, not a path. */
 struct TTeamPathNode {
-    double timestamp = 0;                       ///< [s]
-    std::vector<mrpt::math::TPose2D> poses;     ///< one per robot
+    double timestamp = 0;                                   ///< [s]
+    std::vector<mrpt::math::TPose2D> poses;                 ///< one per robot
     mutable std::shared_ptr<const TTeamPathNode> previous;  ///< mutable: see the destructor
 
     TTeamPathNode(double t, std::vector<mrpt::math::TPose2D> p,
@@ -28,8 +28,8 @@ struct TTeamPathNode {
 /** One particle of the team filter (Gil et al. 2010, Eq. 5 and Table 1): the K robot poses, their
  *  paths and the map they share. */
 struct TTeamParticle {
-    std::vector<mrpt::math::TPose2D> poses;      ///< x_t,<1:K>
-    std::shared_ptr<const TTeamPathNode> path;   ///< newest first
+    std::vector<mrpt::math::TPose2D> poses;     ///< x_t,<1:K>
+    std::shared_ptr<const TTeamPathNode> path;  ///< newest first
     CVisualLandmarksMap map;
     /// Σ_t log ω_t of Eq. 14, kept through resampling: the best particle has the largest.
     double accumulated_log_w = 0;

@@ -36,16 +36,16 @@ namespace mrpt_vslam::omni_fastslam {
  *     ∂φ/∂yaw = −∂φ/∂m_{xy} · R'(yaw) t_s − 1, Δ = m − t_c                            (Eq. P3)
  */
 class BearingMeasurementModel {
-public:
+  public:
     using Vector2 = Eigen::Vector2d;
     using Vector3 = Eigen::Vector3d;
     using Matrix23 = Eigen::Matrix<double, 2, 3>;
 
     /// Prediction of one measurement and its Jacobians.
     struct TPrediction {
-        Vector2 z = Vector2::Zero();       ///< predicted (φ, θ) [rad]
-        Matrix23 H_x = Matrix23::Zero();   ///< ∂h/∂(x, y, yaw) [rad/m, rad/m, rad/rad]
-        Matrix23 H_m = Matrix23::Zero();   ///< ∂h/∂(m_x, m_y, m_z) [rad/m]
+        Vector2 z = Vector2::Zero();                ///< predicted (φ, θ) [rad]
+        Matrix23 H_x = Matrix23::Zero();            ///< ∂h/∂(x, y, yaw) [rad/m, rad/m, rad/rad]
+        Matrix23 H_m = Matrix23::Zero();            ///< ∂h/∂(m_x, m_y, m_z) [rad/m]
         Vector3 point_in_camera = Vector3::Zero();  ///< d of Eq. M2 [m]
         /// false when the landmark is (numerically) on the optical axis or at the camera centre,
         /// where φ and the Jacobians are undefined.
@@ -55,9 +55,8 @@ public:
     BearingMeasurementModel() = default;
     /** \param sensor_in_robot camera pose on the robot (z up, optical axis = camera +z)
      *  \param kind spherical (φ, θ) or planar (azimuth only) */
-    explicit BearingMeasurementModel(
-        const mrpt::poses::CPose3D& sensor_in_robot,
-        TMeasurementModelKind kind = TMeasurementModelKind::Spherical);
+    explicit BearingMeasurementModel(const mrpt::poses::CPose3D& sensor_in_robot,
+                                     TMeasurementModelKind kind = TMeasurementModelKind::Spherical);
 
     TMeasurementModelKind kind() const { return m_kind; }
     bool isPlanar() const { return m_kind == TMeasurementModelKind::Planar; }
@@ -94,7 +93,7 @@ public:
      *  θ = π/2 + pitch (pitch = −elevation). The Jacobian of this change is the identity. */
     static Vector2 anglesOfYawPitch(double yaw, double pitch);
 
-private:
+  private:
     mrpt::poses::CPose3D m_sensor_in_robot{0, 0, 1.8, 0, 0, 0};
     TMeasurementModelKind m_kind = TMeasurementModelKind::Spherical;
 

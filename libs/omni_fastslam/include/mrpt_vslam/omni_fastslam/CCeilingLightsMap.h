@@ -11,7 +11,6 @@
 #include <mrpt_vslam/omni_fastslam/RayCrossPoint.h>
 
 #include <Eigen/Core>
-
 #include <optional>
 #include <vector>
 
@@ -43,7 +42,7 @@ namespace mrpt_vslam::omni_fastslam {
 class CCeilingLightsMap : public mrpt::maps::CMetricMap {
     DEFINE_SERIALIZABLE(CCeilingLightsMap, mrpt_vslam::omni_fastslam)
 
-public:
+  public:
     /** Camera description ("<prefix>_creationOpts" section). Shared by insertion and likelihood. */
     struct TSensorOptions : public mrpt::config::CLoadableOptions {
         /// `spherical` (φ, θ of an upward camera, 3D landmarks) or `planar` (azimuth only,
@@ -212,7 +211,8 @@ public:
      *  lines 1-27). Returns the particle log-weight Σ log ŵ: log N(ν; 0, H_x R H_x^T + Q̃) per
      *  associated landmark, log(1 − p_in) per unseen landmark in range (type I only unless
      *  use_type_ii_landmarks).
-     *  \param robot_pose_cov R_t, covariance of (x, y, yaw) [m², m·rad, rad²] (0 for known poses) */
+     *  \param robot_pose_cov R_t, covariance of (x, y, yaw) [m², m·rad, rad²] (0 for known poses)
+     */
     double updateLandmarks(const std::vector<TBearingMeasurement>& z,
                            const mrpt::math::TPose2D& robot_in_map,
                            const std::vector<int>& landmark_of_measurement,
@@ -248,17 +248,17 @@ public:
     mrpt_vslam::omni_fastslam::CCeilingLightsMap::TRenderOptions renderOpts;
     MAP_DEFINITION_END(CCeilingLightsMap)
 
-protected:
+  protected:
     void internal_clear() override;
     bool internal_insertObservation(
         const mrpt::obs::CObservation& obs,
         const std::optional<const mrpt::poses::CPose3D>& robotPose = std::nullopt) override;
-    double internal_computeObservationLikelihood(const mrpt::obs::CObservation& obs,
-                                                 const mrpt::poses::CPose3D& takenFrom) const override;
+    double internal_computeObservationLikelihood(
+        const mrpt::obs::CObservation& obs, const mrpt::poses::CPose3D& takenFrom) const override;
     bool internal_canComputeObservationLikelihood(
         const mrpt::obs::CObservation& obs) const override;
 
-private:
+  private:
     /// See sensorPoseInUse(); set by each observation turned into measurements.
     mutable mrpt::poses::CPose3D m_sensor_in_robot;
     std::vector<TLightLandmark> m_landmarks;

@@ -70,16 +70,16 @@ class COmniFastSLAM
           COmniFastSLAM,
           mrpt::bayes::CParticleFilterData<
               TOmniFastSLAMParticle, mrpt::bayes::particle_storage_mode::POINTER>::CParticleList> {
-public:
+  public:
     struct TOptions : public mrpt::config::CLoadableOptions {
         /// Label of the bearings observation in each sensory frame.
         std::string bearings_label = "OMNICAM_BEARINGS";
         /// Added to the odometry covariance (std) so the proposal never degenerates.
-        double min_motion_std_xy = 0.005;                 ///< [m]
-        double min_motion_std_phi = 0.25 * M_PI / 180;    ///< [rad] (ini: min_motion_std_phi_deg)
+        double min_motion_std_xy = 0.005;               ///< [m]
+        double min_motion_std_phi = 0.25 * M_PI / 180;  ///< [rad] (ini: min_motion_std_phi_deg)
         /// Landmarks whose predicted θ exceeds the perceptual range by more than this are
         /// skipped in Alg. 2 (they cannot have produced a measurement).
-        double prediction_margin = 5.0 * M_PI / 180;     ///< [rad] (ini: prediction_margin_deg)
+        double prediction_margin = 5.0 * M_PI / 180;  ///< [rad] (ini: prediction_margin_deg)
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                 const std::string& section) override;
@@ -107,7 +107,7 @@ public:
     static std::vector<std::pair<double, mrpt::math::TPose2D>> pathOf(
         const TOmniFastSLAMParticle& p);
 
-protected:
+  protected:
     void prediction_and_update_pfStandardProposal(
         const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
         const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options) override;
@@ -115,7 +115,7 @@ protected:
         const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
         const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options) override;
 
-private:
+  private:
     /// Odometry increment Δ and its covariance (robot frame of the previous pose).
     struct TMotion {
         mrpt::math::TPose2D delta;

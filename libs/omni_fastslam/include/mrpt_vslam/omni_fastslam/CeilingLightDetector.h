@@ -25,12 +25,12 @@ namespace mrpt_vslam::omni_fastslam {
  *  filter has one input path for images and for pre-extracted bearings.
  */
 class CeilingLightDetector {
-public:
+  public:
     struct TOptions : public mrpt::config::CLoadableOptions {
-        int intensity_threshold = 100;  ///< [0-255] pixels above it belong to a light
-        int min_blob_area = 6;          ///< [px] smaller blobs are noise
-        int max_blob_area = 4000;       ///< [px] larger blobs are reflections / windows
-        double pixel_std = 0.7;         ///< [px] std of the blob centroid
+        int intensity_threshold = 100;           ///< [0-255] pixels above it belong to a light
+        int min_blob_area = 6;                   ///< [px] smaller blobs are noise
+        int max_blob_area = 4000;                ///< [px] larger blobs are reflections / windows
+        double pixel_std = 0.7;                  ///< [px] std of the blob centroid
         core::FisheyeLookupTable::TOptions lut;  ///< LUT sampling steps
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
@@ -59,7 +59,7 @@ public:
 
     const core::FisheyeLookupTable& lookupTable() const { return m_lut; }
 
-private:
+  private:
     TOptions m_options;
     core::FisheyeLookupTable m_lut;
 };

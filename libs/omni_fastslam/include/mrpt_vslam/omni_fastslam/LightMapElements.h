@@ -4,7 +4,6 @@
 #include <mrpt/typemeta/TEnumType.h>
 
 #include <Eigen/Core>
-
 #include <cstdint>
 #include <vector>
 
@@ -13,7 +12,7 @@ namespace mrpt_vslam::omni_fastslam {
 /** One bearing-only measurement z = (φ, θ) with its noise covariance Q (Gamallo et al. 2013,
  *  Sec. III-A). */
 struct TBearingMeasurement {
-    Eigen::Vector2d z = Eigen::Vector2d::Zero();  ///< (φ, θ) [rad]
+    Eigen::Vector2d z = Eigen::Vector2d::Zero();             ///< (φ, θ) [rad]
     Eigen::Matrix2d Q = Eigen::Matrix2d::Identity() * 3e-4;  ///< covariance of (φ, θ) [rad²]
     /// The landmark's number when the data set gives it (`landmarkID`), else −1. Kept for
     /// evaluation only (counting wrong associations); the filter never reads it.
@@ -40,7 +39,7 @@ struct TLightLandmark {
     int64_t id = -1;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();  ///< μ_j [m]
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();   ///< Σ_j [m²]
-    int counter = 0;                                  ///< i_j: +1 seen, −1 unseen in range
+    int counter = 0;                                 ///< i_j: +1 seen, −1 unseen in range
     TLandmarkType type = TLandmarkType::TypeI;
     /// Measurements in a row taken from robot poses within D_min (XY) of the mean
     /// (used by updateLandmarksType() to promote type II to type I).
@@ -99,6 +98,7 @@ MRPT_FILL_ENUM_CUSTOM_NAME(mrpt_vslam::omni_fastslam::TAssociationMethod::ML, "m
 MRPT_ENUM_TYPE_END()
 
 MRPT_ENUM_TYPE_BEGIN(mrpt_vslam::omni_fastslam::TMeasurementModelKind)
-MRPT_FILL_ENUM_CUSTOM_NAME(mrpt_vslam::omni_fastslam::TMeasurementModelKind::Spherical, "spherical");
+MRPT_FILL_ENUM_CUSTOM_NAME(mrpt_vslam::omni_fastslam::TMeasurementModelKind::Spherical,
+                           "spherical");
 MRPT_FILL_ENUM_CUSTOM_NAME(mrpt_vslam::omni_fastslam::TMeasurementModelKind::Planar, "planar");
 MRPT_ENUM_TYPE_END()

@@ -20,7 +20,7 @@ namespace mrpt_vslam::omni_fastslam {
  *  and metrics.json. Tests drive this class exactly as the binary does.
  */
 class OmniFastSLAMApp {
-public:
+  public:
     explicit OmniFastSLAMApp(core::AppArguments args);
     ~OmniFastSLAMApp();
 
@@ -37,7 +37,7 @@ public:
     std::string outDir;
     /// @}
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> m_impl;
 };

@@ -13,10 +13,10 @@ namespace mrpt_vslam::omni_fastslam {
  */
 struct TRayCrossPoint {
     Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< midpoint of the common perpendicular [m]
-    double gap = 0;       ///< length of the common perpendicular (0 for intersecting rays) [m]
-    double s1 = 0;        ///< parameter of the closest point on ray 1
-    double s2 = 0;        ///< parameter of the closest point on ray 2
-    double angle = 0;     ///< angle between the two directions, in [0, π] [rad]
+    double gap = 0;         ///< length of the common perpendicular (0 for intersecting rays) [m]
+    double s1 = 0;          ///< parameter of the closest point on ray 1
+    double s2 = 0;          ///< parameter of the closest point on ray 2
+    double angle = 0;       ///< angle between the two directions, in [0, π] [rad]
     bool parallel = false;  ///< directions (anti)parallel within tolerance: nothing else is set
 };
 

@@ -1,7 +1,5 @@
 #pragma once
 
-#include <functional>
-
 #include <mrpt/img/TStereoCamera.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationImage.h>
@@ -12,6 +10,7 @@
 #include <mrpt/system/datetime.h>
 #include <mrpt_vslam/sim/DetectionSimulator.h>
 
+#include <functional>
 #include <string>
 
 namespace mrpt_vslam::sim {
@@ -31,8 +30,8 @@ mrpt::obs::CObservationImage::Ptr makeImageObservation(const std::string& image_
 /** `OMNICAM_BEARINGS` bearing-only observation: range NaN, yaw = φ, pitch = −(π/2 − θ),
  *  landmarkID −1; per-measurement covariances diag(0, σ_φ(θ)², σ_θ(θ)²) from `std_at_theta`
  *  (validCovariances = true; MRPT then serializes those instead of sensor_std_yaw/pitch, which
- *  get `angular_std` = (σ_yaw, σ_pitch) [rad] at a reference θ in memory only); fieldOfView_yaw = 2π,
- *  fieldOfView_pitch = 2·max_theta (the full cone of detection). */
+ *  get `angular_std` = (σ_yaw, σ_pitch) [rad] at a reference θ in memory only); fieldOfView_yaw =
+ * 2π, fieldOfView_pitch = 2·max_theta (the full cone of detection). */
 mrpt::obs::CObservationBearingRange::Ptr makeBearingObservation(
     const TFrameDetections& frame, const mrpt::poses::CPose3D& camera_on_robot,
     const std::function<Eigen::Vector2d(double theta)>& std_at_theta,

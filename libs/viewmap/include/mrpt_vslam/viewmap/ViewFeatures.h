@@ -14,10 +14,10 @@ namespace mrpt_vslam::viewmap {
  *  the sign of its Laplacian, its unit ray in the robot frame (x forward, z up) and its U-SURF
  *  descriptor; all arrays have size() entries. */
 struct TViewFeatures {
-    Eigen::Matrix2Xf pixels{2, 0};  ///< [px] (column, row) per point
-    std::vector<float> scales;      ///< [px] SURF scale s
+    Eigen::Matrix2Xf pixels{2, 0};        ///< [px] (column, row) per point
+    std::vector<float> scales;            ///< [px] SURF scale s
     std::vector<int8_t> laplacian_signs;  ///< +1 / −1 (FastHessianDetector)
-    Eigen::Matrix3Xd rays{3, 0};    ///< unit rays in the robot frame
+    Eigen::Matrix3Xd rays{3, 0};          ///< unit rays in the robot frame
     std::vector<core::USurfDescriptor::TDescriptor> descriptors;
 
     size_t size() const { return descriptors.size(); }

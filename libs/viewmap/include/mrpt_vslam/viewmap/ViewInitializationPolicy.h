@@ -23,7 +23,7 @@ namespace mrpt_vslam::viewmap {
 struct TViewPolicyInputs {
     const ViewMapEKF* ekf = nullptr;
     const TViewFeatures* features = nullptr;  ///< this step's feature points
-    std::vector<bool> consistent;  ///< per point: inlier of an accepted observation
+    std::vector<bool> consistent;             ///< per point: inlier of an accepted observation
     /// One accepted observation of this step.
     struct TObserved {
         size_t view = 0;
@@ -41,13 +41,13 @@ struct TViewPolicyInputs {
 /** A policy's answer, with the figures it used (written to the run's step table). */
 struct TViewDecision {
     enum class TReason {
-        None,           ///< no new view
-        FirstView,      ///< the map is empty
-        NoObservation,  ///< no view could be observed
-        FewInliers,     ///< traditional: best inlier count < N_min
-        TooFar,         ///< traditional: farther than D_max from every view
+        None,                ///< no new view
+        FirstView,           ///< the map is empty
+        NoObservation,       ///< no view could be observed
+        FewInliers,          ///< traditional: best inlier count < N_min
+        TooFar,              ///< traditional: farther than D_max from every view
         InformationDeficit,  ///< information: the views no longer make up for the motion
-        LowExistence,      ///< information: the existence model predicts too few matches
+        LowExistence,        ///< information: the existence model predicts too few matches
     };
     bool add = false;
     TReason reason = TReason::None;
@@ -72,14 +72,14 @@ class ViewInitializationPolicy {
 
     /// Parameters of both policies (one ini section; every key documented in the configs).
     struct TOptions : public mrpt::config::CLoadableOptions {
-        TKind policy = TKind::Information;  ///< ini `policy = traditional | information`
-        double min_view_spacing = 0.4;      ///< [m] both
-        int min_inliers = 20;               ///< traditional: N_min
-        double max_view_distance = 1.5;     ///< [m] traditional: D_max
-        double information_deficit = 0.04;  ///< [nats] information: τ, a frame's deficit
-        int deficit_frames = 3;             ///< information: K consecutive deficits
-        double min_sure_points = 20;        ///< information: n_min of the predicted n⁻
-        int trend_frames = 3;               ///< information: frames the trend of n⁻ spans
+        TKind policy = TKind::Information;          ///< ini `policy = traditional | information`
+        double min_view_spacing = 0.4;              ///< [m] both
+        int min_inliers = 20;                       ///< traditional: N_min
+        double max_view_distance = 1.5;             ///< [m] traditional: D_max
+        double information_deficit = 0.04;          ///< [nats] information: τ, a frame's deficit
+        int deficit_frames = 3;                     ///< information: K consecutive deficits
+        double min_sure_points = 20;                ///< information: n_min of the predicted n⁻
+        int trend_frames = 3;                       ///< information: frames the trend of n⁻ spans
         FeatureExistenceModel::TOptions existence;  ///< information: the GP (same section)
 
         /// Throws std::invalid_argument naming the key of a bad value.
@@ -141,7 +141,7 @@ class InformationViewPolicy : public ViewInitializationPolicy {
     void restart();  ///< a view was started: the trend and the deficits begin anew
     FeatureExistenceModel m_existence;
     std::deque<double> m_recent_sure_points;  ///< n⁻ of the frames since the last view
-    int m_deficits = 0;  ///< consecutive frames with a balance below −τ
+    int m_deficits = 0;                       ///< consecutive frames with a balance below −τ
 };
 
 }  // namespace mrpt_vslam::viewmap

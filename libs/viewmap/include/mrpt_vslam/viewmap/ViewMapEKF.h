@@ -71,7 +71,7 @@ class ViewMapEKF {
 
     /// Predicted observation of a view and its covariance without the sensor noise.
     struct TPredictedObservation {
-        TViewObservation z;                          ///< h(x_v, x_l)
+        TViewObservation z;                              ///< h(x_v, x_l)
         Eigen::Matrix2d HPHt = Eigen::Matrix2d::Zero();  ///< H P Hᵀ
     };
 
