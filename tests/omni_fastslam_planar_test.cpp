@@ -168,8 +168,7 @@ TRunResult runFilter(const TPlanarSequence& seq, uint32_t seed, bool hide_ids)
                                     "ParticleFilter");
     omni_fastslam::COmniFastSLAM filter(map, pf.m_options.sampleSize, seed);
     filter.options.bearings_label = "R1_RB";
-    filter.options.min_motion_std_xy = 0.002;
-    filter.options.min_motion_std_phi = 0.1 * kDeg;
+    filter.options.motion_noise_floor = {0.002, 0.1 * kDeg};
     mrpt::random::getRandomGenerator().randomize(seed);
     pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
     filter.reset(seq.truth.front(), seq.timestamps.front());
@@ -198,8 +197,9 @@ TRunResult runFilter(const TPlanarSequence& seq, uint32_t seed, bool hide_ids)
     r.rmse = rmseOf(est, seq.truth);
     r.odometry_rmse = rmseOf(odometry, seq.truth);
     for (const auto& lm : best.map.landmarks()) r.landmarks.push_back(lm.mean);
-    r.labelled = best.associations.labelled();
-    r.wrong = best.associations.wrong();
+    const auto associations = omni_fastslam::COmniFastSLAM::associationsOf(best);
+    r.labelled = associations.labelled();
+    r.wrong = associations.wrong();
     r.final_pose = best.robot_in_map;
     return r;
 }

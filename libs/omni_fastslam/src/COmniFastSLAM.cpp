@@ -22,12 +22,6 @@ using mrpt::math::TPose2D;
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-TPose2D compose(const TPose2D& a, const TPose2D& b)
-{
-    const double c = std::cos(a.phi), s = std::sin(a.phi);
-    return {a.x + c * b.x - s * b.y, a.y + s * b.x + c * b.y, mrpt::math::wrapToPi(a.phi + b.phi)};
-}
-
 TPose2D plus(const TPose2D& x, const Eigen::Vector3d& dx)
 {
     return {x.x + dx[0], x.y + dx[1], mrpt::math::wrapToPi(x.phi + dx[2])};
@@ -47,14 +41,9 @@ void COmniFastSLAM::TOptions::loadFromConfigFile(const mrpt::config::CConfigFile
                                                  const std::string& section)
 {
     MRPT_LOAD_CONFIG_VAR(bearings_label, string, cfg, section);
-    MRPT_LOAD_CONFIG_VAR(min_motion_std_xy, double, cfg, section);
-    min_motion_std_phi = mrpt::DEG2RAD(
-        cfg.read_double(section, "min_motion_std_phi_deg", mrpt::RAD2DEG(min_motion_std_phi)));
+    motion_noise_floor.loadFromConfigFile(cfg, section);
     prediction_margin = mrpt::DEG2RAD(
         cfg.read_double(section, "prediction_margin_deg", mrpt::RAD2DEG(prediction_margin)));
-    if (!(min_motion_std_xy > 0) || !(min_motion_std_phi > 0))
-        throw std::invalid_argument("[" + section +
-                                    "] min_motion_std_xy and min_motion_std_phi_deg must be > 0");
     if (!(prediction_margin >= 0))
         throw std::invalid_argument("[" + section + "] prediction_margin_deg must be >= 0");
 }
@@ -63,8 +52,7 @@ void COmniFastSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cf
                                                const std::string& section) const
 {
     cfg.write(section, "bearings_label", bearings_label);
-    cfg.write(section, "min_motion_std_xy", min_motion_std_xy);
-    cfg.write(section, "min_motion_std_phi_deg", mrpt::RAD2DEG(min_motion_std_phi));
+    motion_noise_floor.saveToConfigFile(cfg, section);
     cfg.write(section, "prediction_margin_deg", mrpt::RAD2DEG(prediction_margin));
 }
 
@@ -104,53 +92,31 @@ COmniFastSLAM::COmniFastSLAM(const CCeilingLightsMap& map_template, size_t parti
 
 void COmniFastSLAM::reset(const TPose2D& robot_in_map, double timestamp)
 {
-    const auto start = std::make_shared<const TPathNode>(TPathNode{timestamp, robot_in_map, {}});
+    const auto start = std::make_shared<const TOmniFastSLAMPathNode>(
+        timestamp, TOmniFastSLAMStep{robot_in_map, {}}, nullptr);
     for (auto& p : m_particles) {
         p.log_w = 0;
         p.d->robot_in_map = robot_in_map;
         p.d->path = start;
         p.d->accumulated_log_w = 0;
-        p.d->associations = {};
     }
-}
-
-const TOmniFastSLAMParticle& COmniFastSLAM::bestParticle() const
-{
-    const auto best =
-        std::max_element(m_particles.begin(), m_particles.end(), [](const auto& a, const auto& b) {
-            return a.d->accumulated_log_w < b.d->accumulated_log_w;
-        });
-    return *best->d;
 }
 
 std::vector<std::pair<double, TPose2D>> COmniFastSLAM::pathOf(const TOmniFastSLAMParticle& p)
 {
     std::vector<std::pair<double, TPose2D>> path;
-    for (const TPathNode* n = p.path.get(); n; n = n->previous.get())
-        path.emplace_back(n->timestamp, n->robot_in_map);
-    std::reverse(path.begin(), path.end());
+    for (const auto* n : core::nodesOldestFirst(p.path.get()))
+        path.emplace_back(n->timestamp, n->state.robot_in_map);
     return path;
 }
 
-COmniFastSLAM::TMotion COmniFastSLAM::motionFromAction(
-    const mrpt::obs::CActionCollection* action) const
+TAssociationTally COmniFastSLAM::associationsOf(const TOmniFastSLAMParticle& p)
 {
-    TMotion m;
-    const auto odo = action ? action->getBestMovementEstimation() : nullptr;
-    if (odo) {
-        mrpt::math::CMatrixDouble33 cov;
-        mrpt::poses::CPose2D mean;
-        odo->poseChange->getCovarianceAndMean(cov, mean);
-        m.delta = mean.asTPose();
-        m.cov = cov.asEigen();
-    }
-    m.cov.diagonal() += Eigen::Vector3d(options.min_motion_std_xy * options.min_motion_std_xy,
-                                        options.min_motion_std_xy * options.min_motion_std_xy,
-                                        options.min_motion_std_phi * options.min_motion_std_phi);
-    if (!m.cov.allFinite() || !std::isfinite(m.delta.x) || !std::isfinite(m.delta.y) ||
-        !std::isfinite(m.delta.phi))
-        throw std::runtime_error("odometry action with a non-finite increment or covariance");
-    return m;
+    TAssociationTally tally;
+    for (const TOmniFastSLAMPathNode* n = p.path.get(); n; n = n->previous.get())
+        for (const auto& c : n->state.correspondences)
+            if (c.hidden_id >= 0) tally.counts[c.landmark_id][c.hidden_id]++;
+    return tally;
 }
 
 std::vector<TBearingMeasurement> COmniFastSLAM::measurementsFromFrame(
@@ -167,22 +133,15 @@ std::vector<TBearingMeasurement> COmniFastSLAM::measurementsFromFrame(
     return {};
 }
 
-Eigen::Vector3d COmniFastSLAM::drawGaussian(const Eigen::Matrix3d& cov)
+TPose2D COmniFastSLAM::sampleMotion(const TPose2D& from, const core::TOdometryGaussian& motion)
 {
-    const Eigen::Matrix3d L = cov.llt().matrixL();
-    Eigen::Vector3d n;
-    for (int i = 0; i < 3; i++) n[i] = m_rng.drawGaussian1D_normalized();
-    return L * n;
-}
-
-TPose2D COmniFastSLAM::sampleMotion(const TPose2D& from, const TMotion& motion)
-{
-    return compose(from, plus(motion.delta, drawGaussian(motion.cov)));
+    return from + plus(motion.mean, core::drawGaussian(m_rng, motion.L));
 }
 
 TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
                                                const std::vector<TBearingMeasurement>& z,
-                                               const TMotion& motion, const Eigen::Matrix3d& R,
+                                               const core::TOdometryGaussian& motion,
+                                               const Eigen::Matrix3d& R,
                                                std::vector<int>& landmark_of_measurement)
 {
     const auto& map = p.map;
@@ -190,7 +149,7 @@ TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
     const auto model = map.measurementModel();
 
     // x̂_t (R_t comes from the caller)
-    const TPose2D x_hat = compose(p.robot_in_map, motion.delta);
+    const TPose2D x_hat = p.robot_in_map + motion.mean;
     const Eigen::Matrix3d R_inv = R.inverse();
 
     // Alg. 2: φ_{l,j} for every measurement and landmark
@@ -245,19 +204,18 @@ TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
                           BearingMeasurementModel::innovation(z[l].z, pred.z));  // line 9
     }
     // line 14: x_t ~ N(μ_xt, Σ_xt)
-    return plus(mu, drawGaussian(Sigma));
+    return plus(mu, core::drawGaussian(m_rng, Sigma.llt().matrixL()));
 }
 
-void COmniFastSLAM::updateParticle(TOmniFastSLAMParticle& p, double& log_w, const TPose2D& x_t,
-                                   double timestamp, const std::vector<TBearingMeasurement>& z,
-                                   const std::vector<int>& landmark_of_measurement,
-                                   const Eigen::Matrix3d& R_t)
+double COmniFastSLAM::updateParticle(TOmniFastSLAMParticle& p, const TPose2D& x_t, double timestamp,
+                                     const std::vector<TBearingMeasurement>& z,
+                                     const std::vector<int>& landmark_of_measurement,
+                                     const Eigen::Matrix3d& R_t)
 {
-    for (size_t l = 0; l < z.size(); l++) {
-        const int j = landmark_of_measurement[l];
-        if (j >= 0 && z[l].hidden_id >= 0)
-            p.associations.counts[p.map.landmarks()[j].id][z[l].hidden_id]++;
-    }
+    TOmniFastSLAMStep step{x_t, {}};
+    for (size_t l = 0; l < z.size(); l++)
+        if (const int j = landmark_of_measurement[l]; j >= 0)
+            step.correspondences.push_back({p.map.landmarks()[j].id, z[l].hidden_id});
     // Alg. 4 lines 1-27
     const double log_w_inc = p.map.updateLandmarks(z, x_t, landmark_of_measurement, R_t);
     // Sec. III-C level 2, Alg. 4 lines 28-29
@@ -267,16 +225,16 @@ void COmniFastSLAM::updateParticle(TOmniFastSLAMParticle& p, double& log_w, cons
     p.map.updateCandidates(z, x_t, assoc);
     p.map.updateLandmarksType();
 
-    log_w += log_w_inc;
-    p.accumulated_log_w += log_w_inc;
     p.robot_in_map = x_t;
-    p.path = std::make_shared<const TPathNode>(TPathNode{timestamp, x_t, p.path});
+    p.path = std::make_shared<const TOmniFastSLAMPathNode>(timestamp, std::move(step), p.path);
+    return log_w_inc;
 }
 
 void COmniFastSLAM::runStep(const mrpt::obs::CActionCollection* action,
                             const mrpt::obs::CSensoryFrame* sf, bool fastslam2)
 {
-    const TMotion motion = motionFromAction(action);
+    const core::TOdometryGaussian motion = core::TOdometryGaussian::from(
+        action ? action->getBestMovementEstimation().get() : nullptr, options.motion_noise_floor);
     lastStepStats = {};
     for (auto& part : m_particles) {
         auto& p = *part.d;
@@ -304,7 +262,7 @@ void COmniFastSLAM::runStep(const mrpt::obs::CActionCollection* action,
             std::count_if(assoc.begin(), assoc.end(), [](int j) { return j >= 0; }));
         lastStepStats.associated_to_landmarks += n_assoc;
         if (n_assoc == 0) lastStepStats.motion_only_samples++;
-        updateParticle(p, part.log_w, x_t, timestamp, z, assoc, R_t);
+        addLogWeight(part, updateParticle(p, x_t, timestamp, z, assoc, R_t));
     }
 }
 

@@ -320,13 +320,14 @@ void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTi
         std::printf("omni-fastslam: camera pose on the robot from the %s: %s\n",
                     configured ? "config (sensor_in_robot)" : "observations",
                     pose.asString().c_str());
-    if (best.associations.labelled() > 0) {
+    if (const auto associations = COmniFastSLAM::associationsOf(best);
+        associations.labelled() > 0) {
         // evaluation only: the rawlog gave landmark numbers (landmarkID), the filter ignored them
-        report.setResult("labelled_associations", best.associations.labelled());
-        report.setResult("wrong_associations", best.associations.wrong());
+        report.setResult("labelled_associations", associations.labelled());
+        report.setResult("wrong_associations", associations.wrong());
         // per map landmark id: the landmark numbers of the measurements associated to it
         std::string table = "{";
-        for (const auto& [landmark, ids] : best.associations.counts) {
+        for (const auto& [landmark, ids] : associations.counts) {
             table += (table.size() > 1 ? ", \"" : "\"") + std::to_string(landmark) + "\": {";
             bool first = true;
             for (const auto& [id, count] : ids) {

@@ -6,7 +6,9 @@
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPose2D.h>
 #include <mrpt/random/RandomGenerators.h>
+#include <mrpt_vslam/core/OdometryGaussian.h>
 #include <mrpt_vslam/core/ParticleFilterDataImpl.h>
+#include <mrpt_vslam/core/PathNode.h>
 #include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
 
 #include <map>
@@ -16,17 +18,21 @@
 
 namespace mrpt_vslam::omni_fastslam {
 
-/** One pose of a particle's path; nodes are shared between the copies resampling makes. */
-struct TPathNode {
-    double timestamp = 0;  ///< [s]
+/** One step of a particle's history: its pose and the step's correspondences c_t (Sec. III-C
+ *  level 1): for each measurement associated to a landmark of the particle's map, the
+ *  landmark's id and the measurement's hidden_id (−1 where the data gives none). */
+struct TOmniFastSLAMStep {
     mrpt::math::TPose2D robot_in_map;
-    std::shared_ptr<const TPathNode> previous;
+    struct TCorrespondence {
+        int64_t landmark_id, hidden_id;
+    };
+    std::vector<TCorrespondence> correspondences;
 };
+using TOmniFastSLAMPathNode = core::TPathNode<TOmniFastSLAMStep>;
 
 /** Evaluation only, when the data set gives landmark numbers (TBearingMeasurement::hidden_id):
- *  the numbers of the measurements associated (level 1) to each landmark of a particle's map,
- *  over the particle's lineage. A landmark stands for its most frequent number; every other
- *  association to it is wrong. The filter never reads it. */
+ *  the numbers of the measurements associated (level 1) to each landmark of a map. A landmark
+ *  stands for its most frequent number; every other association to it is wrong. */
 struct TAssociationTally {
     /// map landmark id → hidden id → measurements
     std::map<int64_t, std::map<int64_t, uint32_t>> counts;
@@ -39,12 +45,11 @@ struct TAssociationTally {
 /** One FastSLAM particle: the robot pose, its path and its own map of ceiling lights. */
 struct TOmniFastSLAMParticle {
     mrpt::math::TPose2D robot_in_map;
-    std::shared_ptr<const TPathNode> path;  ///< newest first
+    std::shared_ptr<const TOmniFastSLAMPathNode> path;  ///< newest first
     CCeilingLightsMap map;
     /// Σ of the log-weight increments since the start, kept through resampling: the best
     /// particle is the one with the largest value.
     double accumulated_log_w = 0;
-    TAssociationTally associations;  ///< evaluation only
 };
 
 /** FastSLAM 2.0 for an omnidirectional camera and ceiling lights (Gamallo, Mucientes &
@@ -74,9 +79,9 @@ class COmniFastSLAM
     struct TOptions : public mrpt::config::CLoadableOptions {
         /// Label of the bearings observation in each sensory frame.
         std::string bearings_label = "OMNICAM_BEARINGS";
-        /// Added to the odometry covariance (std) so the proposal never degenerates.
-        double min_motion_std_xy = 0.005;               ///< [m]
-        double min_motion_std_phi = 0.25 * M_PI / 180;  ///< [rad] (ini: min_motion_std_phi_deg)
+        /// Added to the odometry covariance (ini: min_motion_std_xy [m],
+        /// min_motion_std_phi_deg).
+        core::TMotionNoiseFloor motion_noise_floor{0.005, 0.25 * M_PI / 180};
         /// Landmarks whose predicted θ exceeds the perceptual range by more than this are
         /// skipped in Alg. 2 (they cannot have produced a measurement).
         double prediction_margin = 5.0 * M_PI / 180;  ///< [rad] (ini: prediction_margin_deg)
@@ -101,11 +106,11 @@ class COmniFastSLAM
     /// All particles at `robot_in_map`, equal weights, maps = the template.
     void reset(const mrpt::math::TPose2D& robot_in_map, double timestamp);
 
-    /// The particle with the largest accumulated log-weight.
-    const TOmniFastSLAMParticle& bestParticle() const;
     /// A particle's path, oldest first: (timestamp, pose).
     static std::vector<std::pair<double, mrpt::math::TPose2D>> pathOf(
         const TOmniFastSLAMParticle& p);
+    /// The level-1 associations along a particle's path, by landmark and hidden id.
+    static TAssociationTally associationsOf(const TOmniFastSLAMParticle& p);
 
   protected:
     void prediction_and_update_pfStandardProposal(
@@ -116,29 +121,23 @@ class COmniFastSLAM
         const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options) override;
 
   private:
-    /// Odometry increment Δ and its covariance (robot frame of the previous pose).
-    struct TMotion {
-        mrpt::math::TPose2D delta;
-        Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    };
-    TMotion motionFromAction(const mrpt::obs::CActionCollection* action) const;
     std::vector<TBearingMeasurement> measurementsFromFrame(const mrpt::obs::CSensoryFrame* sf,
                                                            const CCeilingLightsMap& map,
                                                            double& timestamp) const;
-    /// A zero-mean sample of N(0, cov) from the filter's generator.
-    Eigen::Vector3d drawGaussian(const Eigen::Matrix3d& cov);
-    mrpt::math::TPose2D sampleMotion(const mrpt::math::TPose2D& from, const TMotion& motion);
+    mrpt::math::TPose2D sampleMotion(const mrpt::math::TPose2D& from,
+                                     const core::TOdometryGaussian& motion);
     /// Steps 2-4 for one particle, with R_t of step 1: returns the sampled pose and the
     /// level-1 association.
     mrpt::math::TPose2D sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
                                                 const std::vector<TBearingMeasurement>& z,
-                                                const TMotion& motion, const Eigen::Matrix3d& R,
+                                                const core::TOdometryGaussian& motion,
+                                                const Eigen::Matrix3d& R,
                                                 std::vector<int>& landmark_of_measurement);
-    /// Step 5 and the path bookkeeping, shared by both proposals.
-    void updateParticle(TOmniFastSLAMParticle& p, double& log_w, const mrpt::math::TPose2D& x_t,
-                        double timestamp, const std::vector<TBearingMeasurement>& z,
-                        const std::vector<int>& landmark_of_measurement,
-                        const Eigen::Matrix3d& R_t);
+    /// Step 5 and the path bookkeeping, shared by both proposals: returns the log-weight.
+    double updateParticle(TOmniFastSLAMParticle& p, const mrpt::math::TPose2D& x_t,
+                          double timestamp, const std::vector<TBearingMeasurement>& z,
+                          const std::vector<int>& landmark_of_measurement,
+                          const Eigen::Matrix3d& R_t);
     void runStep(const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* sf,
                  bool fastslam2);
 

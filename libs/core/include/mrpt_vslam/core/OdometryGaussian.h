@@ -1,0 +1,44 @@
+#pragma once
+
+#include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/math/TPose2D.h>
+#include <mrpt/random/RandomGenerators.h>
+
+#include <Eigen/Core>
+#include <string>
+
+namespace mrpt::obs {
+class CActionRobotMovement2D;
+}
+
+namespace mrpt_vslam::core {
+
+/** A floor added to the odometry covariance (as standard deviations) so that a particle
+ *  filter's proposal never degenerates, even where the odometry claims to be exact. */
+struct TMotionNoiseFloor {
+    double std_xy = 0.002;              ///< [m] (ini: min_motion_std_xy)
+    double std_phi = 0.1 * M_PI / 180;  ///< [rad] (ini: min_motion_std_phi_deg)
+
+    /// Reads min_motion_std_xy and min_motion_std_phi_deg (absent: unchanged); both > 0.
+    /// \throw std::invalid_argument naming the section and key
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
+    void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
+};
+
+/** One odometry increment as a Gaussian in the robot frame of the previous pose, with the
+ *  noise floor added, and the Cholesky factor L of its covariance (cov = L Lᵀ). */
+struct TOdometryGaussian {
+    mrpt::math::TPose2D mean;
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero(), L = Eigen::Matrix3d::Zero();
+
+    /** From an odometry action (nullptr: no motion, the floor only).
+     *  \throw std::runtime_error on a non-finite increment or covariance, or one that is not
+     *  positive definite */
+    static TOdometryGaussian from(const mrpt::obs::CActionRobotMovement2D* odometry,
+                                  const TMotionNoiseFloor& floor);
+};
+
+/// A sample of N(0, L Lᵀ) from `rng` (three normal draws, in order).
+Eigen::Vector3d drawGaussian(mrpt::random::CRandomGenerator& rng, const Eigen::Matrix3d& L);
+
+}  // namespace mrpt_vslam::core

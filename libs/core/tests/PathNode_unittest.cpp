@@ -1,0 +1,78 @@
+#include <gtest/gtest.h>
+#include <mrpt/bayes/CParticleFilterData.h>
+#include <mrpt_vslam/core/ParticleFilterDataImpl.h>
+#include <mrpt_vslam/core/PathNode.h>
+
+#include <memory>
+#include <vector>
+
+using mrpt_vslam::core::nodesOldestFirst;
+using TNode = mrpt_vslam::core::TPathNode<int>;
+
+namespace {
+std::shared_ptr<const TNode> chain(int length, std::shared_ptr<const TNode> from = nullptr)
+{
+    for (int i = 0; i < length; i++)
+        from = std::make_shared<const TNode>(0.5 * i, i, std::move(from));
+    return from;
+}
+}  // namespace
+
+TEST(PathNode, NodesOldestFirst)
+{
+    const auto path = chain(5);
+    const auto nodes = nodesOldestFirst(path.get());
+    ASSERT_EQ(nodes.size(), 5u);
+    for (int i = 0; i < 5; i++) {
+        EXPECT_EQ(nodes[i]->state, i);
+        EXPECT_DOUBLE_EQ(nodes[i]->timestamp, 0.5 * i);
+    }
+    EXPECT_TRUE(nodesOldestFirst<int>(nullptr).empty());
+}
+
+TEST(PathNode, ReleasingAVeryLongChainDoesNotRecurse)
+{
+    // a recursive release of 10^6 nodes overflows the default 8 MB stack
+    auto path = chain(1000000);
+    path.reset();
+    SUCCEED();
+}
+
+TEST(PathNode, SharedHistorySurvivesTheBranchThatIsReleased)
+{
+    const auto common = chain(100);
+    auto a = chain(3, common), b = chain(2, common);
+    a.reset();  // releases a's own 3 nodes only
+    EXPECT_EQ(nodesOldestFirst(b.get()).size(), 102u);
+    EXPECT_EQ(nodesOldestFirst(common.get()).size(), 100u);
+}
+
+namespace {
+struct TWeighted {
+    double accumulated_log_w = 0;
+};
+using TBase =
+    mrpt::bayes::CParticleFilterData<TWeighted, mrpt::bayes::particle_storage_mode::POINTER>;
+struct TFilter : public TBase,
+                 public mrpt_vslam::core::ParticleFilterDataImpl<TFilter, TBase::CParticleList> {};
+}  // namespace
+
+TEST(ParticleFilterDataImpl, BestParticleHasTheLargestAccumulatedLogWeight)
+{
+    TFilter f;
+    f.m_particles.resize(4);
+    for (auto& p : f.m_particles) p.d.reset(new TWeighted);
+    const std::vector<double> steps{-1.0, -0.2, -3.0, -0.2};
+    for (size_t i = 0; i < 4; i++) {
+        TFilter::addLogWeight(f.m_particles[i], steps[i]);
+        TFilter::addLogWeight(f.m_particles[i], -0.5);
+    }
+    EXPECT_DOUBLE_EQ(f.m_particles[2].log_w, -3.5);
+    EXPECT_DOUBLE_EQ(f.m_particles[2].d->accumulated_log_w, -3.5);
+    // the first of the two equal ones
+    EXPECT_EQ(&f.bestParticle(), f.m_particles[1].d.get());
+    // resampling resets the weights, not the accumulated sums
+    f.performSubstitution({2, 2, 0, 1});
+    for (const auto& p : f.m_particles) EXPECT_EQ(p.log_w, 0);
+    EXPECT_DOUBLE_EQ(f.bestParticle().accumulated_log_w, -0.7);
+}
