@@ -5,10 +5,18 @@
 #include <mrpt/system/filesystem.h>
 #include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/RawlogReader.h>
+#include <sys/mman.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <deque>
 #include <filesystem>
 #include <fstream>
+#include <new>
 #include <stdexcept>
 
 namespace mrpt_vslam::core {
@@ -36,6 +44,10 @@ std::string innermostMessage(const std::string& what)
     msg = msg.substr(0, msg.find('\n'));
     const auto stream_desc = msg.find(" in mrpt::io::");
     if (stream_desc != std::string::npos) msg.erase(stream_desc);
+    // bytes of the corrupt data quoted by MRPT stay out of the one-line message
+    for (char& c : msg)
+        if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
+    if (msg.size() > 200) msg = msg.substr(0, 200) + "...";
     return mrpt::system::trim(msg);
 }
 
@@ -69,9 +81,16 @@ struct RawlogReader::Impl {
     std::deque<CSerializable::Ptr> pending;  ///< contents of a CRawlog object, or a lookahead
     TGzipTrailer trailer;
     bool ended = false;
+    uint64_t* progress = nullptr;  ///< validate(): objects read so far, seen by the parent
 };
 
-RawlogReader::RawlogReader(const std::string& file) : m_impl(std::make_unique<Impl>()), m_file(file)
+RawlogReader::RawlogReader(const std::string& file) : RawlogReader(file, TUnchecked())
+{
+    validate(file);
+}
+
+RawlogReader::RawlogReader(const std::string& file, TUnchecked)
+    : m_impl(std::make_unique<Impl>()), m_file(file)
 {
     std::string error;
     if (!mrpt::system::fileExists(file) || mrpt::system::directoryExists(file) ||
@@ -95,6 +114,58 @@ std::string RawlogReader::imagesDirectory(const std::string& file)
 }
 
 RawlogReader::~RawlogReader() = default;
+
+void RawlogReader::validate(const std::string& file)
+{
+    struct TShared {
+        uint64_t objects = 0;
+        char message[2048] = {};
+    };
+    void* memory =
+        mmap(nullptr, sizeof(TShared), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (memory == MAP_FAILED) throw std::runtime_error(file + ": cannot validate the rawlog");
+    auto* shared = new (memory) TShared();
+    std::fflush(nullptr);  // the child must not write the parent's buffered output again
+    const pid_t child = fork();
+    if (child == 0) {
+#if !defined(__SANITIZE_ADDRESS__)
+        const rlimit memory_limit{4ull << 30, 4ull << 30};
+        setrlimit(RLIMIT_AS, &memory_limit);
+#endif
+        const rlimit cpu_limit{600, 600};
+        setrlimit(RLIMIT_CPU, &cpu_limit);
+        int status = 0;
+        try {
+            RawlogReader reader(file, TUnchecked());
+            reader.m_impl->progress = &shared->objects;
+            for (TRawlogEntry e; reader.next(e);) {
+            }
+        } catch (const std::bad_alloc&) {
+            std::snprintf(shared->message, sizeof(shared->message),
+                          "%s: corrupt rawlog: entry %llu asks for more memory than 4 GiB",
+                          file.c_str(), static_cast<unsigned long long>(shared->objects + 1));
+            status = 1;
+        } catch (const std::exception& e) {
+            std::snprintf(shared->message, sizeof(shared->message), "%s", e.what());
+            status = 1;
+        }
+        _exit(status);
+    }
+    int status = 0;
+    if (child > 0)
+        while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
+        }
+    const TShared result = *shared;
+    munmap(memory, sizeof(TShared));
+    if (child < 0) throw std::runtime_error(file + ": cannot validate the rawlog (fork failed)");
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 1) throw std::runtime_error(result.message);
+    const std::string how = WIFSIGNALED(status)
+                                ? strsignal(WTERMSIG(status))
+                                : "exit status " + std::to_string(WEXITSTATUS(status));
+    throw std::runtime_error(file + ": corrupt rawlog: reading entry " +
+                             std::to_string(result.objects + 1) + " crashed (" + how + ")");
+}
 
 void RawlogReader::fail(const std::string& what) const
 {
@@ -130,6 +201,7 @@ CSerializable::Ptr RawlogReader::readFromFile()
     }
     if (!obj) fail(after + "a null object is stored");
     ++m_summary.objects;
+    if (m_impl->progress) *m_impl->progress = m_summary.objects;
     if (const auto rawlog = std::dynamic_pointer_cast<mrpt::obs::CRawlog>(obj)) {
         for (size_t i = 0; i < rawlog->size(); ++i)
             m_impl->pending.push_back(rawlog->getAsGeneric(i));

@@ -61,7 +61,12 @@ struct TRawlogSummary {
  *  - not a rawlog, corrupt, truncated: `"<file>: corrupt or truncated rawlog after entry N:
  *    <reason>"` (N objects were read fine);
  *  - an object of a class that is not registered (its plugin library not loaded):
- *    `"<file>: entry N+1 has class 'X', which is not registered ..."`.
+ *    `"<file>: entry N+1 has class 'X', which is not registered ..."`;
+ *  - an object whose corrupt content crashes MRPT's own deserialization (e.g. a grid size
+ *    from flipped bits): `"<file>: corrupt rawlog: reading entry N+1 crashed (<signal>)"`.
+ *  The constructor reads the whole file once in a child process first (validate()), so that
+ *  no corrupt file can crash or exhaust the calling program, and every problem above is
+ *  reported before the first entry is returned.
  *  A file holding a single CRawlog object is read as the entries it contains. On opening, the
  *  folder of externally stored images is set (`CImage::setImagesPathBase`) to
  *  imagesDirectory().
@@ -76,6 +81,7 @@ struct TRawlogSummary {
  */
 class RawlogReader {
   public:
+    /// Opens `file` and validate()s it. \throw std::runtime_error as described above
     explicit RawlogReader(const std::string& file);
     ~RawlogReader();
     RawlogReader(const RawlogReader&) = delete;
@@ -97,7 +103,14 @@ class RawlogReader {
     /** Reads a whole rawlog and returns its summary. */
     static TRawlogSummary summarize(const std::string& file);
 
+    /** Reads every object of `file` in a child process (fork) with its address space and CPU
+     *  time bounded (4 GiB, 10 min; no bound on memory in sanitizer builds), and throws what
+     *  reading it there threw, or the crash, naming the entry. Returns if it reads cleanly. */
+    static void validate(const std::string& file);
+
   private:
+    struct TUnchecked {};
+    RawlogReader(const std::string& file, TUnchecked);
     /** Next object from the file or the pending queue; nullptr at the end. */
     mrpt::serialization::CSerializable::Ptr nextObject();
     mrpt::serialization::CSerializable::Ptr readFromFile();
