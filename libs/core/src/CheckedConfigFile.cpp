@@ -4,7 +4,9 @@
 #include <mrpt_vslam/core/UsageError.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <tuple>
 
@@ -22,8 +24,10 @@ bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefi
 
 /** Line of the first appearance of each (lower-case section, key) in INI text, with the same
  *  rules as MRPT's reader: `[section]` headers, `key = value` lines, and comment (`;`, `#`,
- *  `//`) and preprocessor (`@define`) lines skipped. Keys before any header belong to "". */
-std::map<std::pair<std::string, std::string>, int> keyLines(const std::string& text)
+ *  `//`) and preprocessor (`@define`) lines skipped. Keys before any header belong to "".
+ *  Any other line is an error naming `name` and the line. */
+std::map<std::pair<std::string, std::string>, int> keyLines(const std::string& text,
+                                                            const std::string& name)
 {
     std::map<std::pair<std::string, std::string>, int> lines;
     std::istringstream in(text);
@@ -33,18 +37,56 @@ std::map<std::pair<std::string, std::string>, int> keyLines(const std::string& t
         if (line.empty() || line[0] == ';' || line[0] == '#' || line[0] == '@' ||
             startsWith(line, "//"))
             continue;
-        if (line[0] == '[') {
-            const auto close = line.find(']');
-            if (close != std::string::npos)
-                section = toLower(mrpt::system::trim(line.substr(1, close - 1)));
+        const auto close = line.find(']');
+        if (line[0] == '[' && close != std::string::npos) {
+            section = toLower(mrpt::system::trim(line.substr(1, close - 1)));
             continue;
         }
         const auto eq = line.find('=');
-        if (eq == std::string::npos) continue;
+        if (line[0] == '[' || eq == std::string::npos || eq == 0)
+            throw UsageError(name + ": line " + std::to_string(line_no) +
+                             " is not `key = value`, a [section] or a comment");
         lines.emplace(std::make_pair(section, toLower(mrpt::system::trim(line.substr(0, eq)))),
                       line_no);
     }
     return lines;
+}
+
+/** What MRPT's typed readers ask for, told by the default text they pass to readString():
+ *  read_double "%.16e", read_float "%.10e", read_int "%i", read_uint64_t "%lu", read_bool "1"
+ *  or "0"; anything else is read_string's own default. */
+enum class TValueKind { Real, Integer, IntegerOrBoolean, Text };
+
+TValueKind kindOfDefault(const std::string& d)
+{
+    static const std::regex integer(R"([+-]?[0-9]+)");
+    static const std::regex real(R"(-?([0-9]\.[0-9]+e[+-][0-9]+|inf|nan|-nan))");
+    if (d == "0" || d == "1") return TValueKind::IntegerOrBoolean;
+    if (std::regex_match(d, integer)) return TValueKind::Integer;
+    if (std::regex_match(d, real)) return TValueKind::Real;
+    return TValueKind::Text;
+}
+
+/// Why `value` cannot be read as `kind` ("" if it can).
+std::string typeError(TValueKind kind, const std::string& value)
+{
+    static const std::regex integer(R"([+-]?([0-9]+|0[xX][0-9a-fA-F]+))");
+    static const std::regex boolean(R"(true|false|yes|no)", std::regex::icase);
+    char* end = nullptr;
+    std::strtod(value.c_str(), &end);
+    const bool number = !value.empty() && *end == '\0';
+    switch (kind) {
+        case TValueKind::Real:
+            return number ? "" : "not a number";
+        case TValueKind::Integer:
+            return std::regex_match(value, integer) ? "" : "not an integer";
+        case TValueKind::IntegerOrBoolean:
+            if (std::regex_match(value, integer) || std::regex_match(value, boolean)) return "";
+            return number ? "not an integer" : "not a boolean (true, false) or an integer";
+        case TValueKind::Text:
+            break;
+    }
+    return "";
 }
 
 }  // namespace
@@ -93,10 +135,11 @@ void CheckedConfigFile::loadText(const std::string& text, const std::string& nam
                                  const std::vector<TConfigOverride>& overrides)
 {
     clear();
+    m_valueError.clear();
     CConfigFileMemory::setContent(text);
     m_name = name;
     m_overrides = overrides;
-    m_line_of_key = keyLines(text);
+    m_line_of_key = keyLines(text, name);
     m_overridden.clear();
     for (const auto& o : overrides) {
         CConfigFileMemory::writeString(o.section, o.key, o.value);
@@ -113,7 +156,15 @@ std::string CheckedConfigFile::readString(const std::string& section, const std:
         std::lock_guard<std::mutex> lock(m_read_mutex);
         m_read.insert(keyId(section, name));
     }
-    return CConfigFileMemory::readString(section, name, defaultStr, failIfNotFound);
+    const std::string value =
+        CConfigFileMemory::readString(section, name, defaultStr, failIfNotFound);
+    const std::string why = typeError(kindOfDefault(defaultStr), mrpt::system::trim(value));
+    if (!why.empty()) {
+        m_valueError =
+            m_name + ": [" + section + "] " + name + " = " + mrpt::system::trim(value) + ": " + why;
+        throw UsageError(m_valueError);
+    }
+    return value;
 }
 
 bool CheckedConfigFile::wasRead(const std::string& section, const std::string& key) const

@@ -175,3 +175,61 @@ TEST(CheckedConfigFile, ReloadingClearsReadMarks)
     EXPECT_FALSE(cfg.sectionExists("A"));
     EXPECT_EQ(messageOf(cfg), "b.ini: unknown key [B] y (line 2)");
 }
+
+TEST(CheckedConfigFile, ValuesThatDoNotFitTheirKeyAreErrors)
+{
+    struct TCase {
+        const char* value;
+        const char* error;  ///< "" if accepted
+    };
+    const auto read = [](const std::string& key, const std::string& value) -> std::string {
+        CheckedConfigFile cfg;
+        cfg.loadText("[S]\n" + key + " = " + value + "\n", "t.ini");
+        try {
+            if (key == "n") cfg.read_int("S", "n", 10);
+            if (key == "big") cfg.read_uint64_t("S", "big", 10);
+            if (key == "flag") cfg.read_bool("S", "flag", false);
+            if (key == "x") cfg.read_double("S", "x", 0.5);
+            if (key == "name") cfg.read_string("S", "name", "unnamed");
+        } catch (const UsageError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    EXPECT_EQ(read("n", "1e12"), "t.ini: [S] n = 1e12: not an integer");
+    EXPECT_EQ(read("n", "1.5"), "t.ini: [S] n = 1.5: not an integer");
+    EXPECT_EQ(read("n", "-3"), "");
+    EXPECT_EQ(read("big", "12 // count"), "");
+    EXPECT_EQ(read("big", "lots"), "t.ini: [S] big = lots: not an integer");
+    EXPECT_EQ(read("flag", "maybe"),
+              "t.ini: [S] flag = maybe: not a boolean (true, false) or an integer");
+    EXPECT_EQ(read("flag", "True"), "");
+    EXPECT_EQ(read("flag", "no"), "");
+    EXPECT_EQ(read("x", "abc"), "t.ini: [S] x = abc: not a number");
+    EXPECT_EQ(read("x", "0.5m"), "t.ini: [S] x = 0.5m: not a number");
+    EXPECT_EQ(read("x", "-2.5e-3"), "");
+    EXPECT_EQ(read("name", "anything at all"), "");  // text: no type
+
+    // MRPT's loaders replace the message; the file keeps it
+    CheckedConfigFile cfg;
+    cfg.loadText("[S]\nn = 2.5\n", "t.ini");
+    int n = 1;
+    EXPECT_ANY_THROW(MRPT_LOAD_CONFIG_VAR_NO_DEFAULT(n, int, cfg, "S"));
+    EXPECT_EQ(cfg.valueError(), "t.ini: [S] n = 2.5: not an integer");
+    cfg.loadText("[S]\nn = 2\n", "t.ini");
+    EXPECT_EQ(cfg.valueError(), "");
+}
+
+TEST(CheckedConfigFile, LinesThatAreNotKeysSectionsOrCommentsAreErrors)
+{
+    CheckedConfigFile cfg;
+    EXPECT_NO_THROW(cfg.loadText("; c\n# c\n// c\n@define A 1\n\n[S]\nk = v\nempty =\n", "t.ini"));
+    for (const char* text : {"[S]\nk = v\nthis is not ini\n", "[S\nk = v\n", "[S]\n= v\n"}) {
+        try {
+            cfg.loadText(text, "t.ini");
+            ADD_FAILURE() << text;
+        } catch (const UsageError& e) {
+            EXPECT_NE(std::string(e.what()).find("t.ini: line "), std::string::npos) << e.what();
+        }
+    }
+}

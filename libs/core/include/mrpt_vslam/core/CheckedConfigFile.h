@@ -44,6 +44,13 @@ struct TUnreadKey {
  *  3. `cfg.throwIfUnreadKeys();` (throws UsageError listing each unknown key with its line);
  *  4. `cfg.writeEffectiveConfig(out.file("config.ini"));` and put effectiveText() in run.json.
  *
+ *  Values are checked against the type asked for, which MRPT's readers tell by the default
+ *  text they pass to readString(): a number for read_double / read_float, an integer for
+ *  read_int / read_uint64_t (`1e12` and `1.5` are errors, where MRPT would read 1), an integer
+ *  or true / false / yes / no for read_bool; read_string's text is not checked unless its
+ *  default looks like one of those. A line that is not `key = value`, a `[section]`, a comment
+ *  or a preprocessor line makes the file an error.
+ *
  *  Section and key names are case-insensitive, as in MRPT. The text goes through MRPT's
  *  config parser (`@define`, `${VAR}`, `$eval{}`, `$env{}`).
  */
@@ -71,6 +78,11 @@ class CheckedConfigFile : public mrpt::config::CConfigFileMemory {
     bool wasRead(const std::string& section, const std::string& key) const;
     /** @} */
 
+    /** The last value that did not fit its key's type (e.g. "t.ini: [S] n = 1.5: not an
+     *  integer"), "" if none: MRPT's MRPT_LOAD_CONFIG_VAR_NO_DEFAULT replaces the error of a
+     *  read with "Value for 'n' not found", so callers report this instead. */
+    const std::string& valueError() const { return m_valueError; }
+
     /** The effective configuration (overrides applied, preprocessor resolved, comments
      *  dropped) as `.ini` text, opening with `#` lines naming the file and the overrides. */
     std::string effectiveText() const;
@@ -93,6 +105,7 @@ class CheckedConfigFile : public mrpt::config::CConfigFileMemory {
     std::map<TKeyId, int> m_line_of_key;  ///< first line of each key in the file text
     std::set<TKeyId> m_overridden;
     mutable std::set<TKeyId> m_read;
+    mutable std::string m_valueError;
     mutable std::mutex m_read_mutex;
 };
 
