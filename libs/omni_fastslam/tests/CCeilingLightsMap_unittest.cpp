@@ -2,6 +2,7 @@
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/maps/CMultiMetricMap.h>
+#include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/opengl/CEllipsoid3D.h>
 #include <mrpt/opengl/CSetOfObjects.h>
@@ -11,6 +12,8 @@
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
 
+#include <limits>
+#include <stdexcept>
 #include <type_traits>
 
 #include "LightsTestUtils.h"
@@ -19,6 +22,7 @@ using mrpt::math::TPose2D;
 using mrpt_vslam::omni_fastslam::CCeilingLightsMap;
 using mrpt_vslam::omni_fastslam::TAssociationMethod;
 using mrpt_vslam::omni_fastslam::TLandmarkType;
+using mrpt_vslam::omni_fastslam::TMeasurementModelKind;
 
 namespace {
 
@@ -321,4 +325,58 @@ TEST(CCeilingLightsMap, LikelihoodIsFiniteAndPeaksAtTheTruePose)
     const mrpt::obs::CObservationOdometry odo;
     EXPECT_FALSE(map.canComputeObservationLikelihood(odo));
     EXPECT_EQ(map.computeObservationLikelihood(odo, mrpt::poses::CPose3D()), 0.0);
+}
+
+TEST(CCeilingLightsMap, RejectsNonFiniteOrNegativeReadingsNamingTheSensor)
+{
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    const auto messageFor = [](const mrpt::obs::CObservationBearingRange& obs) -> std::string {
+        for (const auto model : {TMeasurementModelKind::Spherical, TMeasurementModelKind::Planar}) {
+            CCeilingLightsMap map;
+            map.sensorOptions.measurement_model = model;
+            try {
+                map.measurementsFromObservation(obs);
+            } catch (const std::runtime_error& e) {
+                return e.what();
+            }
+        }
+        return "";
+    };
+    const auto reading = [](float yaw, float pitch, float range) {
+        mrpt::obs::CObservationBearingRange obs;
+        obs.sensorLabel = "CAM";
+        obs.sensedData.resize(2);
+        obs.sensedData[0].yaw = 0.1f;
+        obs.sensedData[0].pitch = -1.0f;
+        obs.sensedData[1].landmarkID = 7;
+        obs.sensedData[1].yaw = yaw;
+        obs.sensedData[1].pitch = pitch;
+        obs.sensedData[1].range = range;
+        return obs;
+    };
+    EXPECT_EQ(messageFor(reading(0.2f, -1.0f, 0)), "");
+    EXPECT_EQ(messageFor(reading(0.2f, -1.0f, nan)), "");  // range not measured
+    for (const auto& obs : {reading(nan, -1.0f, 0), reading(0.2f, inf, 0), reading(0.2f, -1, inf)})
+        EXPECT_EQ(messageFor(obs),
+                  "CAM: measurement of landmark 7 has a non-finite bearing, pitch "
+                  "or range");
+    EXPECT_EQ(messageFor(reading(0.2f, -1.0f, -2)),
+              "CAM: measurement of landmark 7 has a negative range");
+
+    auto covariances = reading(0.2f, -1.0f, 0);
+    covariances.validCovariances = true;
+    covariances.sensedData[1].covariance(1, 1) = -0.01;
+    EXPECT_EQ(messageFor(covariances),
+              "CAM: measurement of landmark 7 has a non-finite or negative covariance");
+    covariances.sensedData[1].covariance(1, 1) = nan;
+    EXPECT_EQ(messageFor(covariances),
+              "CAM: measurement of landmark 7 has a non-finite or negative covariance");
+
+    auto stds = reading(0.2f, -1.0f, 0);
+    stds.sensor_std_yaw = nan;
+    EXPECT_EQ(messageFor(stds), "CAM: sensor_std_yaw = nan: must be finite and >= 0");
+    stds.sensor_std_yaw = 0.01f;
+    stds.sensor_std_pitch = -1;
+    EXPECT_EQ(messageFor(stds), "CAM: sensor_std_pitch = -1: must be finite and >= 0");
 }
