@@ -13,11 +13,12 @@
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt/system/filesystem.h>
+#include <mrpt_vslam/apps/LiveView.h>
+#include <mrpt_vslam/apps/OmniFastSLAMApp.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
-#include <mrpt_vslam/core/LiveView.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/OutputDirectory.h>
 #include <mrpt_vslam/core/PajdlaBaksteinCamera.h>
@@ -31,14 +32,17 @@
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/omni_fastslam/COmniFastSLAM.h>
 #include <mrpt_vslam/omni_fastslam/CeilingLightDetector.h>
-#include <mrpt_vslam/omni_fastslam/OmniFastSLAMApp.h>
 
 #include <cstdio>
 #include <opencv2/core/version.hpp>
 #include <optional>
 #include <stdexcept>
 
-namespace mrpt_vslam::omni_fastslam {
+namespace mrpt_vslam::apps {
+
+using omni_fastslam::CCeilingLightsMap;
+using omni_fastslam::CeilingLightDetector;
+using omni_fastslam::COmniFastSLAM;
 
 namespace {
 constexpr const char* kAppSection = "OmniFastSLAM";
@@ -81,7 +85,7 @@ struct OmniFastSLAMApp::Impl {
     /// The scene of the best particle: map with ellipsoids and its path (final.3Dscene, --gui).
     void drawBestParticle(mrpt::opengl::COpenGLScene& scene) const;
 
-    std::unique_ptr<core::LiveView> window;  ///< --gui
+    std::unique_ptr<LiveView> window;  ///< --gui
 };
 
 OmniFastSLAMApp::OmniFastSLAMApp(core::AppArguments args) : m_impl(std::make_unique<Impl>())
@@ -197,7 +201,7 @@ void OmniFastSLAMApp::initialize()
     mrpt::random::getRandomGenerator().randomize(d.seed);
     d.filter->options = d.filterOptions;
     d.pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
-    if (d.args.gui) d.window = std::make_unique<core::LiveView>("omni-fastslam");
+    if (d.args.gui) d.window = std::make_unique<LiveView>("omni-fastslam");
 }
 
 void OmniFastSLAMApp::Impl::drawBestParticle(mrpt::opengl::COpenGLScene& scene) const
@@ -349,4 +353,4 @@ void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTi
     }
 }
 
-}  // namespace mrpt_vslam::omni_fastslam
+}  // namespace mrpt_vslam::apps

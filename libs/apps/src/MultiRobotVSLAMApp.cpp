@@ -8,12 +8,13 @@
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt/system/filesystem.h>
+#include <mrpt_vslam/apps/LiveView.h>
+#include <mrpt_vslam/apps/MultiRobotVSLAMApp.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/EvalInputs.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
-#include <mrpt_vslam/core/LiveView.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/OutputDirectory.h>
 #include <mrpt_vslam/core/ProgressReporter.h>
@@ -24,7 +25,6 @@
 #include <mrpt_vslam/core/RunTimer.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
-#include <mrpt_vslam/multirobot/MultiRobotVSLAMApp.h>
 #include <mrpt_vslam/multirobot/StereoFrontEnd.h>
 
 #include <bitset>
@@ -35,7 +35,12 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace mrpt_vslam::multirobot {
+namespace mrpt_vslam::apps {
+
+using multirobot::CMultiRobotVisualSLAM;
+using multirobot::CVisualLandmarksMap;
+using multirobot::StereoFrontEnd;
+using multirobot::TVisualLandmark;
 
 namespace {
 constexpr const char* kAppSection = "MultiRobotVSLAM";
@@ -75,7 +80,7 @@ struct MultiRobotVSLAMApp::Impl {
     std::unique_ptr<CMultiRobotVisualSLAM> filter;
     std::vector<std::optional<core::TumTrajectory>> groundTruth;
     mrpt::obs::CActionRobotMovement2D::TMotionModelOptions motionModel;
-    std::unique_ptr<core::LiveView> window;  ///< --gui
+    std::unique_ptr<LiveView> window;  ///< --gui
 
     size_t steps = 0, measurements = 0, stereoFrames = 0, landmarkObservations = 0;
     size_t robotReadings = 0, nonPositiveRanges = 0;
@@ -290,7 +295,7 @@ void MultiRobotVSLAMApp::initialize()
     mrpt::random::getRandomGenerator().randomize(d.seed);
     d.filter->options = d.filterOptions;
     d.pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
-    if (d.args.gui) d.window = std::make_unique<core::LiveView>("multirobot-vslam");
+    if (d.args.gui) d.window = std::make_unique<LiveView>("multirobot-vslam");
 }
 
 namespace {
@@ -587,4 +592,4 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
     }
 }
 
-}  // namespace mrpt_vslam::multirobot
+}  // namespace mrpt_vslam::apps

@@ -9,11 +9,12 @@
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/system/filesystem.h>
+#include <mrpt_vslam/apps/LiveView.h>
+#include <mrpt_vslam/apps/ViewSLAMApp.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/AtomicFile.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
-#include <mrpt_vslam/core/LiveView.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/OutputDirectory.h>
 #include <mrpt_vslam/core/ProgressReporter.h>
@@ -25,7 +26,6 @@
 #include <mrpt_vslam/core/SingleRobotStart.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/viewmap/COmniViewSLAM.h>
-#include <mrpt_vslam/viewmap/ViewSLAMApp.h>
 
 #include <cmath>
 #include <cstdio>
@@ -33,7 +33,11 @@
 #include <optional>
 #include <stdexcept>
 
-namespace mrpt_vslam::viewmap {
+namespace mrpt_vslam::apps {
+
+using viewmap::COmniViewSLAM;
+using viewmap::CViewMap;
+using viewmap::TViewDecision;
 
 namespace {
 constexpr const char* kAppSection = "ViewSLAM";
@@ -66,7 +70,7 @@ struct ViewSLAMApp::Impl {
     core::SingleRobotStart start;
     mrpt::obs::CActionRobotMovement2D::TMotionModelOptions motionModel;
     std::unique_ptr<COmniViewSLAM> slam;
-    std::unique_ptr<core::LiveView> window;
+    std::unique_ptr<LiveView> window;
 
     size_t frames = 0, framesWithImages = 0, attempted = 0, estimated = 0, accepted = 0;
     TSeriesStats sqrtTrace, nees, viewError;
@@ -116,7 +120,7 @@ void ViewSLAMApp::initialize()
         throw std::runtime_error(d.rawlog + ": cannot open rawlog");
     d.start.resolve(d.args, d.rawlog);
     outDir = d.args.outDir;
-    if (d.args.gui) d.window = std::make_unique<core::LiveView>("view-slam");
+    if (d.args.gui) d.window = std::make_unique<LiveView>("view-slam");
 }
 
 void ViewSLAMApp::Impl::draw(mrpt::opengl::COpenGLScene& scene, const core::TumTrajectory& path)
@@ -313,4 +317,4 @@ void ViewSLAMApp::Impl::writeOutputs(ViewSLAMApp& app, const core::RunTimer& tim
     }
 }
 
-}  // namespace mrpt_vslam::viewmap
+}  // namespace mrpt_vslam::apps
