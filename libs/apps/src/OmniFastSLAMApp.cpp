@@ -1,42 +1,25 @@
-#include <mrpt/bayes/CParticleFilter.h>
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
-#include <mrpt/maps/CMultiMetricMap.h>
-#include <mrpt/maps/TMetricMapInitializer.h>
 #include <mrpt/obs/CActionCollection.h>
-#include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationImage.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/opengl/CGridPlaneXY.h>
 #include <mrpt/poses/CPose2D.h>
-#include <mrpt/random/RandomGenerators.h>
-#include <mrpt/system/filesystem.h>
-#include <mrpt_vslam/apps/LiveView.h>
 #include <mrpt_vslam/apps/OmniFastSLAMApp.h>
-#include <mrpt_vslam/core/ActionFrameSource.h>
-#include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
-#include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
-#include <mrpt_vslam/core/OutputDirectory.h>
 #include <mrpt_vslam/core/PajdlaBaksteinCamera.h>
-#include <mrpt_vslam/core/ProgressReporter.h>
-#include <mrpt_vslam/core/RawlogReader.h>
-#include <mrpt_vslam/core/RunEvaluation.h>
 #include <mrpt_vslam/core/RunOutputs.h>
-#include <mrpt_vslam/core/RunReport.h>
-#include <mrpt_vslam/core/RunTimer.h>
 #include <mrpt_vslam/core/SingleRobotStart.h>
-#include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/omni_fastslam/COmniFastSLAM.h>
 #include <mrpt_vslam/omni_fastslam/CeilingLightDetector.h>
 
 #include <cstdio>
-#include <opencv2/core/version.hpp>
-#include <optional>
 #include <stdexcept>
+
+#include "ParticleFilterApp.h"
 
 namespace mrpt_vslam::apps {
 
@@ -46,19 +29,18 @@ using omni_fastslam::COmniFastSLAM;
 
 namespace {
 constexpr const char* kAppSection = "OmniFastSLAM";
-constexpr const char* kMapSection = "MappingApplication";
 
 /// Where the light measurements come from (ini key `input`).
 enum class TInput { Auto, Bearings, Images };
-
-mrpt::math::TPose3D to3D(const mrpt::math::TPose2D& p) { return {p.x, p.y, 0, p.phi, 0, 0}; }
 }  // namespace
 
-struct OmniFastSLAMApp::Impl {
-    core::AppArguments args;
-    core::CheckedConfigFile cfg;
-    std::string rawlog;
-    uint32_t seed = 1;
+struct OmniFastSLAMApp::Impl : ParticleFilterApp {
+    Impl(OmniFastSLAMApp& owner, core::AppArguments arguments)
+        : ParticleFilterApp(std::move(arguments), "omni-fastslam", kAppSection), app(owner)
+    {
+    }
+
+    OmniFastSLAMApp& app;  ///< where the results go
     TInput input = TInput::Auto;
     std::string imageLabel = "OMNICAM";
     /// One robot of a multi-robot rawlog (ini `robot`): labels <ROBOT>_ODOM and <ROBOT>_RB,
@@ -66,54 +48,50 @@ struct OmniFastSLAMApp::Impl {
     std::string robot;
     core::SingleRobotStart start;
 
-    mrpt::bayes::CParticleFilter pf;
     CCeilingLightsMap mapTemplate;
     COmniFastSLAM::TOptions filterOptions;
     core::PajdlaBaksteinCamera camera;
     CeilingLightDetector::TOptions detectorOptions;
     std::unique_ptr<CeilingLightDetector> detector;
     std::unique_ptr<COmniFastSLAM> filter;
-    /// Motion model of the actions built for observation-only rawlogs ([MotionModel]).
-    mrpt::obs::CActionRobotMovement2D::TMotionModelOptions motionModel;
+    mrpt::poses::CPose2D odometry;  ///< dead reckoning from the start pose
 
-    size_t frames = 0, framesWithImages = 0, measurements = 0;
+    size_t framesWithImages = 0, measurements = 0;
 
-    void loadConfig();
     /// Measurements from the frame's image when images are the input (Sec. III-A).
     void prepareFrame(mrpt::obs::CSensoryFrame& sf);
-    void writeOutputs(OmniFastSLAMApp& app, const core::RunTimer& timer);
     /// The scene of the best particle: map with ellipsoids and its path (final.3Dscene, --gui).
     void drawBestParticle(mrpt::opengl::COpenGLScene& scene) const;
 
-    std::unique_ptr<LiveView> window;  ///< --gui
+    void loadConfig() override;
+    void prepare() override;
+    std::vector<core::ObservationSelector> stepObservations() const override;
+    std::vector<std::string> odometryLabels() const override;
+    void step(mrpt::obs::CActionCollection::Ptr actions, mrpt::obs::CSensoryFrame& frame,
+              core::RunTimer& timer) override;
+    void drawLive(mrpt::opengl::COpenGLScene& scene) const override { drawBestParticle(scene); }
+    void endSteps(const core::TRawlogSummary& contents) override;
+    void writeResults(const core::OutputDirectory& out, mrpt::opengl::COpenGLScene& scene,
+                      core::RunReport& report) override;
+    std::optional<std::string> groundTruthName() const override;
 };
 
-OmniFastSLAMApp::OmniFastSLAMApp(core::AppArguments args) : m_impl(std::make_unique<Impl>())
+OmniFastSLAMApp::OmniFastSLAMApp(core::AppArguments args)
+    : outDir(args.outDir), m_impl(std::make_unique<Impl>(*this, std::move(args)))
 {
-    m_impl->args = std::move(args);
 }
 
 OmniFastSLAMApp::~OmniFastSLAMApp() = default;
 
+void OmniFastSLAMApp::initialize() { m_impl->initialize(); }
+
+void OmniFastSLAMApp::run() { m_impl->run(); }
+
 void OmniFastSLAMApp::Impl::loadConfig()
 {
-    cfg.loadFile(args.configFile, args.overrides);
-    const std::string& name = cfg.name();
-    const auto usage = [&](const std::string& what) {
-        return core::UsageError(name + ": " + what);
-    };
-
-    rawlog = args.resolveRawlog(cfg, kAppSection);
-    seed = args.resolveSeed(static_cast<uint32_t>(cfg.read_int(kAppSection, "random_seed", 0)));
-    const std::string in = cfg.read_string(kAppSection, "input", "auto");
-    if (in == "auto")
-        input = TInput::Auto;
-    else if (in == "bearings")
-        input = TInput::Bearings;
-    else if (in == "images")
-        input = TInput::Images;
-    else
-        throw usage("[OmniFastSLAM] input must be auto, bearings or images, not '" + in + "'");
+    input = readChoice<TInput>(
+        "input",
+        {{"auto", TInput::Auto}, {"bearings", TInput::Bearings}, {"images", TInput::Images}});
     imageLabel = cfg.read_string(kAppSection, "image_label", imageLabel);
     robot = cfg.read_string(kAppSection, "robot", "");
     start.loadFromConfig(cfg, kAppSection);
@@ -127,35 +105,33 @@ void OmniFastSLAMApp::Impl::loadConfig()
     } catch (const core::UsageError&) {
         throw;
     } catch (const std::exception& e) {
-        throw usage(mrpt::exception_to_str(e));
+        throw usageError(mrpt::exception_to_str(e));
     }
-    if (pf.m_options.sampleSize < 1) throw usage("[ParticleFilter] sampleSize must be >= 1");
-    if (pf.m_options.adaptiveSampleSize)
-        throw usage("[ParticleFilter] adaptiveSampleSize is not supported (use 0)");
-    using PF = mrpt::bayes::CParticleFilter;
-    if (pf.m_options.PF_algorithm != PF::pfOptimalProposal &&
-        pf.m_options.PF_algorithm != PF::pfStandardProposal)
-        throw usage(
-            "[ParticleFilter] PF_algorithm must be pfOptimalProposal (FastSLAM 2.0) or "
-            "pfStandardProposal (FastSLAM 1.0)");
+    checkParticleFilterOptions(
+        "pfOptimalProposal (FastSLAM 2.0) or pfStandardProposal (FastSLAM 1.0)");
+    mapTemplate = particleMapTemplate<CCeilingLightsMap>("ceilingLightsMap_count");
+}
 
-    // [MotionModel]: MRPT's Gaussian model, used for observation-only rawlogs
-    try {
-        motionModel = core::ActionFrameSource::loadMotionModel(cfg, "MotionModel");
-    } catch (const core::UsageError& e) {
-        throw usage(e.what());
-    }
+void OmniFastSLAMApp::Impl::prepare()
+{
+    start.resolve(args, rawlog, robot);
+    odometry = mrpt::poses::CPose2D(start.pose);
+    filter = makeFilter<COmniFastSLAM>(mapTemplate);
+    filter->options = filterOptions;
+}
 
-    // Every particle's map comes from the .ini through MRPT's map registry.
-    mrpt::maps::TSetOfMetricMapInitializers inits;
-    inits.loadFromConfigFile(cfg, kMapSection);
-    mrpt::maps::CMultiMetricMap maps(inits);
-    const auto lights = maps.mapByClass<CCeilingLightsMap>();
-    if (!lights || maps.maps.size() != 1)
-        throw usage(std::string("[") + kMapSection +
-                    "] must define exactly one map: ceilingLightsMap_count = 1");
-    mapTemplate = *lights;
-    cfg.throwIfUnreadKeys();
+std::vector<core::ObservationSelector> OmniFastSLAMApp::Impl::stepObservations() const
+{
+    using core::ObservationSelector;
+    return {
+        ObservationSelector::of<mrpt::obs::CObservationBearingRange>(filterOptions.bearings_label),
+        ObservationSelector::of<mrpt::obs::CObservationImage>(imageLabel)};
+}
+
+std::vector<std::string> OmniFastSLAMApp::Impl::odometryLabels() const
+{
+    if (robot.empty()) return {};
+    return {robot + "_ODOM"};
 }
 
 void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
@@ -174,8 +150,8 @@ void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
         bearings = detector->detect(*image, filterOptions.bearings_label);
     } catch (const std::exception& e) {
         const auto& img = image->image;
-        throw std::runtime_error(rawlog + ": frame " + std::to_string(frames) +
-                                 ": cannot use the " + imageLabel + " image" +
+        throw std::runtime_error(rawlog + ": frame " + std::to_string(steps) + ": cannot use the " +
+                                 imageLabel + " image" +
                                  (img.isExternallyStored()
                                       ? " '" + img.getExternalStorageFileAbsolutePath() + "'"
                                       : std::string()) +
@@ -188,129 +164,68 @@ void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
     image->unload();
 }
 
-void OmniFastSLAMApp::initialize()
-{
-    auto& d = *m_impl;
-    d.loadConfig();
-    if (!mrpt::system::fileExists(d.rawlog))
-        throw std::runtime_error(d.rawlog + ": cannot open rawlog");
-    d.start.resolve(d.args, d.rawlog, d.robot);
-    outDir = d.args.outDir;
-    d.filter = std::make_unique<COmniFastSLAM>(d.mapTemplate, d.pf.m_options.sampleSize, d.seed);
-    // CParticleFilter's resampling draws from MRPT's global generator.
-    mrpt::random::getRandomGenerator().randomize(d.seed);
-    d.filter->options = d.filterOptions;
-    d.pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
-    if (d.args.gui) d.window = std::make_unique<LiveView>("omni-fastslam");
-}
-
 void OmniFastSLAMApp::Impl::drawBestParticle(mrpt::opengl::COpenGLScene& scene) const
 {
     const auto& best = filter->bestParticle();
     core::TumTrajectory path;
-    for (const auto& [t, p] : COmniFastSLAM::pathOf(best)) path.push_back(t, to3D(p));
+    for (const auto& [t, p] : COmniFastSLAM::pathOf(best))
+        path.push_back(t, mrpt::math::TPose3D(p));
     scene.insert(mrpt::opengl::CGridPlaneXY::Create(-10, 40, -15, 15, 0, 1));
     scene.insert(best.map.getVisualization());
     scene.insert(core::trajectoryAsLines(path, {0, 0.8f, 0}, "estimate"));
 }
 
-void OmniFastSLAMApp::run()
+void OmniFastSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
+                                 mrpt::obs::CSensoryFrame& frame, core::RunTimer& timer)
 {
-    auto& d = *m_impl;
-    core::OutputDirectory out(outDir);
-    core::RunTimer timer;
-    core::RawlogReader reader(d.rawlog);
-    core::ProgressReporter progress("omni-fastslam", 0, d.args.quiet);
+    prepareFrame(frame);
+    const double t = mrpt::Clock::toDouble(frame.size() ? (*frame.begin())->timestamp
+                                                        : actions->begin()->get()->timestamp);
+    if (steps == 0) filter->reset(start.pose, t);
+    filterStep(*filter, *actions, frame, timer);
 
-    using core::ObservationSelector;
-    core::ActionFrameSource source(
-        reader,
-        {ObservationSelector::of<mrpt::obs::CObservationBearingRange>(
-             d.filterOptions.bearings_label),
-         ObservationSelector::of<mrpt::obs::CObservationImage>(d.imageLabel)},
-        d.motionModel,
-        d.robot.empty() ? std::vector<std::string>{} : std::vector<std::string>{d.robot + "_ODOM"});
-    mrpt::poses::CPose2D odometry(d.start.pose);
-    bool started = false;
-    mrpt::obs::CActionCollection::Ptr actions;
-    mrpt::obs::CSensoryFrame::Ptr frame;
-    while (source.next(actions, frame)) {
-        d.prepareFrame(*frame);
-        const double t = mrpt::Clock::toDouble(frame->size() ? (*frame->begin())->timestamp
-                                                             : actions->begin()->get()->timestamp);
-        if (!started) {
-            d.filter->reset(d.start.pose, t);
-            started = true;
-        }
-        timer.startStep();
-        try {
-            d.pf.executeOn(*d.filter, actions.get(), frame.get());
-        } catch (const std::exception& e) {
-            throw std::runtime_error(d.rawlog + ": step " + std::to_string(d.frames) + ": " +
-                                     core::oneLineMessage(e));
-        }
-        timer.endStep();
-
-        odometry = odometry + actions->getBestMovementEstimation()->poseChange->getMeanVal();
-        odometryPath.push_back(t, to3D(odometry.asTPose()));
-        d.measurements += d.filter->lastStepStats.measurements;
-        progress.update(++d.frames);
-        if (d.window) d.window->show([&](auto& scene) { d.drawBestParticle(scene); });
-    }
-    progress.finish(d.frames);
-    if (d.frames == 0)
-        throw std::runtime_error(d.rawlog +
-                                 ": no frames with odometry (action / sensory-frame pairs, or "
-                                 "CObservationOdometry with " +
-                                 d.filterOptions.bearings_label + " or " + d.imageLabel +
-                                 "); the rawlog has: " + reader.summary().describe());
-    if (d.measurements == 0)
-        throw std::runtime_error(d.rawlog + ": no ceiling-light measurements (" +
-                                 d.filterOptions.bearings_label + " or " + d.imageLabel +
-                                 "); the rawlog has: " + reader.summary().describe());
-    for (const auto& [t, p] : COmniFastSLAM::pathOf(d.filter->bestParticle()))
-        if (estimatedPath.empty() || t > estimatedPath.timestamps.back())
-            estimatedPath.push_back(t, to3D(p));
-    d.writeOutputs(*this, timer);
-    if (d.window && !d.args.quiet) d.window->waitUntilClosed();
+    odometry = odometry + actions->getBestMovementEstimation()->poseChange->getMeanVal();
+    app.odometryPath.push_back(t, mrpt::math::TPose3D(odometry.asTPose()));
+    measurements += filter->lastStepStats.measurements;
 }
 
-void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTimer& timer)
+void OmniFastSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
 {
-    core::OutputDirectory out(app.outDir);
+    if (steps == 0)
+        throw std::runtime_error(rawlog +
+                                 ": no frames with odometry (action / sensory-frame pairs, or "
+                                 "CObservationOdometry with " +
+                                 filterOptions.bearings_label + " or " + imageLabel +
+                                 "); the rawlog has: " + contents.describe());
+    if (measurements == 0)
+        throw std::runtime_error(rawlog + ": no ceiling-light measurements (" +
+                                 filterOptions.bearings_label + " or " + imageLabel +
+                                 "); the rawlog has: " + contents.describe());
+    app.estimatedPath = asTrajectory(COmniFastSLAM::pathOf(filter->bestParticle()));
+}
+
+void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
+                                         mrpt::opengl::COpenGLScene& scene, core::RunReport& report)
+{
     const auto& best = filter->bestParticle();
     const std::string suffix = robot.empty() ? "" : "_" + robot;
     app.estimatedPath.save(out.file("estimated_path" + suffix + ".tum"),
                            "omni-fastslam: best particle's path");
     app.odometryPath.save(out.file("odometry_path" + suffix + ".tum"),
                           "omni-fastslam: dead reckoning");
-    core::saveFinalMap(best.map, app.outDir);
+    core::saveFinalMap(best.map, out.path());
 
-    mrpt::opengl::COpenGLScene scene;
     drawBestParticle(scene);
-    scene.insert(core::trajectoryAsLines(app.odometryPath, {0.9f, 0.1f, 0.1f}, "odometry"));
-    if (start.groundTruth)
-        scene.insert(core::trajectoryAsLines(*start.groundTruth, {0, 0, 0}, "ground truth"));
-    const std::string landmarksFile = start.groundTruthPrefix + ".landmarks.txt";
-    if (mrpt::system::fileExists(landmarksFile)) {
-        std::vector<mrpt::math::TPoint3D> pts;
-        for (const auto& lm : core::LandmarkFile::load(landmarksFile).landmarks)
-            pts.push_back(lm.position);
-        scene.insert(core::pointsAsCrosses(pts, {0, 0, 0}));
-    }
-    core::saveScene(scene, out.file("final.3Dscene"));
+    drawOdometryAndGroundTruth(scene, app.odometryPath, start.groundTruth);
+    if (const auto landmarks = trueLandmarks(start.groundTruthPrefix))
+        drawLandmarks(scene, *landmarks);
 
-    cfg.writeEffectiveConfig(out.file("config.ini"));
-    core::RunReport report("omni-fastslam");
-    args.describeInputs(report, cfg.effectiveText(), rawlog, seed);
-    report.setOpenCvVersion(CV_VERSION);
-    report.setCount("frames", frames);
+    report.setCount("frames", steps);
     report.setCount("frames_with_images", framesWithImages);
     report.setCount("measurements", measurements);
     report.setCount("particles", filter->particlesCount());
     report.setCount("landmarks", best.map.landmarks().size());
     report.setCount("candidates", best.map.candidates().size());
-    report.setTiming(timer);
     // which camera pose the measurement model used: the config's, or the observations' own
     const auto& pose = best.map.sensorPoseInUse();
     const bool configured = best.map.sensorOptions.sensor_in_robot.has_value();
@@ -342,15 +257,12 @@ void OmniFastSLAMApp::Impl::writeOutputs(OmniFastSLAMApp& app, const core::RunTi
         }
         report.setResultJson("associations_by_landmark", table + "}");
     }
-    if (start.groundTruth) report.setGroundTruth(start.groundTruthPrefix);
-    report.write(out.file("run.json"));
+}
 
-    if (start.groundTruth) {
-        core::TEvalParams eval;
-        eval.run_dir = app.outDir;
-        eval.ground_truth = start.groundTruthPrefix;
-        core::evaluateRunFolder(eval);
-    }
+std::optional<std::string> OmniFastSLAMApp::Impl::groundTruthName() const
+{
+    if (!start.groundTruth) return std::nullopt;
+    return start.groundTruthPrefix;
 }
 
 }  // namespace mrpt_vslam::apps

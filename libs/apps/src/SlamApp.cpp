@@ -104,6 +104,15 @@ void SlamApp::writeRunFolder(const core::OutputDirectory& out, const core::RunTi
     }
 }
 
+core::TumTrajectory SlamApp::asTrajectory(
+    const std::vector<std::pair<double, mrpt::math::TPose2D>>& path)
+{
+    core::TumTrajectory t;
+    for (const auto& [time, p] : path)
+        if (t.empty() || time > t.timestamps.back()) t.push_back(time, mrpt::math::TPose3D(p));
+    return t;
+}
+
 void SlamApp::drawOdometryAndGroundTruth(mrpt::opengl::COpenGLScene& scene,
                                          const core::TumTrajectory& odometry,
                                          const std::optional<core::TumTrajectory>& groundTruth,
@@ -113,6 +122,20 @@ void SlamApp::drawOdometryAndGroundTruth(mrpt::opengl::COpenGLScene& scene,
     scene.insert(core::trajectoryAsLines(odometry, {0.9f, 0.1f, 0.1f}, "odometry" + suffix));
     if (groundTruth)
         scene.insert(core::trajectoryAsLines(*groundTruth, {0, 0, 0}, "ground truth" + suffix));
+}
+
+std::optional<core::LandmarkFile> SlamApp::trueLandmarks(const std::string& groundTruthPrefix)
+{
+    const std::string file = groundTruthPrefix + ".landmarks.txt";
+    if (!mrpt::system::fileExists(file)) return std::nullopt;
+    return core::LandmarkFile::load(file);
+}
+
+void SlamApp::drawLandmarks(mrpt::opengl::COpenGLScene& scene, const core::LandmarkFile& file)
+{
+    std::vector<mrpt::math::TPoint3D> points;
+    for (const auto& lm : file.landmarks) points.push_back(lm.position);
+    scene.insert(core::pointsAsCrosses(points, {0, 0, 0}));
 }
 
 }  // namespace mrpt_vslam::apps

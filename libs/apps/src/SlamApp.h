@@ -1,5 +1,6 @@
 #pragma once
 
+#include <mrpt/math/TPose2D.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CSensoryFrame.h>
@@ -7,6 +8,7 @@
 #include <mrpt_vslam/apps/LiveView.h>
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
+#include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/OutputDirectory.h>
 #include <mrpt_vslam/core/RawlogReader.h>
@@ -20,6 +22,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mrpt_vslam::apps {
@@ -33,7 +36,8 @@ namespace mrpt_vslam::apps {
  *    with the progress line, the step timer and the window redrawn after each step; then the
  *    app's results, `final.3Dscene`, `config.ini`, `run.json` and, with ground truth,
  *    `metrics.json`; last, with `--gui` and without `--quiet`, the window until it is closed.
- *  The implementation of each app derives from it. */
+ *  The implementation of each app derives from it (through ParticleFilterApp for the particle
+ *  filters). */
 class SlamApp {
   public:
     virtual ~SlamApp();
@@ -52,17 +56,43 @@ class SlamApp {
 
     /// A config problem: "<config file>: <what>".
     core::UsageError usageError(const std::string& what) const;
+    /** The value of `key` of the app's section, one of `choices` (name, value); absent, the
+     *  first one. Any other name is a usage error that lists them. */
+    template <class T>
+    T readChoice(const std::string& key,
+                 const std::vector<std::pair<std::string, T>>& choices) const
+    {
+        const std::string given = cfg.read_string(m_section, key, choices.front().first);
+        for (const auto& [choice, value] : choices)
+            if (given == choice) return value;
+        std::string names;
+        for (size_t i = 0; i < choices.size(); i++)
+            names += (i == 0 ? "" : i + 1 < choices.size() ? ", " : " or ") + choices[i].first;
+        throw usageError("[" + m_section + "] " + key + " must be " + names + ", not '" + given +
+                         "'");
+    }
+
     /** Runs `update`, one step of the filter, timed by `timer`; an exception becomes a
      *  std::runtime_error "<rawlog>: <where>: <message>". \return the step's duration [ms] */
     double timedStep(core::RunTimer& timer, const std::string& where,
                      const std::function<void()>& update) const;
 
-    /// A robot's odometry (red) and ground truth (black) in the final scene, labelled with
-    /// `robot` if not empty.
+    /// A path of (timestamp, pose) as a trajectory, one pose per timestamp (the first kept).
+    static core::TumTrajectory asTrajectory(
+        const std::vector<std::pair<double, mrpt::math::TPose2D>>& path);
+
+    /// @name Parts of the final scene
+    /// @{
+    /// A robot's odometry (red) and ground truth (black), labelled with `robot` if not empty.
     static void drawOdometryAndGroundTruth(mrpt::opengl::COpenGLScene& scene,
                                            const core::TumTrajectory& odometry,
                                            const std::optional<core::TumTrajectory>& groundTruth,
                                            const std::string& robot = "");
+    /// The true landmarks `NAME.landmarks.txt` of the ground truth `NAME`, if the file exists.
+    static std::optional<core::LandmarkFile> trueLandmarks(const std::string& groundTruthPrefix);
+    /// Landmarks as black crosses.
+    static void drawLandmarks(mrpt::opengl::COpenGLScene& scene, const core::LandmarkFile& file);
+    /// @}
 
     const std::string name;  ///< the app
     core::AppArguments args;
