@@ -13,11 +13,11 @@
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/random/RandomGenerators.h>
+#include <mrpt_vslam/apps/OmniFastSLAMApp.h>
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/core/TumTrajectory.h>
 #include <mrpt_vslam/omni_fastslam/COmniFastSLAM.h>
-#include <mrpt_vslam/omni_fastslam/OmniFastSLAMApp.h>
 #include <mrpt_vslam/sim/DatasetWriter.h>
 #include <mrpt_vslam/sim/OdometrySimulator.h>
 #include <mrpt_vslam/sim/WaypointTrajectory.h>
@@ -332,7 +332,7 @@ TEST(OmniFastSLAMPlanar, AppRunsOneRobotOfATeamRawlog)
     const auto seq = makeSequence(4);
     const auto rawlog = writeTeamRawlog(seq, scratch.file("team"));
     const auto out = scratch.file("out");
-    omni_fastslam::OmniFastSLAMApp app(appArguments({kConfig, rawlog, "--out", out, "--quiet"}));
+    apps::OmniFastSLAMApp app(appArguments({kConfig, rawlog, "--out", out, "--quiet"}));
     app.initialize();
     app.run();
 

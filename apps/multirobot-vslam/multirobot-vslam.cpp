@@ -1,9 +1,9 @@
 // multirobot-vslam: one Rao-Blackwellized particle filter over a robot team's paths and a shared
 // map of 3D visual landmarks (Gil et al. 2010).
+#include <mrpt_vslam/apps/MultiRobotVSLAMApp.h>
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/UsageError.h>
-#include <mrpt_vslam/multirobot/MultiRobotVSLAMApp.h>
 
 #include <iostream>
 
@@ -22,7 +22,7 @@ int main(int argc, char** argv)
             std::cout << args.message;
             return 0;
         }
-        multirobot::MultiRobotVSLAMApp app(std::move(args));
+        apps::MultiRobotVSLAMApp app(std::move(args));
         app.initialize();
         app.run();
         return 0;

@@ -1,9 +1,9 @@
 // omni-fastslam: FastSLAM 2.0 with an upward fisheye camera and ceiling lights
 // (Gamallo et al. 2013).
+#include <mrpt_vslam/apps/OmniFastSLAMApp.h>
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/UsageError.h>
-#include <mrpt_vslam/omni_fastslam/OmniFastSLAMApp.h>
 
 #include <iostream>
 
@@ -21,7 +21,7 @@ int main(int argc, char** argv)
             std::cout << args.message;
             return 0;
         }
-        omni_fastslam::OmniFastSLAMApp app(std::move(args));
+        apps::OmniFastSLAMApp app(std::move(args));
         app.initialize();
         app.run();
         return 0;

@@ -1,9 +1,9 @@
 // view-slam: view-based omnidirectional EKF SLAM with information-based view initialization
 // (Valiente et al. 2015).
+#include <mrpt_vslam/apps/ViewSLAMApp.h>
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/UsageError.h>
-#include <mrpt_vslam/viewmap/ViewSLAMApp.h>
 
 #include <iostream>
 
@@ -21,7 +21,7 @@ int main(int argc, char** argv)
             std::cout << args.message;
             return 0;
         }
-        viewmap::ViewSLAMApp app(std::move(args));
+        apps::ViewSLAMApp app(std::move(args));
         app.initialize();
         app.run();
         return 0;

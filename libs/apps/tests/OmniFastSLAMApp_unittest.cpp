@@ -9,12 +9,12 @@
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt/system/filesystem.h>
+#include <mrpt_vslam/apps/OmniFastSLAMApp.h>
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/core/RawlogReader.h>
 #include <mrpt_vslam/core/TumTrajectory.h>
 #include <mrpt_vslam/core/UsageError.h>
-#include <mrpt_vslam/omni_fastslam/OmniFastSLAMApp.h>
 #include <mrpt_vslam/test/RewrittenRawlog.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
 
@@ -41,7 +41,7 @@ TEST(OmniFastSLAMApp, WritesTheRunFolder)
 {
     const test::ScratchFolder scratch("OmniFastSLAMApp_run");
     const auto out = scratch.file("out");
-    omni_fastslam::OmniFastSLAMApp app(args({kConfig, kRawlog, "--out", out, "--quiet"}));
+    apps::OmniFastSLAMApp app(args({kConfig, kRawlog, "--out", out, "--quiet"}));
     app.initialize();
     app.run();
     EXPECT_EQ(app.estimatedPath.size(), 320u);
@@ -69,9 +69,8 @@ TEST(OmniFastSLAMApp, ReadsObservationOnlyRawlogs)
     test::rewriteRawlog(kRawlog, rawlog, true, false, [](const mrpt::obs::CObservation& o) {
         return o.sensorLabel != "OMNICAM";  // bearings + ground truth
     });
-    omni_fastslam::OmniFastSLAMApp app(
-        args({kConfig, rawlog, "--out", scratch.file("out"), "--quiet", "--ground-truth",
-              kSource + "/datasets/sports-hall/hall"}));
+    apps::OmniFastSLAMApp app(args({kConfig, rawlog, "--out", scratch.file("out"), "--quiet",
+                                    "--ground-truth", kSource + "/datasets/sports-hall/hall"}));
     app.initialize();
     app.run();
     EXPECT_EQ(app.estimatedPath.size(), 320u);
@@ -84,14 +83,14 @@ TEST(OmniFastSLAMApp, ReadsObservationOnlyRawlogs)
 
 TEST(OmniFastSLAMApp, RejectsAnUnknownKey)
 {
-    omni_fastslam::OmniFastSLAMApp app(
+    apps::OmniFastSLAMApp app(
         args({kConfig, kRawlog, "--set", "OmniFastSLAM.particle_cuont=3", "--quiet"}));
     EXPECT_THROW(app.initialize(), core::UsageError);
 }
 
 TEST(OmniFastSLAMApp, FailsOnAMissingRawlog)
 {
-    omni_fastslam::OmniFastSLAMApp app(args({kConfig, "/nonexistent/x.rawlog", "--quiet"}));
+    apps::OmniFastSLAMApp app(args({kConfig, "/nonexistent/x.rawlog", "--quiet"}));
     try {
         app.initialize();
         FAIL() << "no exception";
@@ -105,7 +104,7 @@ TEST(OmniFastSLAMApp, FailsOnARawlogWithoutLightMeasurements)
     // A rawlog whose frames hold neither bearings nor images of the configured labels.
     const test::ScratchFolder scratch("OmniFastSLAMApp_nolights");
     const auto out = scratch.file("out");
-    omni_fastslam::OmniFastSLAMApp app(
+    apps::OmniFastSLAMApp app(
         args({kConfig, kRawlog, "--out", out, "--quiet", "--set",
               "OmniFastSLAM.bearings_label=NONE", "--set", "OmniFastSLAM.image_label=NONE"}));
     app.initialize();

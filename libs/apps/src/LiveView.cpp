@@ -1,5 +1,5 @@
 #include <mrpt/gui/CDisplayWindow3D.h>
-#include <mrpt_vslam/core/LiveView.h>
+#include <mrpt_vslam/apps/LiveView.h>
 #include <mrpt_vslam/core/UsageError.h>
 
 #include <chrono>
@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <thread>
 
-namespace mrpt_vslam::core {
+namespace mrpt_vslam::apps {
 
 struct LiveView::Impl {
     mrpt::gui::CDisplayWindow3D::Ptr window;
@@ -16,7 +16,7 @@ struct LiveView::Impl {
 LiveView::LiveView(const std::string& title) : m_impl(std::make_unique<Impl>())
 {
     if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
-        throw UsageError("--gui needs a display (DISPLAY is not set)");
+        throw core::UsageError("--gui needs a display (DISPLAY is not set)");
     m_impl->window = mrpt::gui::CDisplayWindow3D::Create(title, 1000, 700);
 }
 
@@ -38,4 +38,4 @@ void LiveView::waitUntilClosed()
     while (m_impl->window->isOpen()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
 }
 
-}  // namespace mrpt_vslam::core
+}  // namespace mrpt_vslam::apps

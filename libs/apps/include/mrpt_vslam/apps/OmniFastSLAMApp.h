@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace mrpt_vslam::omni_fastslam {
+namespace mrpt_vslam::apps {
 
 /** The `omni-fastslam` driver: reads a rawlog of odometry actions with ceiling-light images
  *  (`OMNICAM`) or pre-extracted bearings (`OMNICAM_BEARINGS`), runs COmniFastSLAM through
@@ -42,4 +42,4 @@ class OmniFastSLAMApp {
     std::unique_ptr<Impl> m_impl;
 };
 
-}  // namespace mrpt_vslam::omni_fastslam
+}  // namespace mrpt_vslam::apps

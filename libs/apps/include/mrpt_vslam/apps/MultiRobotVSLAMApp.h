@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace mrpt_vslam::multirobot {
+namespace mrpt_vslam::apps {
 
 /** The `multirobot-vslam` driver: reads an observation-only rawlog with each robot's odometry
  *  (`<ROBOT>_ODOM`) and either pre-extracted landmarks (`<ROBOT>_LANDMARKS`) or stereo images
@@ -42,4 +42,4 @@ class MultiRobotVSLAMApp {
     std::unique_ptr<Impl> m_impl;
 };
 
-}  // namespace mrpt_vslam::multirobot
+}  // namespace mrpt_vslam::apps

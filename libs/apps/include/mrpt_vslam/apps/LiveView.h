@@ -8,7 +8,7 @@ namespace mrpt::opengl {
 class COpenGLScene;
 }
 
-namespace mrpt_vslam::core {
+namespace mrpt_vslam::apps {
 
 /** The `--gui` window of a driver app: an MRPT 3D window whose scene is redrawn after each step.
  *  Usage: `LiveView view("omni-fastslam"); ... view.show([&](auto& scene) { draw(scene); });`
@@ -32,4 +32,4 @@ class LiveView {
     std::unique_ptr<Impl> m_impl;
 };
 
-}  // namespace mrpt_vslam::core
+}  // namespace mrpt_vslam::apps

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-namespace mrpt_vslam::viewmap {
+namespace mrpt_vslam::apps {
 
 /** The `view-slam` driver: reads a rawlog of odometry (actions or CObservationOdometry) with
  *  omnidirectional images (`OMNICAM`), runs COmniViewSLAM and writes the run folder
@@ -39,4 +39,4 @@ class ViewSLAMApp {
     std::unique_ptr<Impl> m_impl;
 };
 
-}  // namespace mrpt_vslam::viewmap
+}  // namespace mrpt_vslam::apps

@@ -1,51 +1,41 @@
-#include <mrpt/bayes/CParticleFilter.h>
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
-#include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationStereoImages.h>
 #include <mrpt/opengl/CGridPlaneXY.h>
 #include <mrpt/poses/CPose2D.h>
-#include <mrpt/random/RandomGenerators.h>
 #include <mrpt/system/filesystem.h>
-#include <mrpt_vslam/core/ActionFrameSource.h>
-#include <mrpt_vslam/core/CheckedConfigFile.h>
+#include <mrpt_vslam/apps/MultiRobotVSLAMApp.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/EvalInputs.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
-#include <mrpt_vslam/core/LiveView.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
-#include <mrpt_vslam/core/OutputDirectory.h>
-#include <mrpt_vslam/core/ProgressReporter.h>
-#include <mrpt_vslam/core/RawlogReader.h>
-#include <mrpt_vslam/core/RunEvaluation.h>
 #include <mrpt_vslam/core/RunOutputs.h>
-#include <mrpt_vslam/core/RunReport.h>
-#include <mrpt_vslam/core/RunTimer.h>
-#include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
-#include <mrpt_vslam/multirobot/MultiRobotVSLAMApp.h>
 #include <mrpt_vslam/multirobot/StereoFrontEnd.h>
 
 #include <bitset>
 #include <cstdio>
 #include <map>
-#include <opencv2/core/version.hpp>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 
-namespace mrpt_vslam::multirobot {
+#include "ParticleFilterApp.h"
+
+namespace mrpt_vslam::apps {
+
+using multirobot::CMultiRobotVisualSLAM;
+using multirobot::CVisualLandmarksMap;
+using multirobot::StereoFrontEnd;
+using multirobot::TVisualLandmark;
 
 namespace {
 constexpr const char* kAppSection = "MultiRobotVSLAM";
-constexpr const char* kMapSection = "MappingApplication";
 constexpr const char* kFrontEndSection = "StereoFrontEnd";
 
 /// Where the landmark measurements come from (ini key `input`).
 enum class TInput { Auto, Landmarks, Stereo };
-
-mrpt::math::TPose3D to3D(const mrpt::math::TPose2D& p) { return {p.x, p.y, 0, p.phi, 0, 0}; }
 
 const std::vector<mrpt::img::TColorf> kRobotColours{{0.0f, 0.6f, 0.0f},
                                                     {0.0f, 0.3f, 0.9f},
@@ -55,11 +45,14 @@ const std::vector<mrpt::img::TColorf> kRobotColours{{0.0f, 0.6f, 0.0f},
 mrpt::img::TColorf robotColour(size_t k) { return kRobotColours[k % kRobotColours.size()]; }
 }  // namespace
 
-struct MultiRobotVSLAMApp::Impl {
-    core::AppArguments args;
-    core::CheckedConfigFile cfg;
-    std::string rawlog, groundTruthPrefix;
-    uint32_t seed = 1;
+struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
+    Impl(MultiRobotVSLAMApp& owner, core::AppArguments arguments)
+        : ParticleFilterApp(std::move(arguments), "multirobot-vslam", kAppSection), app(owner)
+    {
+    }
+
+    MultiRobotVSLAMApp& app;  ///< where the results go
+    std::string groundTruthPrefix;
     TInput input = TInput::Auto;
     bool startFromGroundTruth = true;
     /// One robot: the label of its CObservationOdometry readings ("": any).
@@ -67,20 +60,17 @@ struct MultiRobotVSLAMApp::Impl {
     std::vector<mrpt::math::TPose2D> startPoses;
     double gtMatchRadius = 0.25;
 
-    mrpt::bayes::CParticleFilter pf;
     CVisualLandmarksMap mapTemplate;
     CMultiRobotVisualSLAM::TOptions filterOptions;
     StereoFrontEnd::TOptions frontEndOptions;
     std::vector<std::unique_ptr<StereoFrontEnd>> frontEnds;  ///< one per robot, on demand
     std::unique_ptr<CMultiRobotVisualSLAM> filter;
     std::vector<std::optional<core::TumTrajectory>> groundTruth;
-    mrpt::obs::CActionRobotMovement2D::TMotionModelOptions motionModel;
-    std::unique_ptr<core::LiveView> window;  ///< --gui
+    std::vector<mrpt::poses::CPose2D> odometry;  ///< dead reckoning from the start poses
 
-    size_t steps = 0, measurements = 0, stereoFrames = 0, landmarkObservations = 0;
+    size_t measurements = 0, stereoFrames = 0, landmarkObservations = 0;
     size_t robotReadings = 0, nonPositiveRanges = 0;
 
-    void loadConfig();
     void findGroundTruth();
     /** One robot: the step's odometry alone (the best movement estimate of a rawlog's action
      *  collection), stamped with the frame's time when the rawlog's action has none. */
@@ -98,7 +88,6 @@ struct MultiRobotVSLAMApp::Impl {
     /// `paths` (one per robot) and `map`.
     void drawTeam(mrpt::opengl::COpenGLScene& scene, const CVisualLandmarksMap& map,
                   const std::vector<core::TumTrajectory>& paths) const;
-    void writeOutputs(MultiRobotVSLAMApp& app, const core::RunTimer& timer);
     /** Where measurements carry identities (range-bearing data imported with kept ids): of the
      *  measurements fused into the landmarks of `map`, how many had another identity than the
      *  one that created the landmark, and how many identities have several landmarks; as
@@ -108,47 +97,51 @@ struct MultiRobotVSLAMApp::Impl {
     /// JSON.
     std::string landmarkMergingJson(const CVisualLandmarksMap& map,
                                     const core::LandmarkFile& truth) const;
+
+    void loadConfig() override;
+    void prepare() override;
+    std::vector<core::ObservationSelector> stepObservations() const override;
+    std::vector<std::string> odometryLabels() const override;
+    void step(mrpt::obs::CActionCollection::Ptr actions, mrpt::obs::CSensoryFrame& frame,
+              core::RunTimer& timer) override;
+    void drawLive(mrpt::opengl::COpenGLScene& scene) const override;
+    void endSteps(const core::TRawlogSummary& contents) override;
+    void writeResults(const core::OutputDirectory& out, mrpt::opengl::COpenGLScene& scene,
+                      core::RunReport& report) override;
+    std::optional<std::string> groundTruthName() const override;
 };
 
-MultiRobotVSLAMApp::MultiRobotVSLAMApp(core::AppArguments args) : m_impl(std::make_unique<Impl>())
+MultiRobotVSLAMApp::MultiRobotVSLAMApp(core::AppArguments args)
+    : outDir(args.outDir), m_impl(std::make_unique<Impl>(*this, std::move(args)))
 {
-    m_impl->args = std::move(args);
 }
 
 MultiRobotVSLAMApp::~MultiRobotVSLAMApp() = default;
 
+void MultiRobotVSLAMApp::initialize() { m_impl->initialize(); }
+
+void MultiRobotVSLAMApp::run() { m_impl->run(); }
+
 void MultiRobotVSLAMApp::Impl::loadConfig()
 {
-    cfg.loadFile(args.configFile, args.overrides);
-    const std::string& name = cfg.name();
-    const auto usage = [&](const std::string& what) {
-        return core::UsageError(name + ": " + what);
-    };
-
-    rawlog = args.resolveRawlog(cfg, kAppSection);
-    seed = args.resolveSeed(static_cast<uint32_t>(cfg.read_int(kAppSection, "random_seed", 0)));
-    const std::string in = cfg.read_string(kAppSection, "input", "auto");
-    if (in == "auto")
-        input = TInput::Auto;
-    else if (in == "landmarks")
-        input = TInput::Landmarks;
-    else if (in == "stereo")
-        input = TInput::Stereo;
-    else
-        throw usage("[MultiRobotVSLAM] input must be auto, landmarks or stereo, not '" + in + "'");
+    input = readChoice<TInput>(
+        "input",
+        {{"auto", TInput::Auto}, {"landmarks", TInput::Landmarks}, {"stereo", TInput::Stereo}});
     startFromGroundTruth =
         cfg.read_bool(kAppSection, "start_poses_from_ground_truth", startFromGroundTruth);
     gtMatchRadius = cfg.read_double(kAppSection, "gt_match_radius", gtMatchRadius);
     odometryLabel = cfg.read_string(kAppSection, "odometry_label", "");
-    if (!(gtMatchRadius > 0)) throw usage("[MultiRobotVSLAM] gt_match_radius must be > 0");
+    if (!(gtMatchRadius > 0)) throw usageError("[MultiRobotVSLAM] gt_match_radius must be > 0");
 
     try {
         filterOptions.loadFromConfigFile(cfg, kAppSection);
         pf.m_options.loadFromConfigFile(cfg, "ParticleFilter");
         frontEndOptions.loadFromConfigFile(cfg, kFrontEndSection);
-        motionModel = core::ActionFrameSource::loadMotionModel(cfg, "MotionModel");
+        mapTemplate = particleMapTemplate<CVisualLandmarksMap>("visualLandmarksMap_count");
+    } catch (const core::UsageError&) {
+        throw;
     } catch (const std::exception& e) {
-        throw usage(core::oneLineMessage(e));
+        throw usageError(core::oneLineMessage(e));
     }
     for (const auto& robot : filterOptions.robots) {
         const std::string key = "start_pose_" + robot;
@@ -156,39 +149,19 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
         cfg.read_vector(kAppSection, key, std::vector<double>(), v);
         if (v.empty() && robot == filterOptions.robots.front()) v = {0, 0, 0};
         if (v.empty() && !startFromGroundTruth)
-            throw usage("[MultiRobotVSLAM] " + key + " = x y yaw_deg is missing");
+            throw usageError("[MultiRobotVSLAM] " + key + " = x y yaw_deg is missing");
         if (!v.empty() && v.size() != 3)
-            throw usage("[MultiRobotVSLAM] " + key + " must be 'x y yaw_deg'");
+            throw usageError("[MultiRobotVSLAM] " + key + " must be 'x y yaw_deg'");
         startPoses.push_back(v.empty() ? mrpt::math::TPose2D()
                                        : mrpt::math::TPose2D(v[0], v[1], mrpt::DEG2RAD(v[2])));
     }
-    if (pf.m_options.sampleSize < 1) throw usage("[ParticleFilter] sampleSize must be >= 1");
-    if (pf.m_options.adaptiveSampleSize)
-        throw usage("[ParticleFilter] adaptiveSampleSize is not supported (use 0)");
-    if (pf.m_options.PF_algorithm != mrpt::bayes::CParticleFilter::pfStandardProposal &&
-        pf.m_options.PF_algorithm != mrpt::bayes::CParticleFilter::pfOptimalProposal)
-        throw usage(
-            "[ParticleFilter] PF_algorithm must be pfStandardProposal (Gil et al. 2010, "
-            "Sec. 3.1) or pfOptimalProposal (FastSLAM 2.0 proposal per robot)");
-
-    // Every particle's map comes from the .ini through MRPT's map registry.
-    mrpt::maps::TSetOfMetricMapInitializers inits;
-    try {
-        inits.loadFromConfigFile(cfg, kMapSection);
-    } catch (const std::exception& e) {
-        throw usage(core::oneLineMessage(e));
-    }
-    mrpt::maps::CMultiMetricMap maps(inits);
-    const auto map = maps.mapByClass<CVisualLandmarksMap>();
-    if (!map || maps.maps.size() != 1)
-        throw usage(std::string("[") + kMapSection +
-                    "] must define exactly one map: visualLandmarksMap_count = 1");
-    mapTemplate = *map;
+    checkParticleFilterOptions(
+        "pfStandardProposal (Gil et al. 2010, Sec. 3.1) or pfOptimalProposal (FastSLAM 2.0 "
+        "proposal per robot)");
     if (!odometryLabel.empty() && filterOptions.robots.size() != 1)
-        throw usage(
+        throw usageError(
             "[MultiRobotVSLAM] odometry_label is for one robot; a team's odometry is "
             "labelled <ROBOT>_ODOM");
-    cfg.throwIfUnreadKeys();
 }
 
 void MultiRobotVSLAMApp::Impl::findGroundTruth()
@@ -215,9 +188,9 @@ void MultiRobotVSLAMApp::Impl::findGroundTruth()
         for (size_t k = 1; k < filterOptions.robots.size(); k++)
             if (!groundTruth[k] &&
                 !cfg.keyExists(kAppSection, "start_pose_" + filterOptions.robots[k]))
-                throw core::UsageError(cfg.name() + ": [MultiRobotVSLAM] no ground truth for " +
-                                       filterOptions.robots[k] + ": give start_pose_" +
-                                       filterOptions.robots[k] + " = x y yaw_deg");
+                throw usageError("[MultiRobotVSLAM] no ground truth for " +
+                                 filterOptions.robots[k] + ": give start_pose_" +
+                                 filterOptions.robots[k] + " = x y yaw_deg");
 }
 
 void MultiRobotVSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
@@ -275,34 +248,46 @@ mrpt::obs::CActionCollection::Ptr MultiRobotVSLAMApp::Impl::singleRobotAction(
     return one;
 }
 
-void MultiRobotVSLAMApp::initialize()
+void MultiRobotVSLAMApp::Impl::prepare()
 {
-    auto& d = *m_impl;
-    d.loadConfig();
-    if (!mrpt::system::fileExists(d.rawlog))
-        throw std::runtime_error(d.rawlog + ": cannot open rawlog");
-    d.findGroundTruth();
-    outDir = d.args.outDir;
-    robots = d.filterOptions.robots;
-    d.filter =
-        std::make_unique<CMultiRobotVisualSLAM>(d.mapTemplate, d.pf.m_options.sampleSize, d.seed);
-    // CParticleFilter's resampling draws from MRPT's global generator.
-    mrpt::random::getRandomGenerator().randomize(d.seed);
-    d.filter->options = d.filterOptions;
-    d.pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
-    if (d.args.gui) d.window = std::make_unique<core::LiveView>("multirobot-vslam");
+    findGroundTruth();
+    app.robots = filterOptions.robots;
+    filter = makeFilter<CMultiRobotVisualSLAM>(mapTemplate);
+    filter->options = filterOptions;
+    for (const auto& p : startPoses) odometry.emplace_back(p);
+    app.estimatedPaths.assign(app.robots.size(), {});
+    app.odometryPaths.assign(app.robots.size(), {});
 }
 
-namespace {
-/// A path of (timestamp, pose) as a trajectory, one pose per timestamp (the first kept).
-core::TumTrajectory asTrajectory(const std::vector<std::pair<double, mrpt::math::TPose2D>>& path)
+std::vector<core::ObservationSelector> MultiRobotVSLAMApp::Impl::stepObservations() const
 {
-    core::TumTrajectory t;
-    for (const auto& [time, p] : path)
-        if (t.empty() || time > t.timestamps.back()) t.push_back(time, to3D(p));
-    return t;
+    using core::ObservationSelector;
+    const auto& o = filterOptions;
+    std::vector<ObservationSelector> selectors;
+    for (size_t k = 0; k < o.robots.size(); k++) {
+        selectors.push_back(ObservationSelector::of<mrpt::obs::CObservationVisualLandmarks>(
+            o.inputLabel(k, o.landmarks_suffix)));
+        selectors.push_back(ObservationSelector::of<mrpt::obs::CObservationBearingRange>(
+            o.inputLabel(k, o.range_bearing_suffix)));
+        if (!o.robot_reading_ids.empty() && o.robots.size() > 1)
+            selectors.push_back(ObservationSelector::of<mrpt::obs::CObservationBearingRange>(
+                o.robots[k] + o.robot_readings_suffix));
+        selectors.push_back(ObservationSelector::of<mrpt::obs::CObservationStereoImages>(
+            o.inputLabel(k, "_STEREO")));
+    }
+    return selectors;
 }
-}  // namespace
+
+std::vector<std::string> MultiRobotVSLAMApp::Impl::odometryLabels() const
+{
+    const auto& robots = filterOptions.robots;
+    if (robots.size() == 1)
+        return odometryLabel.empty() ? std::vector<std::string>{}
+                                     : std::vector<std::string>{odometryLabel};
+    std::vector<std::string> labels;
+    for (const auto& robot : robots) labels.push_back(robot + "_ODOM");
+    return labels;
+}
 
 core::TumTrajectory MultiRobotVSLAMApp::Impl::bestParticlePath(size_t robot) const
 {
@@ -320,72 +305,40 @@ void MultiRobotVSLAMApp::Impl::drawTeam(mrpt::opengl::COpenGLScene& scene,
                                              "estimate " + filterOptions.robots[k]));
 }
 
-void MultiRobotVSLAMApp::run()
+void MultiRobotVSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
+                                    mrpt::obs::CSensoryFrame& frame, core::RunTimer& timer)
 {
-    auto& d = *m_impl;
-    core::OutputDirectory out(outDir);
-    core::RunTimer timer;
-    core::RawlogReader reader(d.rawlog);
-    core::ProgressReporter progress("multirobot-vslam", 0, d.args.quiet);
+    const auto& robots = app.robots;
+    if (robots.size() == 1) actions = singleRobotAction(*actions, frame);
+    prepareFrame(frame);
+    const double t = mrpt::Clock::toDouble(actions->begin()->get()->timestamp);
+    if (steps == 0) filter->reset(startPoses, t);
+    filterStep(*filter, *actions, frame, timer);
 
-    using core::ObservationSelector;
-    const auto& o = d.filterOptions;
-    std::vector<ObservationSelector> steps;
-    std::vector<std::string> odometryLabels;
     for (size_t k = 0; k < robots.size(); k++) {
-        steps.push_back(ObservationSelector::of<mrpt::obs::CObservationVisualLandmarks>(
-            o.inputLabel(k, o.landmarks_suffix)));
-        steps.push_back(ObservationSelector::of<mrpt::obs::CObservationBearingRange>(
-            o.inputLabel(k, o.range_bearing_suffix)));
-        if (!o.robot_reading_ids.empty() && robots.size() > 1)
-            steps.push_back(ObservationSelector::of<mrpt::obs::CObservationBearingRange>(
-                robots[k] + o.robot_readings_suffix));
-        steps.push_back(ObservationSelector::of<mrpt::obs::CObservationStereoImages>(
-            o.inputLabel(k, "_STEREO")));
-        if (robots.size() > 1) odometryLabels.push_back(robots[k] + "_ODOM");
+        const auto move =
+            std::dynamic_pointer_cast<mrpt::obs::CActionRobotMovement2D>(actions->get(k));
+        odometry[k] = odometry[k] + move->poseChange->getMeanVal();
+        app.odometryPaths[k].push_back(t, mrpt::math::TPose3D(odometry[k].asTPose()));
     }
-    if (robots.size() == 1 && !d.odometryLabel.empty()) odometryLabels = {d.odometryLabel};
-    core::ActionFrameSource source(reader, steps, d.motionModel, odometryLabels);
-    std::vector<mrpt::poses::CPose2D> odometry;
-    for (const auto& p : d.startPoses) odometry.emplace_back(p);
-    estimatedPaths.assign(robots.size(), {});
-    odometryPaths.assign(robots.size(), {});
-    mrpt::obs::CActionCollection::Ptr actions;
-    mrpt::obs::CSensoryFrame::Ptr frame;
-    while (source.next(actions, frame)) {
-        if (robots.size() == 1) actions = d.singleRobotAction(*actions, *frame);
-        d.prepareFrame(*frame);
-        const double t = mrpt::Clock::toDouble(actions->begin()->get()->timestamp);
-        if (d.steps == 0) d.filter->reset(d.startPoses, t);
-        timer.startStep();
-        try {
-            d.pf.executeOn(*d.filter, actions.get(), frame.get());
-        } catch (const std::exception& e) {
-            throw std::runtime_error(d.rawlog + ": step " + std::to_string(d.steps) + ": " +
-                                     core::oneLineMessage(e));
-        }
-        timer.endStep();
+    measurements += filter->lastStepStats.measurements;
+    robotReadings += filter->lastStepStats.robot_readings;
+    nonPositiveRanges += filter->lastStepStats.non_positive_ranges;
+}
 
-        for (size_t k = 0; k < robots.size(); k++) {
-            const auto move =
-                std::dynamic_pointer_cast<mrpt::obs::CActionRobotMovement2D>(actions->get(k));
-            odometry[k] = odometry[k] + move->poseChange->getMeanVal();
-            odometryPaths[k].push_back(t, to3D(odometry[k].asTPose()));
-        }
-        d.measurements += d.filter->lastStepStats.measurements;
-        d.robotReadings += d.filter->lastStepStats.robot_readings;
-        d.nonPositiveRanges += d.filter->lastStepStats.non_positive_ranges;
-        progress.update(++d.steps);
-        if (d.window)
-            d.window->show([&](auto& scene) {
-                std::vector<core::TumTrajectory> paths;
-                for (size_t k = 0; k < robots.size(); k++) paths.push_back(d.bestParticlePath(k));
-                d.drawTeam(scene, d.filter->bestParticle().map, paths);
-            });
-    }
-    progress.finish(d.steps);
+void MultiRobotVSLAMApp::Impl::drawLive(mrpt::opengl::COpenGLScene& scene) const
+{
+    std::vector<core::TumTrajectory> paths;
+    for (size_t k = 0; k < app.robots.size(); k++) paths.push_back(bestParticlePath(k));
+    drawTeam(scene, filter->bestParticle().map, paths);
+}
+
+void MultiRobotVSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
+{
+    const auto& robots = app.robots;
+    const auto& o = filterOptions;
     std::string odoLabels;
-    for (const auto& l : odometryLabels) odoLabels += (odoLabels.empty() ? "" : ", ") + l;
+    for (const auto& l : odometryLabels()) odoLabels += (odoLabels.empty() ? "" : ", ") + l;
     const std::string inputs =
         robots.size() == 1
             ? "odometry (CActionRobotMovement2D, or CObservationOdometry" +
@@ -395,23 +348,21 @@ void MultiRobotVSLAMApp::run()
                   (o.sensor_label.empty() ? std::string() : " labelled " + o.sensor_label)
             : "observation-only rawlog with " + odoLabels + " and <ROBOT>" + o.landmarks_suffix +
                   ", <ROBOT>" + o.range_bearing_suffix + " or <ROBOT>_STEREO";
-    if (d.steps == 0)
-        throw std::runtime_error(d.rawlog + ": no steps (" + inputs +
-                                 "); the rawlog has: " + reader.summary().describe());
-    if (d.measurements == 0)
-        throw std::runtime_error(d.rawlog + ": no landmark measurements (" + inputs +
-                                 "); the rawlog has: " + reader.summary().describe());
-    for (size_t k = 0; k < robots.size(); k++) estimatedPaths[k] = d.bestParticlePath(k);
-    if (d.filterOptions.smooth_paths) {
+    if (steps == 0)
+        throw std::runtime_error(rawlog + ": no steps (" + inputs +
+                                 "); the rawlog has: " + contents.describe());
+    if (measurements == 0)
+        throw std::runtime_error(rawlog + ": no landmark measurements (" + inputs +
+                                 "); the rawlog has: " + contents.describe());
+    for (size_t k = 0; k < robots.size(); k++) app.estimatedPaths[k] = bestParticlePath(k);
+    if (filterOptions.smooth_paths) {
         const core::RunTimer smoothing;
-        d.smoothed = d.filter->smoothPaths(d.filter->bestParticle());
-        d.smoothingSeconds = smoothing.elapsedSeconds();
-        d.filterPaths = estimatedPaths;
+        smoothed = filter->smoothPaths(filter->bestParticle());
+        smoothingSeconds = smoothing.elapsedSeconds();
+        filterPaths = app.estimatedPaths;
         for (size_t k = 0; k < robots.size(); k++)
-            estimatedPaths[k] = asTrajectory(d.smoothed->paths[k]);
+            app.estimatedPaths[k] = asTrajectory(smoothed->paths[k]);
     }
-    d.writeOutputs(*this, timer);
-    if (d.window && !d.args.quiet) d.window->waitUntilClosed();
 }
 
 std::string MultiRobotVSLAMApp::Impl::landmarkMergingJson(const CVisualLandmarksMap& map,
@@ -485,9 +436,10 @@ std::string MultiRobotVSLAMApp::Impl::identityAssociationJson(const CVisualLandm
     return j.str();
 }
 
-void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core::RunTimer& timer)
+void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
+                                            mrpt::opengl::COpenGLScene& scene,
+                                            core::RunReport& report)
 {
-    core::OutputDirectory out(app.outDir);
     const auto& best = filter->bestParticle();
     for (size_t k = 0; k < app.robots.size(); k++) {
         const std::string& r = app.robots[k];
@@ -514,31 +466,14 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
     if (filterOptions.map_along_path)
         best.map.saveMetricMapRepresentationToFile(out.file("particle_map"));
     const CVisualLandmarksMap& map = smoothed ? smoothed->map : alongPath ? *alongPath : best.map;
-    core::saveFinalMap(map, app.outDir);
+    core::saveFinalMap(map, out.path());
 
-    mrpt::opengl::COpenGLScene scene;
     drawTeam(scene, map, app.estimatedPaths);
-    for (size_t k = 0; k < app.robots.size(); k++) {
-        scene.insert(core::trajectoryAsLines(app.odometryPaths[k], {0.9f, 0.1f, 0.1f},
-                                             "odometry " + app.robots[k]));
-        if (groundTruth[k])
-            scene.insert(core::trajectoryAsLines(*groundTruth[k], {0, 0, 0},
-                                                 "ground truth " + app.robots[k]));
-    }
-    const std::string landmarksFile = groundTruthPrefix + ".landmarks.txt";
-    std::optional<core::LandmarkFile> trueLandmarks;
-    if (mrpt::system::fileExists(landmarksFile)) {
-        trueLandmarks = core::LandmarkFile::load(landmarksFile);
-        std::vector<mrpt::math::TPoint3D> pts;
-        for (const auto& lm : trueLandmarks->landmarks) pts.push_back(lm.position);
-        scene.insert(core::pointsAsCrosses(pts, {0, 0, 0}));
-    }
-    core::saveScene(scene, out.file("final.3Dscene"));
+    for (size_t k = 0; k < app.robots.size(); k++)
+        drawOdometryAndGroundTruth(scene, app.odometryPaths[k], groundTruth[k], app.robots[k]);
+    const auto landmarks = trueLandmarks(groundTruthPrefix);
+    if (landmarks) drawLandmarks(scene, *landmarks);
 
-    cfg.writeEffectiveConfig(out.file("config.ini"));
-    core::RunReport report("multirobot-vslam");
-    args.describeInputs(report, cfg.effectiveText(), rawlog, seed);
-    report.setOpenCvVersion(CV_VERSION);
     report.setCount("robots", static_cast<double>(app.robots.size()));
     report.setCount("steps", static_cast<double>(steps));
     report.setCount("stereo_frames", static_cast<double>(stereoFrames));
@@ -569,22 +504,16 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
             report.setResultJson("smoothing_odometry_scales", j.str() + "}");
         }
     }
-    report.setTiming(timer);
-    if (trueLandmarks)
-        report.setResultJson("landmark_merging", landmarkMergingJson(map, *trueLandmarks));
+    if (landmarks) report.setResultJson("landmark_merging", landmarkMergingJson(map, *landmarks));
     if (const auto a = identityAssociationJson(map); !a.empty())
         report.setResultJson("association_by_identity", a);
-    bool anyGroundTruth = false;
-    for (const auto& g : groundTruth) anyGroundTruth = anyGroundTruth || g.has_value();
-    if (anyGroundTruth) report.setGroundTruth(groundTruthPrefix);
-    report.write(out.file("run.json"));
-
-    if (anyGroundTruth) {
-        core::TEvalParams eval;
-        eval.run_dir = app.outDir;
-        eval.ground_truth = groundTruthPrefix;
-        core::evaluateRunFolder(eval);
-    }
 }
 
-}  // namespace mrpt_vslam::multirobot
+std::optional<std::string> MultiRobotVSLAMApp::Impl::groundTruthName() const
+{
+    for (const auto& g : groundTruth)
+        if (g) return groundTruthPrefix;
+    return std::nullopt;
+}
+
+}  // namespace mrpt_vslam::apps

@@ -1,0 +1,269 @@
+#include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/core/bits_math.h>
+#include <mrpt/core/format.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CObservationBearingRange.h>
+#include <mrpt/obs/CObservationImage.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/opengl/CGridPlaneXY.h>
+#include <mrpt/poses/CPose2D.h>
+#include <mrpt_vslam/apps/OmniFastSLAMApp.h>
+#include <mrpt_vslam/core/ErrorMessage.h>
+#include <mrpt_vslam/core/ObservationSelector.h>
+#include <mrpt_vslam/core/PajdlaBaksteinCamera.h>
+#include <mrpt_vslam/core/RunOutputs.h>
+#include <mrpt_vslam/core/SingleRobotStart.h>
+#include <mrpt_vslam/omni_fastslam/COmniFastSLAM.h>
+#include <mrpt_vslam/omni_fastslam/CeilingLightDetector.h>
+
+#include <cstdio>
+#include <stdexcept>
+
+#include "ParticleFilterApp.h"
+
+namespace mrpt_vslam::apps {
+
+using omni_fastslam::CCeilingLightsMap;
+using omni_fastslam::CeilingLightDetector;
+using omni_fastslam::COmniFastSLAM;
+
+namespace {
+constexpr const char* kAppSection = "OmniFastSLAM";
+
+/// Where the light measurements come from (ini key `input`).
+enum class TInput { Auto, Bearings, Images };
+}  // namespace
+
+struct OmniFastSLAMApp::Impl : ParticleFilterApp {
+    Impl(OmniFastSLAMApp& owner, core::AppArguments arguments)
+        : ParticleFilterApp(std::move(arguments), "omni-fastslam", kAppSection), app(owner)
+    {
+    }
+
+    OmniFastSLAMApp& app;  ///< where the results go
+    TInput input = TInput::Auto;
+    std::string imageLabel = "OMNICAM";
+    /// One robot of a multi-robot rawlog (ini `robot`): labels <ROBOT>_ODOM and <ROBOT>_RB,
+    /// outputs and ground truth with the _<ROBOT> suffix. Empty: a single-robot rawlog.
+    std::string robot;
+    core::SingleRobotStart start;
+
+    CCeilingLightsMap mapTemplate;
+    COmniFastSLAM::TOptions filterOptions;
+    core::PajdlaBaksteinCamera camera;
+    CeilingLightDetector::TOptions detectorOptions;
+    std::unique_ptr<CeilingLightDetector> detector;
+    std::unique_ptr<COmniFastSLAM> filter;
+    mrpt::poses::CPose2D odometry;  ///< dead reckoning from the start pose
+
+    size_t framesWithImages = 0, measurements = 0;
+
+    /// Measurements from the frame's image when images are the input (Sec. III-A).
+    void prepareFrame(mrpt::obs::CSensoryFrame& sf);
+    /// The scene of the best particle: map with ellipsoids and its path (final.3Dscene, --gui).
+    void drawBestParticle(mrpt::opengl::COpenGLScene& scene) const;
+
+    void loadConfig() override;
+    void prepare() override;
+    std::vector<core::ObservationSelector> stepObservations() const override;
+    std::vector<std::string> odometryLabels() const override;
+    void step(mrpt::obs::CActionCollection::Ptr actions, mrpt::obs::CSensoryFrame& frame,
+              core::RunTimer& timer) override;
+    void drawLive(mrpt::opengl::COpenGLScene& scene) const override { drawBestParticle(scene); }
+    void endSteps(const core::TRawlogSummary& contents) override;
+    void writeResults(const core::OutputDirectory& out, mrpt::opengl::COpenGLScene& scene,
+                      core::RunReport& report) override;
+    std::optional<std::string> groundTruthName() const override;
+};
+
+OmniFastSLAMApp::OmniFastSLAMApp(core::AppArguments args)
+    : outDir(args.outDir), m_impl(std::make_unique<Impl>(*this, std::move(args)))
+{
+}
+
+OmniFastSLAMApp::~OmniFastSLAMApp() = default;
+
+void OmniFastSLAMApp::initialize() { m_impl->initialize(); }
+
+void OmniFastSLAMApp::run() { m_impl->run(); }
+
+void OmniFastSLAMApp::Impl::loadConfig()
+{
+    input = readChoice<TInput>(
+        "input",
+        {{"auto", TInput::Auto}, {"bearings", TInput::Bearings}, {"images", TInput::Images}});
+    imageLabel = cfg.read_string(kAppSection, "image_label", imageLabel);
+    robot = cfg.read_string(kAppSection, "robot", "");
+    start.loadFromConfig(cfg, kAppSection);
+
+    try {
+        filterOptions.loadFromConfigFile(cfg, kAppSection);
+        if (!robot.empty()) filterOptions.bearings_label = robot + "_RB";
+        pf.m_options.loadFromConfigFile(cfg, "ParticleFilter");
+        camera.loadFromConfigFile(cfg, "Camera");
+        detectorOptions.loadFromConfigFile(cfg, "LightDetector");
+    } catch (const core::UsageError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw usageError(mrpt::exception_to_str(e));
+    }
+    checkParticleFilterOptions(
+        "pfOptimalProposal (FastSLAM 2.0) or pfStandardProposal (FastSLAM 1.0)");
+    mapTemplate = particleMapTemplate<CCeilingLightsMap>("ceilingLightsMap_count");
+}
+
+void OmniFastSLAMApp::Impl::prepare()
+{
+    start.resolve(args, rawlog, robot);
+    odometry = mrpt::poses::CPose2D(start.pose);
+    filter = makeFilter<COmniFastSLAM>(mapTemplate);
+    filter->options = filterOptions;
+}
+
+std::vector<core::ObservationSelector> OmniFastSLAMApp::Impl::stepObservations() const
+{
+    using core::ObservationSelector;
+    return {
+        ObservationSelector::of<mrpt::obs::CObservationBearingRange>(filterOptions.bearings_label),
+        ObservationSelector::of<mrpt::obs::CObservationImage>(imageLabel)};
+}
+
+std::vector<std::string> OmniFastSLAMApp::Impl::odometryLabels() const
+{
+    if (robot.empty()) return {};
+    return {robot + "_ODOM"};
+}
+
+void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
+{
+    using core::ObservationSelector;
+    const auto image = ObservationSelector::firstIn<mrpt::obs::CObservationImage>(sf, imageLabel);
+    const bool hasBearings =
+        static_cast<bool>(ObservationSelector::firstIn<mrpt::obs::CObservationBearingRange>(
+            sf, filterOptions.bearings_label));
+    if (image) framesWithImages++;
+    if (input == TInput::Bearings || (input == TInput::Auto && hasBearings)) return;
+    if (!image) return;
+    if (!detector) detector = std::make_unique<CeilingLightDetector>(camera, detectorOptions);
+    mrpt::obs::CObservationBearingRange::Ptr bearings;
+    try {
+        bearings = detector->detect(*image, filterOptions.bearings_label);
+    } catch (const std::exception& e) {
+        const auto& img = image->image;
+        throw std::runtime_error(rawlog + ": frame " + std::to_string(steps) + ": cannot use the " +
+                                 imageLabel + " image" +
+                                 (img.isExternallyStored()
+                                      ? " '" + img.getExternalStorageFileAbsolutePath() + "'"
+                                      : std::string()) +
+                                 ": " + core::oneLineMessage(e));
+    }
+    // the image's bearings replace any the frame had
+    ObservationSelector::of<mrpt::obs::CObservationBearingRange>(filterOptions.bearings_label)
+        .eraseFrom(sf);
+    sf.insert(bearings);
+    image->unload();
+}
+
+void OmniFastSLAMApp::Impl::drawBestParticle(mrpt::opengl::COpenGLScene& scene) const
+{
+    const auto& best = filter->bestParticle();
+    core::TumTrajectory path;
+    for (const auto& [t, p] : COmniFastSLAM::pathOf(best))
+        path.push_back(t, mrpt::math::TPose3D(p));
+    scene.insert(mrpt::opengl::CGridPlaneXY::Create(-10, 40, -15, 15, 0, 1));
+    scene.insert(best.map.getVisualization());
+    scene.insert(core::trajectoryAsLines(path, {0, 0.8f, 0}, "estimate"));
+}
+
+void OmniFastSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
+                                 mrpt::obs::CSensoryFrame& frame, core::RunTimer& timer)
+{
+    prepareFrame(frame);
+    const double t = mrpt::Clock::toDouble(frame.size() ? (*frame.begin())->timestamp
+                                                        : actions->begin()->get()->timestamp);
+    if (steps == 0) filter->reset(start.pose, t);
+    filterStep(*filter, *actions, frame, timer);
+
+    odometry = odometry + actions->getBestMovementEstimation()->poseChange->getMeanVal();
+    app.odometryPath.push_back(t, mrpt::math::TPose3D(odometry.asTPose()));
+    measurements += filter->lastStepStats.measurements;
+}
+
+void OmniFastSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
+{
+    if (steps == 0)
+        throw std::runtime_error(rawlog +
+                                 ": no frames with odometry (action / sensory-frame pairs, or "
+                                 "CObservationOdometry with " +
+                                 filterOptions.bearings_label + " or " + imageLabel +
+                                 "); the rawlog has: " + contents.describe());
+    if (measurements == 0)
+        throw std::runtime_error(rawlog + ": no ceiling-light measurements (" +
+                                 filterOptions.bearings_label + " or " + imageLabel +
+                                 "); the rawlog has: " + contents.describe());
+    app.estimatedPath = asTrajectory(COmniFastSLAM::pathOf(filter->bestParticle()));
+}
+
+void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
+                                         mrpt::opengl::COpenGLScene& scene, core::RunReport& report)
+{
+    const auto& best = filter->bestParticle();
+    const std::string suffix = robot.empty() ? "" : "_" + robot;
+    app.estimatedPath.save(out.file("estimated_path" + suffix + ".tum"),
+                           "omni-fastslam: best particle's path");
+    app.odometryPath.save(out.file("odometry_path" + suffix + ".tum"),
+                          "omni-fastslam: dead reckoning");
+    core::saveFinalMap(best.map, out.path());
+
+    drawBestParticle(scene);
+    drawOdometryAndGroundTruth(scene, app.odometryPath, start.groundTruth);
+    if (const auto landmarks = trueLandmarks(start.groundTruthPrefix))
+        drawLandmarks(scene, *landmarks);
+
+    report.setCount("frames", steps);
+    report.setCount("frames_with_images", framesWithImages);
+    report.setCount("measurements", measurements);
+    report.setCount("particles", filter->particlesCount());
+    report.setCount("landmarks", best.map.landmarks().size());
+    report.setCount("candidates", best.map.candidates().size());
+    // which camera pose the measurement model used: the config's, or the observations' own
+    const auto& pose = best.map.sensorPoseInUse();
+    const bool configured = best.map.sensorOptions.sensor_in_robot.has_value();
+    report.setResultJson("camera_pose_on_robot",
+                         mrpt::format("{\"source\": \"%s\", \"x_y_z_m_yaw_pitch_roll_deg\": "
+                                      "[%g, %g, %g, %g, %g, %g]}",
+                                      configured ? "config" : "observations", pose.x(), pose.y(),
+                                      pose.z(), mrpt::RAD2DEG(pose.yaw()),
+                                      mrpt::RAD2DEG(pose.pitch()), mrpt::RAD2DEG(pose.roll())));
+    if (!args.quiet)
+        std::printf("omni-fastslam: camera pose on the robot from the %s: %s\n",
+                    configured ? "config (sensor_in_robot)" : "observations",
+                    pose.asString().c_str());
+    if (const auto associations = COmniFastSLAM::associationsOf(best);
+        associations.labelled() > 0) {
+        // evaluation only: the rawlog gave landmark numbers (landmarkID), the filter ignored them
+        report.setResult("labelled_associations", associations.labelled());
+        report.setResult("wrong_associations", associations.wrong());
+        // per map landmark id: the landmark numbers of the measurements associated to it
+        std::string table = "{";
+        for (const auto& [landmark, ids] : associations.counts) {
+            table += (table.size() > 1 ? ", \"" : "\"") + std::to_string(landmark) + "\": {";
+            bool first = true;
+            for (const auto& [id, count] : ids) {
+                table +=
+                    (first ? "\"" : ", \"") + std::to_string(id) + "\": " + std::to_string(count);
+                first = false;
+            }
+            table += "}";
+        }
+        report.setResultJson("associations_by_landmark", table + "}");
+    }
+}
+
+std::optional<std::string> OmniFastSLAMApp::Impl::groundTruthName() const
+{
+    if (!start.groundTruth) return std::nullopt;
+    return start.groundTruthPrefix;
+}
+
+}  // namespace mrpt_vslam::apps

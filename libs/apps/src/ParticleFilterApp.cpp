@@ -1,0 +1,31 @@
+#include "ParticleFilterApp.h"
+
+namespace mrpt_vslam::apps {
+
+ParticleFilterApp::ParticleFilterApp(core::AppArguments args, std::string name, std::string section)
+    : SlamApp(std::move(args), std::move(name), std::move(section))
+{
+    pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
+}
+
+void ParticleFilterApp::checkParticleFilterOptions(const std::string& proposals) const
+{
+    const auto& o = pf.m_options;
+    if (o.sampleSize < 1) throw usageError("[ParticleFilter] sampleSize must be >= 1");
+    if (o.adaptiveSampleSize)
+        throw usageError("[ParticleFilter] adaptiveSampleSize is not supported (use 0)");
+    using PF = mrpt::bayes::CParticleFilter;
+    if (o.PF_algorithm != PF::pfStandardProposal && o.PF_algorithm != PF::pfOptimalProposal)
+        throw usageError("[ParticleFilter] PF_algorithm must be " + proposals);
+}
+
+void ParticleFilterApp::filterStep(mrpt::bayes::CParticleFilterCapable& filter,
+                                   const mrpt::obs::CActionCollection& actions,
+                                   const mrpt::obs::CSensoryFrame& frame,
+                                   core::RunTimer& timer) const
+{
+    timedStep(timer, "step " + std::to_string(steps),
+              [&] { pf.executeOn(filter, &actions, &frame); });
+}
+
+}  // namespace mrpt_vslam::apps

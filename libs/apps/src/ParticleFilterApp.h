@@ -1,0 +1,64 @@
+#pragma once
+
+#include <mrpt/bayes/CParticleFilter.h>
+#include <mrpt/bayes/CParticleFilterCapable.h>
+#include <mrpt/maps/CMultiMetricMap.h>
+#include <mrpt/maps/TMetricMapInitializer.h>
+#include <mrpt/random/RandomGenerators.h>
+
+#include <memory>
+#include <string>
+
+#include "SlamApp.h"
+
+namespace mrpt_vslam::apps {
+
+/** A driver app whose filter runs through MRPT's `CParticleFilter::executeOn()` (omni-fastslam,
+ *  multirobot-vslam): the `[ParticleFilter]` options and their checks, the map every particle
+ *  starts from, the filter with its particles and seed, and its steps. */
+class ParticleFilterApp : public SlamApp {
+  protected:
+    ParticleFilterApp(core::AppArguments args, std::string name, std::string section);
+
+    /** Throws a usage error unless sampleSize >= 1, adaptiveSampleSize is off and PF_algorithm
+     *  is pfStandardProposal or pfOptimalProposal; `proposals` names these two for the app. */
+    void checkParticleFilterOptions(const std::string& proposals) const;
+
+    /// The map every particle starts from: the only map of `[MappingApplication]`, defined by
+    /// `countKey` = 1.
+    template <class MAP>
+    MAP particleMapTemplate(const std::string& countKey) const
+    {
+        // Every particle's map comes from the .ini through MRPT's map registry.
+        mrpt::maps::TSetOfMetricMapInitializers inits;
+        inits.loadFromConfigFile(cfg, kMapSection);
+        mrpt::maps::CMultiMetricMap maps(inits);
+        const auto map = maps.mapByClass<MAP>();
+        if (!map || maps.maps.size() != 1)
+            throw usageError(std::string("[") + kMapSection +
+                             "] must define exactly one map: " + countKey + " = 1");
+        return *map;
+    }
+
+    /// The filter over copies of `mapTemplate`, with sampleSize particles and the run's seed.
+    template <class FILTER, class MAP>
+    std::unique_ptr<FILTER> makeFilter(const MAP& mapTemplate) const
+    {
+        auto filter = std::make_unique<FILTER>(mapTemplate, pf.m_options.sampleSize, seed);
+        // CParticleFilter's resampling draws from MRPT's global generator.
+        mrpt::random::getRandomGenerator().randomize(seed);
+        return filter;
+    }
+
+    /// One step of `filter` through timedStep(); its errors name the rawlog and the step.
+    void filterStep(mrpt::bayes::CParticleFilterCapable& filter,
+                    const mrpt::obs::CActionCollection& actions,
+                    const mrpt::obs::CSensoryFrame& frame, core::RunTimer& timer) const;
+
+    mrpt::bayes::CParticleFilter pf;  ///< options from `[ParticleFilter]`
+
+  private:
+    static constexpr const char* kMapSection = "MappingApplication";
+};
+
+}  // namespace mrpt_vslam::apps

@@ -1,0 +1,141 @@
+#include "SlamApp.h"
+
+#include <mrpt/system/filesystem.h>
+#include <mrpt_vslam/core/ActionFrameSource.h>
+#include <mrpt_vslam/core/ErrorMessage.h>
+#include <mrpt_vslam/core/ProgressReporter.h>
+#include <mrpt_vslam/core/RunEvaluation.h>
+#include <mrpt_vslam/core/RunOutputs.h>
+
+#include <opencv2/core/version.hpp>
+#include <stdexcept>
+
+namespace mrpt_vslam::apps {
+
+SlamApp::SlamApp(core::AppArguments arguments, std::string appName, std::string section)
+    : name(std::move(appName)), args(std::move(arguments)), m_section(std::move(section))
+{
+}
+
+SlamApp::~SlamApp() = default;
+
+core::UsageError SlamApp::usageError(const std::string& what) const
+{
+    return core::UsageError(cfg.name() + ": " + what);
+}
+
+void SlamApp::initialize()
+{
+    cfg.loadFile(args.configFile, args.overrides);
+    rawlog = args.resolveRawlog(cfg, m_section);
+    seed = args.resolveSeed(static_cast<uint32_t>(cfg.read_int(m_section, "random_seed", 0)));
+    loadConfig();
+    // [MotionModel]: MRPT's Gaussian model, used for observation-only rawlogs
+    try {
+        m_motionModel = core::ActionFrameSource::loadMotionModel(cfg, "MotionModel");
+    } catch (const core::UsageError& e) {
+        throw usageError(e.what());
+    }
+    cfg.throwIfUnreadKeys();
+    if (!mrpt::system::fileExists(rawlog))
+        throw std::runtime_error(rawlog + ": cannot open rawlog");
+    prepare();
+    if (args.gui) m_window = std::make_unique<LiveView>(name);
+}
+
+void SlamApp::startRun(const core::OutputDirectory&) {}
+
+std::vector<std::string> SlamApp::odometryLabels() const { return {}; }
+
+void SlamApp::run()
+{
+    core::OutputDirectory out(args.outDir);
+    core::RunTimer timer;
+    core::RawlogReader reader(rawlog);
+    core::ProgressReporter progress(name, 0, args.quiet);
+    startRun(out);
+    core::ActionFrameSource source(reader, stepObservations(), m_motionModel, odometryLabels());
+    mrpt::obs::CActionCollection::Ptr actions;
+    mrpt::obs::CSensoryFrame::Ptr frame;
+    while (source.next(actions, frame)) {
+        step(actions, *frame, timer);
+        progress.update(++steps);
+        if (m_window)
+            m_window->show([this](mrpt::opengl::COpenGLScene& scene) { drawLive(scene); });
+    }
+    progress.finish(steps);
+    endSteps(reader.summary());
+    writeRunFolder(out, timer);
+    if (m_window && !args.quiet) m_window->waitUntilClosed();
+}
+
+double SlamApp::timedStep(core::RunTimer& timer, const std::string& where,
+                          const std::function<void()>& update) const
+{
+    timer.startStep();
+    try {
+        update();
+    } catch (const std::exception& e) {
+        throw std::runtime_error(rawlog + ": " + where + ": " + core::oneLineMessage(e));
+    }
+    return timer.endStep();
+}
+
+void SlamApp::writeRunFolder(const core::OutputDirectory& out, const core::RunTimer& timer)
+{
+    core::RunReport report(name);
+    mrpt::opengl::COpenGLScene scene;
+    writeResults(out, scene, report);
+    core::saveScene(scene, out.file("final.3Dscene"));
+
+    cfg.writeEffectiveConfig(out.file("config.ini"));
+    args.describeInputs(report, cfg.effectiveText(), rawlog, seed);
+    report.setOpenCvVersion(CV_VERSION);
+    report.setTiming(timer);
+    const auto groundTruth = groundTruthName();
+    if (groundTruth) report.setGroundTruth(*groundTruth);
+    report.write(out.file("run.json"));
+
+    if (groundTruth) {
+        core::TEvalParams eval;
+        eval.run_dir = out.path();
+        eval.ground_truth = *groundTruth;
+        core::evaluateRunFolder(eval);
+    }
+}
+
+core::TumTrajectory SlamApp::asTrajectory(
+    const std::vector<std::pair<double, mrpt::math::TPose2D>>& path)
+{
+    core::TumTrajectory t;
+    for (const auto& [time, p] : path)
+        if (t.empty() || time > t.timestamps.back()) t.push_back(time, mrpt::math::TPose3D(p));
+    return t;
+}
+
+void SlamApp::drawOdometryAndGroundTruth(mrpt::opengl::COpenGLScene& scene,
+                                         const core::TumTrajectory& odometry,
+                                         const std::optional<core::TumTrajectory>& groundTruth,
+                                         const std::string& robot)
+{
+    const std::string suffix = robot.empty() ? "" : " " + robot;
+    scene.insert(core::trajectoryAsLines(odometry, {0.9f, 0.1f, 0.1f}, "odometry" + suffix));
+    if (groundTruth)
+        scene.insert(core::trajectoryAsLines(*groundTruth, {0, 0, 0}, "ground truth" + suffix));
+}
+
+std::optional<core::LandmarkFile> SlamApp::trueLandmarks(const std::string& groundTruthPrefix)
+{
+    const std::string file = groundTruthPrefix + ".landmarks.txt";
+    if (!mrpt::system::fileExists(file)) return std::nullopt;
+    return core::LandmarkFile::load(file);
+}
+
+void SlamApp::drawLandmarks(mrpt::opengl::COpenGLScene& scene, const core::LandmarkFile& file)
+{
+    std::vector<mrpt::math::TPoint3D> points;
+    for (const auto& lm : file.landmarks) points.push_back(lm.position);
+    scene.insert(core::pointsAsCrosses(points, {0, 0, 0}));
+}
+
+}  // namespace mrpt_vslam::apps

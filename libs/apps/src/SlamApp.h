@@ -1,0 +1,138 @@
+#pragma once
+
+#include <mrpt/math/TPose2D.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt_vslam/apps/LiveView.h>
+#include <mrpt_vslam/core/AppArguments.h>
+#include <mrpt_vslam/core/CheckedConfigFile.h>
+#include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/core/ObservationSelector.h>
+#include <mrpt_vslam/core/OutputDirectory.h>
+#include <mrpt_vslam/core/RawlogReader.h>
+#include <mrpt_vslam/core/RunReport.h>
+#include <mrpt_vslam/core/RunTimer.h>
+#include <mrpt_vslam/core/TumTrajectory.h>
+#include <mrpt_vslam/core/UsageError.h>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mrpt_vslam::apps {
+
+/** What the driver apps (omni-fastslam, multirobot-vslam, view-slam) do alike
+ *  (doc/app-conventions.md); the app's own parts are the virtual functions below.
+ *  - initialize(): the config (`--set`, `rawlog_file`, `random_seed`, the app's keys,
+ *    `[MotionModel]`, then no unknown key), the rawlog's presence, the app's inputs, the `--gui`
+ *    window;
+ *  - run(): the run folder, the rawlog's filter steps (core::ActionFrameSource, both formats)
+ *    with the progress line, the step timer and the window redrawn after each step; then the
+ *    app's results, `final.3Dscene`, `config.ini`, `run.json` and, with ground truth,
+ *    `metrics.json`; last, with `--gui` and without `--quiet`, the window until it is closed.
+ *  The implementation of each app derives from it (through ParticleFilterApp for the particle
+ *  filters). */
+class SlamApp {
+  public:
+    virtual ~SlamApp();
+    SlamApp(const SlamApp&) = delete;
+    SlamApp& operator=(const SlamApp&) = delete;
+
+    /// Loads the config and the inputs; throws core::UsageError for config problems and
+    /// std::runtime_error for data problems, naming the file.
+    void initialize();
+    /// Processes the whole rawlog and writes the outputs.
+    void run();
+
+  protected:
+    /// \param name the app (messages, progress line, run.json); \param section its ini section
+    SlamApp(core::AppArguments args, std::string name, std::string section);
+
+    /// A config problem: "<config file>: <what>".
+    core::UsageError usageError(const std::string& what) const;
+    /** The value of `key` of the app's section, one of `choices` (name, value); absent, the
+     *  first one. Any other name is a usage error that lists them. */
+    template <class T>
+    T readChoice(const std::string& key,
+                 const std::vector<std::pair<std::string, T>>& choices) const
+    {
+        const std::string given = cfg.read_string(m_section, key, choices.front().first);
+        for (const auto& [choice, value] : choices)
+            if (given == choice) return value;
+        std::string names;
+        for (size_t i = 0; i < choices.size(); i++)
+            names += (i == 0 ? "" : i + 1 < choices.size() ? ", " : " or ") + choices[i].first;
+        throw usageError("[" + m_section + "] " + key + " must be " + names + ", not '" + given +
+                         "'");
+    }
+
+    /** Runs `update`, one step of the filter, timed by `timer`; an exception becomes a
+     *  std::runtime_error "<rawlog>: <where>: <message>". \return the step's duration [ms] */
+    double timedStep(core::RunTimer& timer, const std::string& where,
+                     const std::function<void()>& update) const;
+
+    /// A path of (timestamp, pose) as a trajectory, one pose per timestamp (the first kept).
+    static core::TumTrajectory asTrajectory(
+        const std::vector<std::pair<double, mrpt::math::TPose2D>>& path);
+
+    /// @name Parts of the final scene
+    /// @{
+    /// A robot's odometry (red) and ground truth (black), labelled with `robot` if not empty.
+    static void drawOdometryAndGroundTruth(mrpt::opengl::COpenGLScene& scene,
+                                           const core::TumTrajectory& odometry,
+                                           const std::optional<core::TumTrajectory>& groundTruth,
+                                           const std::string& robot = "");
+    /// The true landmarks `NAME.landmarks.txt` of the ground truth `NAME`, if the file exists.
+    static std::optional<core::LandmarkFile> trueLandmarks(const std::string& groundTruthPrefix);
+    /// Landmarks as black crosses.
+    static void drawLandmarks(mrpt::opengl::COpenGLScene& scene, const core::LandmarkFile& file);
+    /// @}
+
+    const std::string name;  ///< the app
+    core::AppArguments args;
+    core::CheckedConfigFile cfg;
+    std::string rawlog;
+    uint32_t seed = 1;
+    size_t steps = 0;  ///< filter steps done (frames of the rawlog)
+
+  private:
+    /// The app's keys, read after `rawlog_file` and `random_seed` of its section.
+    virtual void loadConfig() = 0;
+    /// With the config loaded and the rawlog present: ground truth, start poses, the filter.
+    virtual void prepare() = 0;
+    /// At the start of run(), once the run folder exists.
+    virtual void startRun(const core::OutputDirectory& out);
+    /// The observations that make a group of observations of an observation-only rawlog a step.
+    virtual std::vector<core::ObservationSelector> stepObservations() const = 0;
+    /// The labels of each robot's CObservationOdometry readings; empty: one robot, any label.
+    virtual std::vector<std::string> odometryLabels() const;
+    /// One step: the filter update (through timedStep()) and the app's bookkeeping.
+    virtual void step(mrpt::obs::CActionCollection::Ptr actions, mrpt::obs::CSensoryFrame& frame,
+                      core::RunTimer& timer) = 0;
+    /// The estimate so far, in the `--gui` window.
+    virtual void drawLive(mrpt::opengl::COpenGLScene& scene) const = 0;
+    /** After the last step: throws a std::runtime_error when the rawlog (which holds
+     *  `contents`) gave nothing to estimate from; the final estimates. */
+    virtual void endSteps(const core::TRawlogSummary& contents) = 0;
+    /// The estimates and the map in `out`, the final scene, the counts and results of run.json.
+    virtual void writeResults(const core::OutputDirectory& out, mrpt::opengl::COpenGLScene& scene,
+                              core::RunReport& report) = 0;
+    /// `NAME` of the ground truth the run is evaluated against, if there is one.
+    virtual std::optional<std::string> groundTruthName() const = 0;
+
+    /// The results, `final.3Dscene`, `config.ini`, `run.json` and `metrics.json`.
+    void writeRunFolder(const core::OutputDirectory& out, const core::RunTimer& timer);
+
+    const std::string m_section;
+    /// Motion model of the actions built for observation-only rawlogs ([MotionModel]).
+    mrpt::obs::CActionRobotMovement2D::TMotionModelOptions m_motionModel;
+    std::unique_ptr<LiveView> m_window;  ///< --gui
+};
+
+}  // namespace mrpt_vslam::apps
