@@ -141,7 +141,7 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
     } catch (const core::UsageError&) {
         throw;
     } catch (const std::exception& e) {
-        throw usageError(core::oneLineMessage(e));
+        throw configError(e);
     }
     for (const auto& robot : filterOptions.robots) {
         const std::string key = "start_pose_" + robot;

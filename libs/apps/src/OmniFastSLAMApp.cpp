@@ -105,7 +105,7 @@ void OmniFastSLAMApp::Impl::loadConfig()
     } catch (const core::UsageError&) {
         throw;
     } catch (const std::exception& e) {
-        throw usageError(mrpt::exception_to_str(e));
+        throw configError(e);
     }
     checkParticleFilterOptions(
         "pfOptimalProposal (FastSLAM 2.0) or pfStandardProposal (FastSLAM 1.0)");

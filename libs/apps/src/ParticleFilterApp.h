@@ -31,7 +31,11 @@ class ParticleFilterApp : public SlamApp {
     {
         // Every particle's map comes from the .ini through MRPT's map registry.
         mrpt::maps::TSetOfMetricMapInitializers inits;
-        inits.loadFromConfigFile(cfg, kMapSection);
+        try {
+            inits.loadFromConfigFile(cfg, kMapSection);
+        } catch (const std::exception& e) {
+            throw configError(e);
+        }
         mrpt::maps::CMultiMetricMap maps(inits);
         const auto map = maps.mapByClass<MAP>();
         if (!map || maps.maps.size() != 1)

@@ -24,6 +24,12 @@ core::UsageError SlamApp::usageError(const std::string& what) const
     return core::UsageError(cfg.name() + ": " + what);
 }
 
+core::UsageError SlamApp::configError(const std::exception& e) const
+{
+    if (!cfg.valueError().empty()) return core::UsageError(cfg.valueError());
+    return usageError(core::oneLineMessage(e));
+}
+
 void SlamApp::initialize()
 {
     cfg.loadFile(args.configFile, args.overrides);

@@ -56,6 +56,9 @@ class SlamApp {
 
     /// A config problem: "<config file>: <what>".
     core::UsageError usageError(const std::string& what) const;
+    /** A config problem from an option loader's exception, as one line: the value that did not
+     *  fit its key (CheckedConfigFile::valueError()) if that was the cause, else its message. */
+    core::UsageError configError(const std::exception& e) const;
     /** The value of `key` of the app's section, one of `choices` (name, value); absent, the
      *  first one. Any other name is a usage error that lists them. */
     template <class T>

@@ -105,7 +105,7 @@ void ViewSLAMApp::Impl::loadConfig()
     try {
         slam = COmniViewSLAM::fromConfig(cfg, seed);
     } catch (const std::exception& e) {
-        throw usageError(core::oneLineMessage(e));
+        throw configError(e);
     }
 }
 
