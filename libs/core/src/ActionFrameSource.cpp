@@ -1,10 +1,12 @@
 #include <mrpt/core/bits_math.h>
 #include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/UsageError.h>
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 namespace mrpt_vslam::core {
 
@@ -59,16 +61,46 @@ void ActionFrameSource::emitPending(mrpt::obs::CActionCollection::Ptr& actions,
     m_pending.reset();
 }
 
+mrpt::obs::CActionCollection::Ptr ActionFrameSource::afterCarried(
+    const mrpt::obs::CActionCollection& later) const
+{
+    auto out = mrpt::obs::CActionCollection::Create();
+    for (size_t k = 0; k < later.size(); k++) {
+        const auto* move = dynamic_cast<const mrpt::obs::CActionRobotMovement2D*>(&later.get(k));
+        const auto* before = k < m_carried->size()
+                                 ? dynamic_cast<const mrpt::obs::CActionRobotMovement2D*>(
+                                       &std::as_const(*m_carried).get(k))
+                                 : nullptr;
+        if (!move || !before) {
+            out->insert(later.get(k));
+            continue;
+        }
+        mrpt::poses::CPosePDFGaussian sum(*before->poseChange);
+        sum += mrpt::poses::CPosePDFGaussian(*move->poseChange);
+        mrpt::obs::CActionRobotMovement2D composed = *move;
+        composed.poseChange = mrpt::poses::CPosePDFGaussian::Create(sum);
+        composed.rawOdometryIncrementReading =
+            before->rawOdometryIncrementReading + move->rawOdometryIncrementReading;
+        out->insert(composed);
+    }
+    return out;
+}
+
 bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
                              mrpt::obs::CSensoryFrame::Ptr& frame)
 {
     for (TRawlogEntry e; m_reader.next(e);) {
         if (e.actions || e.observations) {  // format #1
-            if (!e.actions || !e.observations) continue;
+            if (!e.actions) continue;
             if (!e.actions->getBestMovementEstimation())
                 throw std::runtime_error(m_reader.file() + ": entry " + std::to_string(e.index) +
                                          " has an action collection without odometry");
-            actions = e.actions;
+            actions = m_carried ? afterCarried(*e.actions) : e.actions;
+            m_carried.reset();
+            if (!e.observations) {  // no frame to go with: into the next step
+                m_carried = actions;
+                continue;
+            }
             frame = e.observations;
             return true;
         }

@@ -16,7 +16,10 @@ namespace mrpt_vslam::core {
 
 /** Filter steps (odometry action + sensory frame) from a rawlog in either format
  *  (doc/data-formats.md):
- *  - format #1: each `CActionCollection` with the `CSensoryFrame` that follows it;
+ *  - format #1: each `CActionCollection` with the `CSensoryFrame` that follows it; an action
+ *    collection with no frame after it is composed (mean and covariance, robot by robot) into
+ *    the next step's, so that no odometry is lost; a frame with no action before it (at the
+ *    start of a rawlog) has no motion to go with and is passed over;
  *  - format #2 (observation-only): `CObservationOdometry` readings give the odometry, and every
  *    group of observations with the same timestamp that holds one matching `steps` becomes a
  *    frame, with a `CActionRobotMovement2D` built from the odometry increment since the previous
@@ -47,6 +50,8 @@ class ActionFrameSource {
                      mrpt::obs::CSensoryFrame::Ptr& frame);
     /// Whether every robot has had an odometry reading.
     bool haveOdometry() const;
+    /// `later`'s odometry after m_carried's, robot by robot (CPosePDFGaussian composition).
+    mrpt::obs::CActionCollection::Ptr afterCarried(const mrpt::obs::CActionCollection& later) const;
 
     RawlogReader& m_reader;
     std::vector<ObservationSelector> m_steps;
@@ -54,7 +59,8 @@ class ActionFrameSource {
     std::vector<std::string> m_odometry_labels;  ///< empty: one robot, any label
     /// Per robot: the latest reading and the one at the last step.
     std::vector<std::optional<mrpt::poses::CPose2D>> m_odometry, m_odometry_at_last_step;
-    mrpt::obs::CSensoryFrame::Ptr m_pending;  ///< format #2 frame being assembled
+    mrpt::obs::CActionCollection::Ptr m_carried;  ///< format #1 odometry not yet in a step
+    mrpt::obs::CSensoryFrame::Ptr m_pending;      ///< format #2 frame being assembled
     mrpt::Clock::time_point m_pending_time;
     bool m_pending_is_step = false;
 };
