@@ -26,6 +26,7 @@
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
 #include <mrpt_vslam/multirobot/MultiRobotVSLAMApp.h>
 #include <mrpt_vslam/multirobot/StereoFrontEnd.h>
+#include <mrpt_vslam/multirobot/TeamPathSmoother.h>
 
 #include <bitset>
 #include <cstdio>
@@ -34,6 +35,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace mrpt_vslam::multirobot {
 
@@ -41,6 +43,19 @@ namespace {
 constexpr const char* kAppSection = "MultiRobotVSLAM";
 constexpr const char* kMapSection = "MappingApplication";
 constexpr const char* kFrontEndSection = "StereoFrontEnd";
+constexpr const char* kSmootherSection = "TeamPathSmoother";
+/// The keys of [TeamPathSmoother] that were in [MultiRobotVSLAM] before: (former, new).
+constexpr std::pair<const char*, const char*> kMovedKeys[] = {
+    {"map_along_path", "map_along_path"},
+    {"map_along_path_D0", "D0"},
+    {"map_along_path_min_times_seen", "min_times_seen"},
+    {"smooth_paths", "smooth_paths"},
+    {"smooth_paths_rounds", "rounds"},
+    {"smooth_paths_huber", "huber"},
+    {"smooth_paths_odometry_scale_std", "odometry_scale_std"},
+    {"smooth_paths_motion_cov_factor", "motion_cov_factor"},
+    {"smooth_paths_reanchor_gap", "reanchor_gap"},
+    {"smooth_paths_reanchor_gain", "reanchor_gain"}};
 
 /// Where the landmark measurements come from (ini key `input`).
 enum class TInput { Auto, Landmarks, Stereo };
@@ -70,9 +85,11 @@ struct MultiRobotVSLAMApp::Impl {
     mrpt::bayes::CParticleFilter pf;
     CVisualLandmarksMap mapTemplate;
     CMultiRobotVisualSLAM::TOptions filterOptions;
+    TeamPathSmoother::TOptions smootherOptions;
     StereoFrontEnd::TOptions frontEndOptions;
     std::vector<std::unique_ptr<StereoFrontEnd>> frontEnds;  ///< one per robot, on demand
     std::unique_ptr<CMultiRobotVisualSLAM> filter;
+    std::unique_ptr<TeamPathSmoother> smoother;  ///< with map_along_path
     std::vector<std::optional<core::TumTrajectory>> groundTruth;
     mrpt::obs::CActionRobotMovement2D::TMotionModelOptions motionModel;
     std::unique_ptr<core::LiveView> window;  ///< --gui
@@ -88,8 +105,8 @@ struct MultiRobotVSLAMApp::Impl {
         const mrpt::obs::CActionCollection& actions, const mrpt::obs::CSensoryFrame& frame);
     /// Stereo images → landmarks where images are the input; counts the landmark inputs.
     void prepareFrame(mrpt::obs::CSensoryFrame& sf);
-    /// With smooth_paths: the result of CMultiRobotVisualSLAM::smoothPaths() and its time.
-    std::optional<CMultiRobotVisualSLAM::TSmoothedTeam> smoothed;
+    /// With smooth_paths: the result of TeamPathSmoother::smoothPaths() and its time.
+    std::optional<TeamPathSmoother::TSmoothedTeam> smoothed;
     double smoothingSeconds = 0;
     std::vector<core::TumTrajectory> filterPaths;  ///< the best particle's, when smoothed
 
@@ -144,6 +161,7 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
 
     try {
         filterOptions.loadFromConfigFile(cfg, kAppSection);
+        smootherOptions.loadFromConfigFile(cfg, kSmootherSection);
         pf.m_options.loadFromConfigFile(cfg, "ParticleFilter");
         frontEndOptions.loadFromConfigFile(cfg, kFrontEndSection);
         motionModel = core::ActionFrameSource::loadMotionModel(cfg, "MotionModel");
@@ -188,6 +206,10 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
         throw usage(
             "[MultiRobotVSLAM] odometry_label is for one robot; a team's odometry is "
             "labelled <ROBOT>_ODOM");
+    for (const auto& [former, key] : kMovedKeys)
+        if (cfg.keyExists(kAppSection, former))
+            throw usage(std::string("[MultiRobotVSLAM] ") + former + ": moved to [" +
+                        kSmootherSection + "] " + key);
     cfg.throwIfUnreadKeys();
 }
 
@@ -289,6 +311,11 @@ void MultiRobotVSLAMApp::initialize()
     // CParticleFilter's resampling draws from MRPT's global generator.
     mrpt::random::getRandomGenerator().randomize(d.seed);
     d.filter->options = d.filterOptions;
+    if (d.smootherOptions.map_along_path) {
+        d.smoother = std::make_unique<TeamPathSmoother>(d.mapTemplate);
+        d.smoother->options = d.smootherOptions;
+        d.filter->setStepObserver(d.smoother.get());
+    }
     d.pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
     if (d.args.gui) d.window = std::make_unique<core::LiveView>("multirobot-vslam");
 }
@@ -402,9 +429,9 @@ void MultiRobotVSLAMApp::run()
         throw std::runtime_error(d.rawlog + ": no landmark measurements (" + inputs +
                                  "); the rawlog has: " + reader.summary().describe());
     for (size_t k = 0; k < robots.size(); k++) estimatedPaths[k] = d.bestParticlePath(k);
-    if (d.filterOptions.smooth_paths) {
+    if (d.smootherOptions.smooth_paths) {
         const core::RunTimer smoothing;
-        d.smoothed = d.filter->smoothPaths(d.filter->bestParticle());
+        d.smoothed = d.smoother->smoothPaths(d.filter->bestParticle());
         d.smoothingSeconds = smoothing.elapsedSeconds();
         d.filterPaths = estimatedPaths;
         for (size_t k = 0; k < robots.size(); k++)
@@ -506,12 +533,12 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
     // along the smoothed paths
     std::optional<CVisualLandmarksMap> alongPath;
     double alongPathSeconds = 0;
-    if (filterOptions.map_along_path && !smoothed) {
+    if (smootherOptions.map_along_path && !smoothed) {
         const core::RunTimer rebuild;
-        alongPath = filter->mapAlongPath(best);
+        alongPath = smoother->mapAlongPath(best);
         alongPathSeconds = rebuild.elapsedSeconds();
     }
-    if (filterOptions.map_along_path)
+    if (smootherOptions.map_along_path)
         best.map.saveMetricMapRepresentationToFile(out.file("particle_map"));
     const CVisualLandmarksMap& map = smoothed ? smoothed->map : alongPath ? *alongPath : best.map;
     core::saveFinalMap(map, app.outDir);
@@ -551,7 +578,7 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
                     nonPositiveRanges);
     report.setCount("particles", static_cast<double>(filter->particlesCount()));
     report.setCount("landmarks", static_cast<double>(map.size()));
-    if (filterOptions.map_along_path)
+    if (smootherOptions.map_along_path)
         report.setCount("particle_map_landmarks", static_cast<double>(best.map.size()));
     if (alongPath) report.setResult("map_along_path_s", alongPathSeconds);
     if (smoothed) {
