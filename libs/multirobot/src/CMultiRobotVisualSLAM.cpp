@@ -208,6 +208,7 @@ void CMultiRobotVisualSLAM::reset(const std::vector<TPose2D>& start_poses, doubl
         d.path = std::make_shared<const TTeamPathNode>(timestamp, d.poses, nullptr);
         d.map = m_template;
         d.accumulated_log_w = 0;
+        d.correspondences.clear();
     }
     m_steps = 0;
     if (m_observer)
@@ -379,11 +380,14 @@ void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandma
     for (auto& p : m_particles) {
         const TPlanarTransform pose(p.d->poses[k]);
         for (size_t j = 0; j < z.size(); j++) in_map[j] = toMapFrame(z[j], pose);
-        for (const TFusionResult& r :
-             p.d->map.fuseFrame(z, in_map, candidates, static_cast<unsigned>(k), false)) {
+        const auto fused =
+            p.d->map.fuseFrame(z, in_map, candidates, static_cast<unsigned>(k), false);
+        for (size_t j = 0; j < z.size(); j++) {
+            const TFusionResult& r = fused[j];
             p.log_w += r.log_w;  // line 44 and line 11: the product over the team
             p.d->accumulated_log_w += r.log_w;
             (r.created ? lastStepStats.created : lastStepStats.associated)++;
+            p.d->correspondences.push_back({static_cast<uint32_t>(k), r.id, z[j].track_id});
         }
     }
 }
@@ -478,6 +482,7 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const TMotionGaussian& moti
             const TFusionResult r = p.map.fuseAs(z[j], toMapFrame(z[j], pose), candidates[j],
                                                  static_cast<unsigned>(k), assoc[j]);
             (r.created ? lastStepStats.created : lastStepStats.associated)++;
+            p.correspondences.push_back({static_cast<uint32_t>(k), r.id, z[j].track_id});
         }
         m_particles[i].log_w += log_w;  // line 11: the product over the team
         p.accumulated_log_w += log_w;
@@ -519,8 +524,11 @@ void CMultiRobotVisualSLAM::runStep(
         if (options.resample_per_robot && k + 1 < K && ESS() < pf_options.BETA)
             performResampling(pf_options);
     }
-    for (auto& p : m_particles)
-        p.d->path = std::make_shared<const TTeamPathNode>(timestamp, p.d->poses, p.d->path);
+    for (auto& p : m_particles) {
+        p.d->path = std::make_shared<const TTeamPathNode>(timestamp, p.d->poses, p.d->path,
+                                                          std::move(p.d->correspondences));
+        p.d->correspondences.clear();
+    }
     m_steps++;
 }
 

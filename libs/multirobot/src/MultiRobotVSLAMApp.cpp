@@ -24,13 +24,13 @@
 #include <mrpt_vslam/core/RunTimer.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
+#include <mrpt_vslam/multirobot/LandmarkIdentityTally.h>
 #include <mrpt_vslam/multirobot/MultiRobotVSLAMApp.h>
 #include <mrpt_vslam/multirobot/StereoFrontEnd.h>
 #include <mrpt_vslam/multirobot/TeamPathSmoother.h>
 
 #include <bitset>
 #include <cstdio>
-#include <map>
 #include <opencv2/core/version.hpp>
 #include <optional>
 #include <sstream>
@@ -117,10 +117,10 @@ struct MultiRobotVSLAMApp::Impl {
                   const std::vector<core::TumTrajectory>& paths) const;
     void writeOutputs(MultiRobotVSLAMApp& app, const core::RunTimer& timer);
     /** Where measurements carry identities (range-bearing data imported with kept ids): of the
-     *  measurements fused into the landmarks of `map`, how many had another identity than the
-     *  one that created the landmark, and how many identities have several landmarks; as
-     *  JSON, empty without identities. */
-    static std::string identityAssociationJson(const CVisualLandmarksMap& map);
+     *  measurements fused into the landmarks of the output map, how many had another identity
+     *  than the one that created the landmark, and how many identities have several landmarks;
+     *  as JSON, empty without identities. */
+    static std::string identityAssociationJson(const TLandmarkIdentityTally& tally);
     /// Merged vs duplicated landmarks of `map` against the true ones (doc/multirobot.md), as
     /// JSON.
     std::string landmarkMergingJson(const CVisualLandmarksMap& map,
@@ -490,25 +490,15 @@ std::string MultiRobotVSLAMApp::Impl::landmarkMergingJson(const CVisualLandmarks
     return j.str();
 }
 
-std::string MultiRobotVSLAMApp::Impl::identityAssociationJson(const CVisualLandmarksMap& map)
+std::string MultiRobotVSLAMApp::Impl::identityAssociationJson(const TLandmarkIdentityTally& tally)
 {
-    size_t fused = 0, conflicts = 0, landmarks = 0;
-    std::map<int64_t, size_t> landmarksOf;
-    map.landmarks().forEach([&](uint32_t, const TVisualLandmark& lm) {
-        if (lm.identity < 0) return;
-        landmarks++;
-        landmarksOf[lm.identity]++;
-        fused += lm.times_seen - 1;
-        conflicts += lm.identity_conflicts;
-    });
-    if (landmarks == 0) return "";
-    size_t duplicatedIdentities = 0;
-    for (const auto& [id, n] : landmarksOf) duplicatedIdentities += n > 1 ? 1 : 0;
+    if (tally.landmarks_with_identity == 0) return "";
     std::ostringstream j;
-    j << "{\"landmarks_with_identity\": " << landmarks << ", \"identities\": " << landmarksOf.size()
-      << ", \"identities_with_several_landmarks\": " << duplicatedIdentities
-      << ", \"fused_measurements\": " << fused << ", \"fused_with_another_identity\": " << conflicts
-      << "}";
+    j << "{\"landmarks_with_identity\": " << tally.landmarks_with_identity
+      << ", \"identities\": " << tally.identities
+      << ", \"identities_with_several_landmarks\": " << tally.identities_with_several_landmarks
+      << ", \"fused_measurements\": " << tally.fused_measurements
+      << ", \"fused_with_another_identity\": " << tally.fused_with_another_identity << "}";
     return j.str();
 }
 
@@ -532,15 +522,21 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
     // the output map: the best particle's own, or the one made along its final path, or
     // along the smoothed paths
     std::optional<CVisualLandmarksMap> alongPath;
+    std::vector<TCorrespondence> alongPathCorrespondences;
     double alongPathSeconds = 0;
     if (smootherOptions.map_along_path && !smoothed) {
         const core::RunTimer rebuild;
-        alongPath = smoother->mapAlongPath(best);
+        alongPath = smoother->mapAlongPath(best, &alongPathCorrespondences);
         alongPathSeconds = rebuild.elapsedSeconds();
     }
     if (smootherOptions.map_along_path)
         best.map.saveMetricMapRepresentationToFile(out.file("particle_map"));
     const CVisualLandmarksMap& map = smoothed ? smoothed->map : alongPath ? *alongPath : best.map;
+    // the correspondences `map` was made with
+    const std::vector<TCorrespondence> correspondences =
+        smoothed    ? smoothed->correspondences
+        : alongPath ? alongPathCorrespondences
+                    : TLandmarkIdentityTally::historyOf(best);
     core::saveFinalMap(map, app.outDir);
 
     mrpt::opengl::COpenGLScene scene;
@@ -599,7 +595,8 @@ void MultiRobotVSLAMApp::Impl::writeOutputs(MultiRobotVSLAMApp& app, const core:
     report.setTiming(timer);
     if (trueLandmarks)
         report.setResultJson("landmark_merging", landmarkMergingJson(map, *trueLandmarks));
-    if (const auto a = identityAssociationJson(map); !a.empty())
+    if (const auto a = identityAssociationJson(TLandmarkIdentityTally::of(correspondences, map));
+        !a.empty())
         report.setResultJson("association_by_identity", a);
     bool anyGroundTruth = false;
     for (const auto& g : groundTruth) anyGroundTruth = anyGroundTruth || g.has_value();

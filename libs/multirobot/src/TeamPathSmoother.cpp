@@ -139,9 +139,24 @@ CVisualLandmarksMap TeamPathSmoother::mapAlong(const TTeamPath& path, TFrameIds*
     return map;
 }
 
-CVisualLandmarksMap TeamPathSmoother::mapAlongPath(const TTeamParticle& p) const
+std::vector<TCorrespondence> TeamPathSmoother::correspondencesOf(const TFrameIds& ids) const
 {
-    return mapAlong(recordedPathOf(p), nullptr);
+    std::vector<TCorrespondence> c;
+    for (size_t f = 0; f < m_fusedFrames.size(); f++)
+        for (size_t j = 0; j < ids[f].size(); j++)
+            if (ids[f][j])
+                c.push_back({static_cast<uint32_t>(m_fusedFrames[f].robot), *ids[f][j],
+                             m_fusedFrames[f].z[j].track_id});
+    return c;
+}
+
+CVisualLandmarksMap TeamPathSmoother::mapAlongPath(
+    const TTeamParticle& p, std::vector<TCorrespondence>* correspondences) const
+{
+    TFrameIds ids;
+    CVisualLandmarksMap map = mapAlong(recordedPathOf(p), correspondences ? &ids : nullptr);
+    if (correspondences) *correspondences = correspondencesOf(ids);
+    return map;
 }
 
 TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticle& p) const
@@ -211,7 +226,8 @@ TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticl
         for (size_t k = 0; k < result.odometry_scales.size(); k++)
             result.odometry_scales[k] = graph.odometryScale(k);
     }
-    result.map = mapAlong(path, nullptr);
+    result.map = mapAlong(path, &ids);
+    result.correspondences = correspondencesOf(ids);
     for (size_t k = 0; k < K; k++) {
         result.paths.push_back(CMultiRobotVisualSLAM::pathOf(p, k));  // for the timestamps
         for (size_t step = 0; step < path.size(); step++)

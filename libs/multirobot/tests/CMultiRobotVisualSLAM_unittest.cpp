@@ -2,10 +2,12 @@
 #include <mrpt/bayes/CParticleFilter.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
+#include <mrpt_vslam/multirobot/LandmarkIdentityTally.h>
 #include <mrpt_vslam/test/SyntheticTeamWorld.h>
 
 #include <algorithm>
 #include <bitset>
+#include <map>
 #include <utility>
 
 using namespace mrpt_vslam::multirobot;
@@ -116,9 +118,10 @@ TEST(CMultiRobotVisualSLAM, ResamplingAfterEachRobotResetsWeightsBetweenRobots)
     }
 }
 
-// The step observer hears of every reset and of every robot of every step, with the
-// measurements the filter fuses.
-TEST(CMultiRobotVisualSLAM, TheStepObserverHearsOfEveryRobotAndStep)
+// Each path node holds its step's correspondences, which resampling (here after every robot)
+// carries with the map they were fused into: a particle's history has one entry per fusion into
+// its map, by the robot that made it. The step observer hears of every robot of every step.
+TEST(CMultiRobotVisualSLAM, PathNodesHoldTheCorrespondencesOfTheParticlesMap)
 {
     struct TRecorder : CMultiRobotVisualSLAM::TStepObserver {
         std::vector<std::pair<size_t, size_t>> steps;  // (step, robot)
@@ -163,6 +166,23 @@ TEST(CMultiRobotVisualSLAM, TheStepObserverHearsOfEveryRobotAndStep)
         for (size_t i = 0; i < recorder.steps.size(); i++)
             EXPECT_EQ(recorder.steps[i], std::make_pair(i / 2 + 1, i % 2)) << i;
         EXPECT_EQ(recorder.measurements, measurements);
+        for (const auto& particle : filter.m_particles) {
+            const TTeamParticle& p = *particle.d;
+            std::map<uint32_t, std::pair<uint32_t, uint32_t>> fused;  // times, robot bits
+            const auto history = TLandmarkIdentityTally::historyOf(p);
+            for (const auto& c : history) {
+                fused[c.landmark].first++;
+                fused[c.landmark].second |= 1u << c.robot;
+            }
+            ASSERT_EQ(fused.size(), p.map.size());
+            p.map.landmarks().forEach([&](uint32_t id, const TVisualLandmark& lm) {
+                EXPECT_EQ(fused[id].first, lm.times_seen) << id;
+                EXPECT_EQ(fused[id].second, lm.seen_by) << id;
+            });
+            // the world's points carry their index as track_id: each landmark has an identity
+            EXPECT_EQ(TLandmarkIdentityTally::of(history, p.map).landmarks_with_identity,
+                      p.map.size());
+        }
     }
 }
 

@@ -3,10 +3,12 @@
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
+#include <mrpt_vslam/multirobot/LandmarkIdentityTally.h>
 #include <mrpt_vslam/multirobot/TeamPathSmoother.h>
 #include <mrpt_vslam/test/SyntheticTeamWorld.h>
 
 #include <cmath>
+#include <map>
 #include <string>
 
 using namespace mrpt_vslam::multirobot;
@@ -44,7 +46,7 @@ std::string errorOf(const std::string& lines)
 
 // With one particle and the filter's own gate, the map made again along the particle's path
 // is the particle's map: same landmarks, means, covariances and counts (a pose taken from the
-// wrong step of the path would move them); the count
+// wrong step of the path would move them), made with the same correspondences; the count
 // threshold then removes exactly the landmarks seen fewer times.
 TEST(TeamPathSmoother, MapAlongPathWithTheFiltersGateIsTheParticlesMap)
 {
@@ -66,7 +68,8 @@ TEST(TeamPathSmoother, MapAlongPathWithTheFiltersGateIsTheParticlesMap)
         pf.executeOn(filter, &acts, &sf);
     }
     const auto& p = filter.bestParticle();
-    const CVisualLandmarksMap rebuilt = smoother.mapAlongPath(p);
+    std::vector<TCorrespondence> correspondences;
+    const CVisualLandmarksMap rebuilt = smoother.mapAlongPath(p, &correspondences);
     ASSERT_GT(p.map.size(), 20u);
     ASSERT_EQ(rebuilt.size(), p.map.size());
     size_t seen_thrice = 0;
@@ -79,10 +82,18 @@ TEST(TeamPathSmoother, MapAlongPathWithTheFiltersGateIsTheParticlesMap)
         EXPECT_EQ(r->seen_by, lm.seen_by) << id;
         seen_thrice += lm.times_seen >= 3 ? 1 : 0;
     });
+    const auto history = TLandmarkIdentityTally::historyOf(p);
+    ASSERT_EQ(correspondences.size(), history.size());
+    for (size_t i = 0; i < history.size(); i++) {
+        EXPECT_EQ(correspondences[i].robot, history[i].robot) << i;
+        EXPECT_EQ(correspondences[i].landmark, history[i].landmark) << i;
+        EXPECT_EQ(correspondences[i].track_id, history[i].track_id) << i;
+    }
     ASSERT_GT(seen_thrice, 0u);
     ASSERT_LT(seen_thrice, p.map.size());
     smoother.options.min_times_seen = 3;
-    EXPECT_EQ(smoother.mapAlongPath(p).size(), seen_thrice);
+    EXPECT_EQ(smoother.mapAlongPath(p, &correspondences).size(), seen_thrice);
+    for (const auto& c : correspondences) EXPECT_GE(p.map.landmark(c.landmark)->times_seen, 3u);
 
     // a new run: what was recorded is forgotten, the old particle's path no longer fits
     const TTeamParticle before = p;
@@ -143,6 +154,13 @@ TEST(TeamPathSmoother, SmoothingReanchorsAPartDisplacedAfterAGap)
     EXPECT_EQ(undisplaced.reanchored, 0u);
     EXPECT_LT(errorAfterGap(undisplaced), 0.2);
     EXPECT_LT(errorAfterGap(reanchored), errorAfterGap(undisplaced) + 0.01);
+    // the correspondences of the smoothed map are those of each of its landmarks' readings
+    std::map<uint32_t, uint32_t> readings;
+    for (const auto& c : reanchored.correspondences) readings[c.landmark]++;
+    EXPECT_EQ(readings.size(), reanchored.map.size());
+    reanchored.map.landmarks().forEach([&](uint32_t id, const TVisualLandmark& lm) {
+        EXPECT_EQ(readings[id], lm.times_seen) << id;
+    });
 }
 
 TEST(TeamPathSmoother, OptionsLoadFromTheirSectionAndRejectImpossibleValues)

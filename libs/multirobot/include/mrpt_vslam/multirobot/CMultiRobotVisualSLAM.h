@@ -48,7 +48,9 @@ namespace mrpt_vslam::multirobot {
  *      motion is sampled. The robots' motions are independent, so this is the same posterior
  *      processed one robot at a time; it keeps the particles from having to be good for all
  *      K robots at once, which the joint product over a 3K-dimensional proposal rarely is.
- *  The best particle is the one with the largest Σ_t log ω_t (Eq. 14). */
+ *  The best particle is the one with the largest Σ_t log ω_t (Eq. 14). Each step's path node
+ *  of a particle keeps the step's correspondences (FastSLAM's c_t: the landmark each measurement
+ *  went to, with its track_id), for the evaluation of the associations. */
 class CMultiRobotVisualSLAM
     : public mrpt::bayes::CParticleFilterData<TTeamParticle,
                                               mrpt::bayes::particle_storage_mode::POINTER>,

@@ -78,14 +78,18 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
      *  insertion options but D0 = options.D0; then the landmarks seen fewer than
      *  options.min_times_seen times are removed. The poses do not move, so a wrong
      *  association here costs the map only, not the paths, and the gate can be wider than
-     *  the filter's. \pre registered with the filter before its reset() */
-    CVisualLandmarksMap mapAlongPath(const TTeamParticle& p) const;
+     *  the filter's. `correspondences` (if given) gets those of the map's landmarks, in the
+     *  order of the run. \pre registered with the filter before its reset() */
+    CVisualLandmarksMap mapAlongPath(const TTeamParticle& p,
+                                     std::vector<TCorrespondence>* correspondences = nullptr) const;
 
     /// The team's paths and map after smoothPaths().
     struct TSmoothedTeam {
         /// one per robot, oldest first, as CMultiRobotVisualSLAM::pathOf()
         std::vector<std::vector<std::pair<double, mrpt::math::TPose2D>>> paths;
-        CVisualLandmarksMap map;      ///< mapped along `paths` as mapAlongPath() maps
+        CVisualLandmarksMap map;  ///< mapped along `paths` as mapAlongPath() maps
+        /// those `map` was made with, as mapAlongPath() gives them
+        std::vector<TCorrespondence> correspondences;
         size_t iterations = 0;        ///< least-squares iterations, all rounds
         size_t outlier_readings = 0;  ///< beyond the Huber threshold after the last round
         size_t reanchored = 0;        ///< parts of paths reanchorAfterGaps() moved, all rounds
@@ -127,6 +131,8 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
     /// the landmark it went to, or std::nullopt if that landmark was removed.
     using TFrameIds = std::vector<std::vector<std::optional<uint32_t>>>;
     CVisualLandmarksMap mapAlong(const TTeamPath& path, TFrameIds* ids) const;
+    /// The correspondences of mapAlong()'s `ids`, those of removed landmarks left out.
+    std::vector<TCorrespondence> correspondencesOf(const TFrameIds& ids) const;
     /** Of the landmark readings in fused frames `frames` (one robot's), the fraction that fit
      *  (squared Mahalanobis distance < 9.21, 99 % for 2 dof) a landmark of `map` (made along
      *  `path`, `ids` its associations) that readings outside `frames` also went to. */
