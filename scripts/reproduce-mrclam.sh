@@ -131,10 +131,10 @@ team() {  # team NAME RAWLOG ROBOTS
   local name="$1" rawlog="$2" robots="$3"
   : > "$OUT/team.tmp"
   for seed in $SEEDS; do
-    # the filter alone: map_along_path's count threshold is set for robots 1-3 over the whole
-    # dataset, and the smoothing needs it
+    # the filter alone: the map along the path's count threshold (min_times_seen) is set for
+    # robots 1-3 over the whole dataset, and the smoothing needs it
     res=$(run "$OUT/$name-seed$seed" "$rawlog" "$robots" --seed "$seed" \
-      --set MultiRobotVSLAM.map_along_path=false --set MultiRobotVSLAM.smooth_paths=false)
+      --set TeamPathSmoother.map_along_path=false --set TeamPathSmoother.smooth_paths=false)
     echo "$res" >> "$OUT/team.tmp"
   done
   local k=0
@@ -170,7 +170,7 @@ for d0 in 11.34 30 50; do
       --set MotionModel.a3=0.01 --set MotionModel.a4=0.01 --set MotionModel.minStdXY=0.0005 \
       --set MotionModel.minStdPHI_deg=0.05 \
       --set "MappingApplication_visualLandmarksMap_00_insertOpts.D0=$d0" \
-      --set MultiRobotVSLAM.map_along_path=false --set MultiRobotVSLAM.smooth_paths=false)
+      --set TeamPathSmoother.map_along_path=false --set TeamPathSmoother.smooth_paths=false)
     # vslam-eval's one-to-one (Hungarian) matching within 0.5 m (run's --landmark-cutoff):
     # "landmarks: 15 true, N estimated: K matched"
     echo "${res%%|*} $(awk '/^landmarks:/ {print $4, $6}' "$dir/summary.txt")"
@@ -190,7 +190,7 @@ for seed in $SEEDS; do
   dir="$OUT/r123-identity-seed$seed"
   res=$(run "$dir" "$OUT/data/r123-ids.rawlog" "R1 R2 R3" --seed "$seed" \
     --set MappingApplication_visualLandmarksMap_00_insertOpts.associate_by_identity=true \
-    --set MultiRobotVSLAM.map_along_path=false --set MultiRobotVSLAM.smooth_paths=false)
+    --set TeamPathSmoother.map_along_path=false --set TeamPathSmoother.smooth_paths=false)
   read -r -a v <<< "${res%%|*}"
   read -r -a w <<< "${res##*|}"
   echo "| $seed | ${v[0]} | ${v[2]} | ${v[4]} | $(awk '/^landmarks:/ {print $4 " | " $6}' \

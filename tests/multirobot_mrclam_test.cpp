@@ -90,8 +90,8 @@ TEST(MultiRobotVSLAMOnMrclam, RobotReadingsKeepTheTeamFarBelowOdometry)
     // the particle's own map: map_along_path is checked below
     const auto runFilter = [&](const std::string& name, const std::string& options) {
         return runMrclam(scratch, rawlog, name,
-                         "--seed 1 --set MultiRobotVSLAM.map_along_path=false "
-                         "--set MultiRobotVSLAM.smooth_paths=false " +
+                         "--seed 1 --set TeamPathSmoother.map_along_path=false "
+                         "--set TeamPathSmoother.smooth_paths=false " +
                              options);
     };
     const std::string shipped = runFilter("shipped", "");
@@ -133,8 +133,8 @@ TEST(MultiRobotVSLAMOnMrclam, KnownCorrespondencesMapEachLandmarkOnce)
         runMrclam(scratch, kWindow + "-ids.rawlog", "run",
                   "--ground-truth '" + kWindow +
                       "' --seed 1 --set MappingApplication_visualLandmarksMap_00_insertOpts."
-                      "associate_by_identity=true --set MultiRobotVSLAM.map_along_path=false "
-                      "--set MultiRobotVSLAM.smooth_paths=false");
+                      "associate_by_identity=true --set TeamPathSmoother.map_along_path=false "
+                      "--set TeamPathSmoother.smooth_paths=false");
     const auto run = mrpt_vslam::test::readJson(out + "/run.json");
     const auto& ids = run["results"]["association_by_identity"];
     EXPECT_EQ(ids["identities"].get<int>(), 15);
@@ -162,7 +162,7 @@ TEST(MultiRobotVSLAMOnMrclam, SmoothedPathsAndTheMapAlongThemMeetTheTargets)
     for (const std::string seed : {"1", "2"}) {
         const std::string out =
             runMrclam(scratch, rawlog, "run" + seed,
-                      "--seed " + seed + " --set MultiRobotVSLAM.map_along_path_min_times_seen=50");
+                      "--seed " + seed + " --set TeamPathSmoother.min_times_seen=50");
         const auto result = evaluate(out);
         ASSERT_TRUE(result.landmarks.has_value());
         EXPECT_EQ(result.landmarks->num_matched, 15u) << "seed " << seed;
@@ -205,10 +205,10 @@ TEST(MultiRobotVSLAMOnFullDataset, ReanchoringBringsARobotBackAfterAGap)
     for (const std::string seed : {"1", "2"}) {
         std::map<std::string, double> r2;
         for (const std::string gap : {"0", "10"}) {
-            const std::string out = runMrclam(
-                scratch, rawlog, "run" + seed + "-" + gap,
-                "--seed " + seed + " --set MultiRobotVSLAM.map_along_path_min_times_seen=50" +
-                    " --set MultiRobotVSLAM.smooth_paths_reanchor_gap=" + gap);
+            const std::string out =
+                runMrclam(scratch, rawlog, "run" + seed + "-" + gap,
+                          "--seed " + seed + " --set TeamPathSmoother.min_times_seen=50" +
+                              " --set TeamPathSmoother.reanchor_gap=" + gap);
             const auto result = evaluate(out);
             for (const auto& robot : result.robots)
                 if (robot.files.robot == "R2") r2[gap] = robot.estimate.unaligned.ate_rmse;

@@ -163,20 +163,24 @@ TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
     EXPECT_EQ(unknown.exit_code, 2);
     EXPECT_NE(unknown.out.find("bogus_key"), std::string::npos) << unknown.out;
 
-    // impossible parameters: a non-zero exit and one line naming the key and the problem
+    // impossible parameters, and a key of the smoother left in the filter's section: a non-zero
+    // exit and one line naming the key and the problem
     const std::vector<std::pair<std::string, std::string>> impossible = {
-        {"max_observations_per_robot=0", "max_observations_per_robot: must be >= 1"},
-        {"robot_reading_ids=7", "robot_reading_ids: must give one id per robot"},
-        {"map_along_path_min_times_seen=-1", "map_along_path_min_times_seen: must be >= 1"},
-        {"smooth_paths=true", "smooth_paths: needs map_along_path = true"},
-        {"smooth_paths_rounds=0", "smooth_paths_rounds: must be >= 1"},
-        {"smooth_paths_reanchor_gap=-1", "smooth_paths_reanchor_gap: must be >= 0"},
-        {"smooth_paths_reanchor_gain=1", "smooth_paths_reanchor_gain: must be in (0, 1)"}};
+        {"MultiRobotVSLAM.max_observations_per_robot=0",
+         "max_observations_per_robot: must be >= 1"},
+        {"MultiRobotVSLAM.robot_reading_ids=7", "robot_reading_ids: must give one id per robot"},
+        {"TeamPathSmoother.min_times_seen=-1", "[TeamPathSmoother] min_times_seen: must be >= 1"},
+        {"TeamPathSmoother.smooth_paths=true", "smooth_paths: needs map_along_path = true"},
+        {"TeamPathSmoother.rounds=0", "rounds: must be >= 1"},
+        {"TeamPathSmoother.reanchor_gap=-1", "reanchor_gap: must be >= 0"},
+        {"TeamPathSmoother.reanchor_gain=1", "reanchor_gain: must be in (0, 1)"},
+        {"MultiRobotVSLAM.smooth_paths_rounds=2",
+         "[MultiRobotVSLAM] smooth_paths_rounds: moved to [TeamPathSmoother] rounds"}};
     std::vector<TCommandResult> results = {missing, corrupt, unknown};
     for (size_t i = 0; i < impossible.size(); i++) {
         const auto& [setting, message] = impossible[i];
-        results.push_back(run(cfg + kData + "team2.rawlog -q --set MultiRobotVSLAM." + setting +
-                              " --out " + out("e" + std::to_string(4 + i))));
+        results.push_back(run(cfg + kData + "team2.rawlog -q --set " + setting + " --out " +
+                              out("e" + std::to_string(4 + i))));
         EXPECT_NE(results.back().exit_code, 0) << setting;
         EXPECT_NE(results.back().out.find(message), std::string::npos) << results.back().out;
     }

@@ -12,7 +12,9 @@
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/RunOutputs.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
+#include <mrpt_vslam/multirobot/LandmarkIdentityTally.h>
 #include <mrpt_vslam/multirobot/StereoFrontEnd.h>
+#include <mrpt_vslam/multirobot/TeamPathSmoother.h>
 
 #include <bitset>
 #include <cstdio>
@@ -20,6 +22,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "ParticleFilterApp.h"
 
@@ -28,11 +31,27 @@ namespace mrpt_vslam::apps {
 using multirobot::CMultiRobotVisualSLAM;
 using multirobot::CVisualLandmarksMap;
 using multirobot::StereoFrontEnd;
+using multirobot::TCorrespondence;
+using multirobot::TeamPathSmoother;
+using multirobot::TLandmarkIdentityTally;
 using multirobot::TVisualLandmark;
 
 namespace {
 constexpr const char* kAppSection = "MultiRobotVSLAM";
 constexpr const char* kFrontEndSection = "StereoFrontEnd";
+constexpr const char* kSmootherSection = "TeamPathSmoother";
+/// The keys of [TeamPathSmoother] that were in [MultiRobotVSLAM] before: (former, new).
+constexpr std::pair<const char*, const char*> kMovedKeys[] = {
+    {"map_along_path", "map_along_path"},
+    {"map_along_path_D0", "D0"},
+    {"map_along_path_min_times_seen", "min_times_seen"},
+    {"smooth_paths", "smooth_paths"},
+    {"smooth_paths_rounds", "rounds"},
+    {"smooth_paths_huber", "huber"},
+    {"smooth_paths_odometry_scale_std", "odometry_scale_std"},
+    {"smooth_paths_motion_cov_factor", "motion_cov_factor"},
+    {"smooth_paths_reanchor_gap", "reanchor_gap"},
+    {"smooth_paths_reanchor_gain", "reanchor_gain"}};
 
 /// Where the landmark measurements come from (ini key `input`).
 enum class TInput { Auto, Landmarks, Stereo };
@@ -62,9 +81,11 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
 
     CVisualLandmarksMap mapTemplate;
     CMultiRobotVisualSLAM::TOptions filterOptions;
+    TeamPathSmoother::TOptions smootherOptions;
     StereoFrontEnd::TOptions frontEndOptions;
     std::vector<std::unique_ptr<StereoFrontEnd>> frontEnds;  ///< one per robot, on demand
     std::unique_ptr<CMultiRobotVisualSLAM> filter;
+    std::unique_ptr<TeamPathSmoother> smoother;  ///< with map_along_path
     std::vector<std::optional<core::TumTrajectory>> groundTruth;
     std::vector<mrpt::poses::CPose2D> odometry;  ///< dead reckoning from the start poses
 
@@ -78,8 +99,8 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
         const mrpt::obs::CActionCollection& actions, const mrpt::obs::CSensoryFrame& frame);
     /// Stereo images → landmarks where images are the input; counts the landmark inputs.
     void prepareFrame(mrpt::obs::CSensoryFrame& sf);
-    /// With smooth_paths: the result of CMultiRobotVisualSLAM::smoothPaths() and its time.
-    std::optional<CMultiRobotVisualSLAM::TSmoothedTeam> smoothed;
+    /// With smooth_paths: the result of TeamPathSmoother::smoothPaths() and its time.
+    std::optional<TeamPathSmoother::TSmoothedTeam> smoothed;
     double smoothingSeconds = 0;
     std::vector<core::TumTrajectory> filterPaths;  ///< the best particle's, when smoothed
 
@@ -89,10 +110,10 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
     void drawTeam(mrpt::opengl::COpenGLScene& scene, const CVisualLandmarksMap& map,
                   const std::vector<core::TumTrajectory>& paths) const;
     /** Where measurements carry identities (range-bearing data imported with kept ids): of the
-     *  measurements fused into the landmarks of `map`, how many had another identity than the
-     *  one that created the landmark, and how many identities have several landmarks; as
-     *  JSON, empty without identities. */
-    static std::string identityAssociationJson(const CVisualLandmarksMap& map);
+     *  measurements fused into the landmarks of the output map, how many had another identity
+     *  than the one that created the landmark, and how many identities have several landmarks;
+     *  as JSON, empty without identities. */
+    static std::string identityAssociationJson(const TLandmarkIdentityTally& tally);
     /// Merged vs duplicated landmarks of `map` against the true ones (doc/multirobot.md), as
     /// JSON.
     std::string landmarkMergingJson(const CVisualLandmarksMap& map,
@@ -135,6 +156,7 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
 
     try {
         filterOptions.loadFromConfigFile(cfg, kAppSection);
+        smootherOptions.loadFromConfigFile(cfg, kSmootherSection);
         pf.m_options.loadFromConfigFile(cfg, "ParticleFilter");
         frontEndOptions.loadFromConfigFile(cfg, kFrontEndSection);
         mapTemplate = particleMapTemplate<CVisualLandmarksMap>("visualLandmarksMap_count");
@@ -162,6 +184,10 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
         throw usageError(
             "[MultiRobotVSLAM] odometry_label is for one robot; a team's odometry is "
             "labelled <ROBOT>_ODOM");
+    for (const auto& [former, key] : kMovedKeys)
+        if (cfg.keyExists(kAppSection, former))
+            throw usageError(std::string("[MultiRobotVSLAM] ") + former + ": moved to [" +
+                             kSmootherSection + "] " + key);
 }
 
 void MultiRobotVSLAMApp::Impl::findGroundTruth()
@@ -254,6 +280,11 @@ void MultiRobotVSLAMApp::Impl::prepare()
     app.robots = filterOptions.robots;
     filter = makeFilter<CMultiRobotVisualSLAM>(mapTemplate);
     filter->options = filterOptions;
+    if (smootherOptions.map_along_path) {
+        smoother = std::make_unique<TeamPathSmoother>(mapTemplate);
+        smoother->options = smootherOptions;
+        filter->setStepObserver(smoother.get());
+    }
     for (const auto& p : startPoses) odometry.emplace_back(p);
     app.estimatedPaths.assign(app.robots.size(), {});
     app.odometryPaths.assign(app.robots.size(), {});
@@ -355,9 +386,9 @@ void MultiRobotVSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
         throw std::runtime_error(rawlog + ": no landmark measurements (" + inputs +
                                  "); the rawlog has: " + contents.describe());
     for (size_t k = 0; k < robots.size(); k++) app.estimatedPaths[k] = bestParticlePath(k);
-    if (filterOptions.smooth_paths) {
+    if (smootherOptions.smooth_paths) {
         const core::RunTimer smoothing;
-        smoothed = filter->smoothPaths(filter->bestParticle());
+        smoothed = smoother->smoothPaths(filter->bestParticle());
         smoothingSeconds = smoothing.elapsedSeconds();
         filterPaths = app.estimatedPaths;
         for (size_t k = 0; k < robots.size(); k++)
@@ -414,25 +445,15 @@ std::string MultiRobotVSLAMApp::Impl::landmarkMergingJson(const CVisualLandmarks
     return j.str();
 }
 
-std::string MultiRobotVSLAMApp::Impl::identityAssociationJson(const CVisualLandmarksMap& map)
+std::string MultiRobotVSLAMApp::Impl::identityAssociationJson(const TLandmarkIdentityTally& tally)
 {
-    size_t fused = 0, conflicts = 0, landmarks = 0;
-    std::map<int64_t, size_t> landmarksOf;
-    map.landmarks().forEach([&](uint32_t, const TVisualLandmark& lm) {
-        if (lm.identity < 0) return;
-        landmarks++;
-        landmarksOf[lm.identity]++;
-        fused += lm.times_seen - 1;
-        conflicts += lm.identity_conflicts;
-    });
-    if (landmarks == 0) return "";
-    size_t duplicatedIdentities = 0;
-    for (const auto& [id, n] : landmarksOf) duplicatedIdentities += n > 1 ? 1 : 0;
+    if (tally.landmarks_with_identity == 0) return "";
     std::ostringstream j;
-    j << "{\"landmarks_with_identity\": " << landmarks << ", \"identities\": " << landmarksOf.size()
-      << ", \"identities_with_several_landmarks\": " << duplicatedIdentities
-      << ", \"fused_measurements\": " << fused << ", \"fused_with_another_identity\": " << conflicts
-      << "}";
+    j << "{\"landmarks_with_identity\": " << tally.landmarks_with_identity
+      << ", \"identities\": " << tally.identities
+      << ", \"identities_with_several_landmarks\": " << tally.identities_with_several_landmarks
+      << ", \"fused_measurements\": " << tally.fused_measurements
+      << ", \"fused_with_another_identity\": " << tally.fused_with_another_identity << "}";
     return j.str();
 }
 
@@ -457,15 +478,21 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     // the output map: the best particle's own, or the one made along its final path, or
     // along the smoothed paths
     std::optional<CVisualLandmarksMap> alongPath;
+    std::vector<TCorrespondence> alongPathCorrespondences;
     double alongPathSeconds = 0;
-    if (filterOptions.map_along_path && !smoothed) {
+    if (smootherOptions.map_along_path && !smoothed) {
         const core::RunTimer rebuild;
-        alongPath = filter->mapAlongPath(best);
+        alongPath = smoother->mapAlongPath(best, &alongPathCorrespondences);
         alongPathSeconds = rebuild.elapsedSeconds();
     }
-    if (filterOptions.map_along_path)
+    if (smootherOptions.map_along_path)
         best.map.saveMetricMapRepresentationToFile(out.file("particle_map"));
     const CVisualLandmarksMap& map = smoothed ? smoothed->map : alongPath ? *alongPath : best.map;
+    // the correspondences `map` was made with
+    const std::vector<TCorrespondence> correspondences =
+        smoothed    ? smoothed->correspondences
+        : alongPath ? alongPathCorrespondences
+                    : TLandmarkIdentityTally::historyOf(best);
     core::saveFinalMap(map, out.path());
 
     drawTeam(scene, map, app.estimatedPaths);
@@ -486,7 +513,7 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
                     nonPositiveRanges);
     report.setCount("particles", static_cast<double>(filter->particlesCount()));
     report.setCount("landmarks", static_cast<double>(map.size()));
-    if (filterOptions.map_along_path)
+    if (smootherOptions.map_along_path)
         report.setCount("particle_map_landmarks", static_cast<double>(best.map.size()));
     if (alongPath) report.setResult("map_along_path_s", alongPathSeconds);
     if (smoothed) {
@@ -505,7 +532,8 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
         }
     }
     if (landmarks) report.setResultJson("landmark_merging", landmarkMergingJson(map, *landmarks));
-    if (const auto a = identityAssociationJson(map); !a.empty())
+    if (const auto a = identityAssociationJson(TLandmarkIdentityTally::of(correspondences, map));
+        !a.empty())
         report.setResultJson("association_by_identity", a);
 }
 

@@ -116,23 +116,6 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
     initial_std_phi = mrpt::DEG2RAD(
         cfg.read_double(section, "initial_std_phi_deg", mrpt::RAD2DEG(initial_std_phi)));
     MRPT_LOAD_CONFIG_VAR(resample_per_robot, bool, cfg, section);
-    MRPT_LOAD_CONFIG_VAR(map_along_path, bool, cfg, section);
-    MRPT_LOAD_CONFIG_VAR(map_along_path_D0, double, cfg, section);
-    const int min_seen = cfg.read_int(section, "map_along_path_min_times_seen",
-                                      static_cast<int>(map_along_path_min_times_seen));
-    requireKey(min_seen >= 1, section, "map_along_path_min_times_seen", "must be >= 1");
-    map_along_path_min_times_seen = static_cast<unsigned int>(min_seen);
-    MRPT_LOAD_CONFIG_VAR(smooth_paths, bool, cfg, section);
-    const int rounds =
-        cfg.read_int(section, "smooth_paths_rounds", static_cast<int>(smooth_paths_rounds));
-    requireKey(rounds >= 1, section, "smooth_paths_rounds", "must be >= 1");
-    smooth_paths_rounds = static_cast<unsigned int>(rounds);
-    MRPT_LOAD_CONFIG_VAR(smooth_paths_huber, double, cfg, section);
-    MRPT_LOAD_CONFIG_VAR(smooth_paths_odometry_scale_std, double, cfg, section);
-    MRPT_LOAD_CONFIG_VAR(smooth_paths_motion_cov_factor, double, cfg, section);
-    MRPT_LOAD_CONFIG_VAR(smooth_paths_reanchor_gap, double, cfg, section);
-    MRPT_LOAD_CONFIG_VAR(smooth_paths_reanchor_gain, double, cfg, section);
-
     requireKey(!robots.empty() && robots.size() <= 32, section, "robots",
                "must name 1 to 32 robots");
     for (size_t i = 0; i < robots.size(); i++)
@@ -159,18 +142,6 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
     requireKey(min_motion_std_phi > 0, section, "min_motion_std_phi_deg", "must be > 0");
     requireKey(initial_std_xy >= 0, section, "initial_std_xy", "must be >= 0");
     requireKey(initial_std_phi >= 0, section, "initial_std_phi_deg", "must be >= 0");
-    requireKey(map_along_path_D0 > 0, section, "map_along_path_D0", "must be > 0");
-    requireKey(!smooth_paths || map_along_path, section, "smooth_paths",
-               "needs map_along_path = true");
-    requireKey(smooth_paths_huber >= 0, section, "smooth_paths_huber", "must be >= 0");
-    requireKey(smooth_paths_odometry_scale_std >= 0, section, "smooth_paths_odometry_scale_std",
-               "must be >= 0");
-    requireKey(smooth_paths_motion_cov_factor > 0, section, "smooth_paths_motion_cov_factor",
-               "must be > 0");
-    requireKey(smooth_paths_reanchor_gap >= 0, section, "smooth_paths_reanchor_gap",
-               "must be >= 0");
-    requireKey(smooth_paths_reanchor_gain > 0 && smooth_paths_reanchor_gain < 1, section,
-               "smooth_paths_reanchor_gain", "must be in (0, 1)");
 }
 
 void CMultiRobotVisualSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
@@ -196,16 +167,6 @@ void CMultiRobotVisualSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     cfg.write(section, "initial_std_xy", initial_std_xy);
     cfg.write(section, "initial_std_phi_deg", mrpt::RAD2DEG(initial_std_phi));
     cfg.write(section, "resample_per_robot", resample_per_robot);
-    cfg.write(section, "map_along_path", map_along_path);
-    cfg.write(section, "map_along_path_D0", map_along_path_D0);
-    cfg.write(section, "map_along_path_min_times_seen", map_along_path_min_times_seen);
-    cfg.write(section, "smooth_paths", smooth_paths);
-    cfg.write(section, "smooth_paths_rounds", smooth_paths_rounds);
-    cfg.write(section, "smooth_paths_huber", smooth_paths_huber);
-    cfg.write(section, "smooth_paths_odometry_scale_std", smooth_paths_odometry_scale_std);
-    cfg.write(section, "smooth_paths_motion_cov_factor", smooth_paths_motion_cov_factor);
-    cfg.write(section, "smooth_paths_reanchor_gap", smooth_paths_reanchor_gap);
-    cfg.write(section, "smooth_paths_reanchor_gain", smooth_paths_reanchor_gain);
 }
 
 CMultiRobotVisualSLAM::CMultiRobotVisualSLAM(const CVisualLandmarksMap& map_template,
@@ -247,11 +208,11 @@ void CMultiRobotVisualSLAM::reset(const std::vector<TPose2D>& start_poses, doubl
         d.path = std::make_shared<const TTeamPathNode>(timestamp, d.poses, nullptr);
         d.map = m_template;
         d.accumulated_log_w = 0;
+        d.correspondences.clear();
     }
-    m_fusedFrames.clear();
-    m_motions.clear();
-    m_startPoses = start_poses;
     m_steps = 0;
+    if (m_observer)
+        m_observer->onReset(start_poses, options.initial_std_xy, options.initial_std_phi);
 }
 
 const TTeamParticle& CMultiRobotVisualSLAM::bestParticle() const
@@ -419,11 +380,14 @@ void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandma
     for (auto& p : m_particles) {
         const TPlanarTransform pose(p.d->poses[k]);
         for (size_t j = 0; j < z.size(); j++) in_map[j] = toMapFrame(z[j], pose);
-        for (const TFusionResult& r :
-             p.d->map.fuseFrame(z, in_map, candidates, static_cast<unsigned>(k), false)) {
+        const auto fused =
+            p.d->map.fuseFrame(z, in_map, candidates, static_cast<unsigned>(k), false);
+        for (size_t j = 0; j < z.size(); j++) {
+            const TFusionResult& r = fused[j];
             p.log_w += r.log_w;  // line 44 and line 11: the product over the team
             p.d->accumulated_log_w += r.log_w;
             (r.created ? lastStepStats.created : lastStepStats.associated)++;
+            p.d->correspondences.push_back({static_cast<uint32_t>(k), r.id, z[j].track_id});
         }
     }
 }
@@ -518,6 +482,7 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const TMotionGaussian& moti
             const TFusionResult r = p.map.fuseAs(z[j], toMapFrame(z[j], pose), candidates[j],
                                                  static_cast<unsigned>(k), assoc[j]);
             (r.created ? lastStepStats.created : lastStepStats.associated)++;
+            p.correspondences.push_back({static_cast<uint32_t>(k), r.id, z[j].track_id});
         }
         m_particles[i].log_w += log_w;  // line 11: the product over the team
         p.accumulated_log_w += log_w;
@@ -547,12 +512,7 @@ void CMultiRobotVisualSLAM::runStep(
         const auto readings =
             observation ? robotReadingsOf(k, *observation) : std::vector<TRobotReading>();
         lastStepStats.robot_readings += readings.size();
-        if (options.map_along_path) {
-            if (k == 0) m_motions.emplace_back();
-            m_motions.back().push_back(motion);
-            if (!z.empty() || !readings.empty())
-                m_fusedFrames.push_back({m_steps + 1, k, z, readings});
-        }
+        if (m_observer) m_observer->onRobotStep(m_steps + 1, k, motion, z, readings);
         if (optimal && !(z.empty() && readings.empty())) {
             proposeAndFuse(k, motion, z, readings);
         } else {
@@ -564,8 +524,11 @@ void CMultiRobotVisualSLAM::runStep(
         if (options.resample_per_robot && k + 1 < K && ESS() < pf_options.BETA)
             performResampling(pf_options);
     }
-    for (auto& p : m_particles)
-        p.d->path = std::make_shared<const TTeamPathNode>(timestamp, p.d->poses, p.d->path);
+    for (auto& p : m_particles) {
+        p.d->path = std::make_shared<const TTeamPathNode>(timestamp, p.d->poses, p.d->path,
+                                                          std::move(p.d->correspondences));
+        p.d->correspondences.clear();
+    }
     m_steps++;
 }
 

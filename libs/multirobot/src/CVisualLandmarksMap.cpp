@@ -180,7 +180,6 @@ TFusionResult CVisualLandmarksMap::fuseAs(const TLandmarkMeasurement& m,
         lm.cov = in_map.R;
         lm.times_seen = 1;
         lm.seen_by = 1u << robot;
-        lm.identity = m.track_id;
         m_store.insert(*candidates.new_id, lm);
         r.id = *candidates.new_id;
         r.created = true;
@@ -194,7 +193,6 @@ TFusionResult CVisualLandmarksMap::fuseAs(const TLandmarkMeasurement& m,
     lm.cov = 0.5 * (cov + cov.transpose());
     lm.times_seen++;
     lm.seen_by |= 1u << robot;
-    if (m.track_id >= 0 && lm.identity >= 0 && m.track_id != lm.identity) lm.identity_conflicts++;
     r.id = a->id;
     r.log_w = a->log_likelihood;  // Eq. 13
     return r;

@@ -3,7 +3,7 @@
 
 namespace mrpt_vslam::multirobot {
 
-uint8_t CVisualLandmarksMap::serializeGetVersion() const { return 3; }
+uint8_t CVisualLandmarksMap::serializeGetVersion() const { return 4; }
 
 void CVisualLandmarksMap::serializeTo(mrpt::serialization::CArchive& out) const
 {
@@ -20,7 +20,7 @@ void CVisualLandmarksMap::serializeTo(mrpt::serialization::CArchive& out) const
         for (int i = 0; i < 3; i++) out << lm.mean[i];
         for (int r = 0; r < 3; r++)
             for (int c = r; c < 3; c++) out << lm.cov(r, c);
-        out << lm.times_seen << lm.seen_by << lm.identity << lm.identity_conflicts;
+        out << lm.times_seen << lm.seen_by;
         for (const float v : m_pool->descriptor(id)) out << v;
         for (int i = 0; i < 3; i++) out << m_pool->creationPosition(id)[i];
     });
@@ -31,7 +31,7 @@ void CVisualLandmarksMap::serializeTo(mrpt::serialization::CArchive& out) const
 
 void CVisualLandmarksMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
 {
-    if (version > 3) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+    if (version > 4) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
     in >> genericMapParams;
     auto& io = insertionOptions;
     in >> io.D0 >> io.E0 >> io.p0 >> io.search_radius >> io.grid_cell_size;
@@ -59,7 +59,11 @@ void CVisualLandmarksMap::serializeFrom(mrpt::serialization::CArchive& in, uint8
                 lm.cov(c, r) = lm.cov(r, c);
             }
         in >> lm.times_seen >> lm.seen_by;
-        if (version >= 1) in >> lm.identity >> lm.identity_conflicts;  // version 1
+        if (version >= 1 && version <= 3) {  // versions 1-3: evaluation fields, dropped
+            int64_t identity;
+            uint32_t identity_conflicts;
+            in >> identity >> identity_conflicts;
+        }
         for (float& v : d) in >> v;
         for (int i = 0; i < 3; i++) in >> created[i];
         m_pool->addWithId(id, d, created);

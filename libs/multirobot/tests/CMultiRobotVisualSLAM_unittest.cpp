@@ -2,10 +2,13 @@
 #include <mrpt/bayes/CParticleFilter.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
+#include <mrpt_vslam/multirobot/LandmarkIdentityTally.h>
 #include <mrpt_vslam/test/SyntheticTeamWorld.h>
 
 #include <algorithm>
 #include <bitset>
+#include <map>
+#include <utility>
 
 using namespace mrpt_vslam::multirobot;
 using mrpt_vslam::test::SyntheticTeamWorld;
@@ -115,46 +118,72 @@ TEST(CMultiRobotVisualSLAM, ResamplingAfterEachRobotResetsWeightsBetweenRobots)
     }
 }
 
-// With one particle and the filter's own gate, the map made again along the particle's path
-// is the particle's map: same landmarks, means, covariances and counts (a pose taken from the
-// wrong step of the path would move them); the count threshold then removes exactly the
-// landmarks seen fewer times.
-TEST(CMultiRobotVisualSLAM, MapAlongPathWithTheFiltersGateIsTheParticlesMap)
+// Each path node holds its step's correspondences, which resampling (here after every robot)
+// carries with the map they were fused into: a particle's history has one entry per fusion into
+// its map, by the robot that made it. The step observer hears of every robot of every step.
+TEST(CMultiRobotVisualSLAM, PathNodesHoldTheCorrespondencesOfTheParticlesMap)
 {
-    SyntheticTeamWorld::TParams wp;
-    wp.landmarks = 300;
-    SyntheticTeamWorld world(wp);
-    CMultiRobotVisualSLAM filter(CVisualLandmarksMap(), 1, 7);
-    EXPECT_THROW(filter.mapAlongPath(TTeamParticle()), std::logic_error);
-    filter.options.map_along_path = true;
-    filter.options.map_along_path_D0 = CVisualLandmarksMap().insertionOptions.D0;
-    filter.reset(world.startPoses(), world.time);
-    auto pf = standardFilter();
-    mrpt::obs::CActionCollection acts;
-    mrpt::obs::CSensoryFrame sf;
-    for (int i = 0; i < 30; i++) {
-        world.step(acts, sf);
-        if (i % 3 == 1) sf.eraseByLabel("R2_LANDMARKS");  // steps where one robot sees nothing
-        pf.executeOn(filter, &acts, &sf);
+    struct TRecorder : CMultiRobotVisualSLAM::TStepObserver {
+        std::vector<std::pair<size_t, size_t>> steps;  // (step, robot)
+        size_t measurements = 0, resets = 0;
+        void onReset(const std::vector<mrpt::math::TPose2D>& start, double, double) override
+        {
+            resets++;
+            EXPECT_EQ(start.size(), 2u);
+        }
+        void onRobotStep(size_t step, size_t robot, const CMultiRobotVisualSLAM::TMotionGaussian&,
+                         const std::vector<TLandmarkMeasurement>& z,
+                         const std::vector<CMultiRobotVisualSLAM::TRobotReading>&) override
+        {
+            steps.emplace_back(step, robot);
+            measurements += z.size();
+        }
+    };
+    for (const bool optimal : {false, true}) {
+        SCOPED_TRACE(optimal ? "optimal proposal" : "standard proposal");
+        SyntheticTeamWorld::TParams wp;
+        wp.landmarks = 300;
+        SyntheticTeamWorld world(wp);
+        CMultiRobotVisualSLAM filter(CVisualLandmarksMap(), 20, 3);
+        mrpt::random::getRandomGenerator().randomize(3);
+        filter.options.resample_per_robot = true;
+        TRecorder recorder;
+        filter.setStepObserver(&recorder);
+        filter.reset(world.startPoses(), world.time);
+        auto pf = standardFilter();
+        if (optimal) pf.m_options.PF_algorithm = mrpt::bayes::CParticleFilter::pfOptimalProposal;
+        pf.m_options.BETA = 2;  // always resample when asked
+        mrpt::obs::CActionCollection acts;
+        mrpt::obs::CSensoryFrame sf;
+        size_t measurements = 0;
+        for (int i = 0; i < 10; i++) {
+            world.step(acts, sf);
+            pf.executeOn(filter, &acts, &sf);
+            measurements += filter.lastStepStats.measurements;
+        }
+        EXPECT_EQ(recorder.resets, 1u);
+        ASSERT_EQ(recorder.steps.size(), 20u);
+        for (size_t i = 0; i < recorder.steps.size(); i++)
+            EXPECT_EQ(recorder.steps[i], std::make_pair(i / 2 + 1, i % 2)) << i;
+        EXPECT_EQ(recorder.measurements, measurements);
+        for (const auto& particle : filter.m_particles) {
+            const TTeamParticle& p = *particle.d;
+            std::map<uint32_t, std::pair<uint32_t, uint32_t>> fused;  // times, robot bits
+            const auto history = TLandmarkIdentityTally::historyOf(p);
+            for (const auto& c : history) {
+                fused[c.landmark].first++;
+                fused[c.landmark].second |= 1u << c.robot;
+            }
+            ASSERT_EQ(fused.size(), p.map.size());
+            p.map.landmarks().forEach([&](uint32_t id, const TVisualLandmark& lm) {
+                EXPECT_EQ(fused[id].first, lm.times_seen) << id;
+                EXPECT_EQ(fused[id].second, lm.seen_by) << id;
+            });
+            // the world's points carry their index as track_id: each landmark has an identity
+            EXPECT_EQ(TLandmarkIdentityTally::of(history, p.map).landmarks_with_identity,
+                      p.map.size());
+        }
     }
-    const auto& p = filter.bestParticle();
-    const CVisualLandmarksMap rebuilt = filter.mapAlongPath(p);
-    ASSERT_GT(p.map.size(), 20u);
-    ASSERT_EQ(rebuilt.size(), p.map.size());
-    size_t seen_thrice = 0;
-    p.map.landmarks().forEach([&](uint32_t id, const TVisualLandmark& lm) {
-        const TVisualLandmark* r = rebuilt.landmark(id);
-        ASSERT_NE(r, nullptr) << id;
-        EXPECT_LT((r->mean - lm.mean).norm(), 1e-9) << id;
-        EXPECT_LT((r->cov - lm.cov).norm(), 1e-12) << id;
-        EXPECT_EQ(r->times_seen, lm.times_seen) << id;
-        EXPECT_EQ(r->seen_by, lm.seen_by) << id;
-        seen_thrice += lm.times_seen >= 3 ? 1 : 0;
-    });
-    ASSERT_GT(seen_thrice, 0u);
-    ASSERT_LT(seen_thrice, p.map.size());
-    filter.options.map_along_path_min_times_seen = 3;
-    EXPECT_EQ(filter.mapAlongPath(p).size(), seen_thrice);
 }
 
 TEST(CMultiRobotVisualSLAM, TwoRobotsBeatOdometryAndMergeSharedLandmarks)
@@ -207,57 +236,4 @@ TEST(CMultiRobotVisualSLAM, TwoRobotsBeatOdometryAndMergeSharedLandmarks)
     EXPECT_GT(merged, 20u) << "landmarks both robots measured";
     EXPECT_LT(duplicated, merged / 10 + 2);
     EXPECT_LT(far, best.map.size() / 10);
-}
-
-// reanchorAfterGaps() through smoothPaths(), from particles whose paths are the true ones: R2
-// sees nothing for 15 s; its part after that gap, displaced by 0.4 m and 20 deg, is put back
-// onto its odometry, and the true paths are left alone. (With descriptors least squares alone
-// recovers the part here too; the case it does not, readings gone to wrong landmarks on the
-// MRCLAM data, is in doc/real-data.md.)
-TEST(CMultiRobotVisualSLAM, SmoothingReanchorsAPartDisplacedAfterAGap)
-{
-    SyntheticTeamWorld::TParams wp;
-    wp.landmarks = 300;
-    SyntheticTeamWorld world(wp);
-    CMultiRobotVisualSLAM filter(CVisualLandmarksMap(), 1, 5);  // records frames and odometry
-    filter.options.map_along_path = true;
-    filter.options.map_along_path_min_times_seen = 3;
-    filter.options.smooth_paths = true;
-    filter.reset(world.startPoses(), world.time);
-    auto pf = standardFilter();
-    mrpt::obs::CActionCollection acts;
-    mrpt::obs::CSensoryFrame sf;
-    const size_t steps = 60, gapFrom = 20, gapTo = 35;  // R2 blind in steps [gapFrom, gapTo)
-    TTeamParticle truth, displaced;
-    truth.path = displaced.path =
-        std::make_shared<const TTeamPathNode>(world.time, world.startPoses(), nullptr);
-    const mrpt::poses::CPose2D by(0.3, -0.3, 20 * M_PI / 180);
-    mrpt::poses::CPose2D at;  // R2's true pose after the gap
-    for (size_t i = 1; i <= steps; i++) {
-        world.step(acts, sf);
-        if (i >= gapFrom && i < gapTo) sf.eraseByLabel("R2_LANDMARKS");
-        pf.executeOn(filter, &acts, &sf);
-        truth.path = std::make_shared<const TTeamPathNode>(world.time, world.truth, truth.path);
-        auto poses = world.truth;
-        if (i == gapTo) at = mrpt::poses::CPose2D(poses[1]);
-        if (i >= gapTo) poses[1] = (at + by + (mrpt::poses::CPose2D(poses[1]) - at)).asTPose();
-        displaced.path = std::make_shared<const TTeamPathNode>(world.time, poses, displaced.path);
-    }
-    // R2's error after the gap
-    auto errorAfterGap = [&](const CMultiRobotVisualSLAM::TSmoothedTeam& s) {
-        const auto t = CMultiRobotVisualSLAM::pathOf(truth, 1);
-        double se = 0;
-        for (size_t i = gapTo; i <= steps; i++)
-            se += std::pow(positionError(s.paths[1][i].second, t[i].second), 2);
-        return std::sqrt(se / static_cast<double>(steps + 1 - gapTo));
-    };
-    const auto plain = filter.smoothPaths(displaced);
-    filter.options.smooth_paths_reanchor_gap = 10;
-    const auto reanchored = filter.smoothPaths(displaced);
-    const auto undisplaced = filter.smoothPaths(truth);
-    EXPECT_EQ(plain.reanchored, 0u);
-    EXPECT_EQ(reanchored.reanchored, 1u);
-    EXPECT_EQ(undisplaced.reanchored, 0u);
-    EXPECT_LT(errorAfterGap(undisplaced), 0.2);
-    EXPECT_LT(errorAfterGap(reanchored), errorAfterGap(undisplaced) + 0.01);
 }

@@ -378,6 +378,70 @@ TEST(CVisualLandmarksMap, SerializesTheLandmarksOfIdentities)
     EXPECT_EQ(fuseAtOrigin(back, m).id, *map.descriptorPool().landmarkOfIdentity(7));
 }
 
+// Versions 1-3 of the format carried each landmark's identity and its count of fused readings
+// of other identities (evaluation state, now kept outside the map): such files still load.
+TEST(CVisualLandmarksMap, ReadsVersion3MapsAndDropsTheirIdentityFields)
+{
+    CVisualLandmarksMap map;
+    fuseAtOrigin(map, measurement({3, 1, 1}, 0.05, 1));
+    fuseAtOrigin(map, measurement({3, 1, 1}, 0.05, 1), 1);
+    fuseAtOrigin(map, measurement({5, -2, 1}, 0.05, 2));
+    ASSERT_EQ(map.size(), 2u);
+
+    // the body as version 3's serializeTo() wrote it
+    mrpt::io::CMemoryStream body;
+    auto out = mrpt::serialization::archiveFrom(body);
+    const auto& io = map.insertionOptions;
+    out << map.genericMapParams << io.D0 << io.E0 << io.p0 << io.search_radius << io.grid_cell_size
+        << io.joint_association << io.associate_by_identity << map.renderOptions.draw_ellipsoids
+        << map.renderOptions.ellipsoid_quantiles << map.renderOptions.point_size
+        << static_cast<uint32_t>(map.size());
+    map.landmarks().forEach([&](uint32_t id, const TVisualLandmark& lm) {
+        out << id;
+        for (int i = 0; i < 3; i++) out << lm.mean[i];
+        for (int r = 0; r < 3; r++)
+            for (int c = r; c < 3; c++) out << lm.cov(r, c);
+        out << lm.times_seen << lm.seen_by << int64_t{7} << uint32_t{1};  // identity, conflicts
+        for (const float v : map.descriptorPool().descriptor(id)) out << v;
+        for (int i = 0; i < 3; i++) out << map.descriptorPool().creationPosition(id)[i];
+    });
+    out << uint32_t{0};  // no identities of known correspondences
+    // the object's header and end flag as today's version writes them, with version 3
+    mrpt::io::CMemoryStream current;
+    mrpt::serialization::archiveFrom(current) << map;
+    const auto bytesOf = [](const mrpt::io::CMemoryStream& s) {
+        const auto* b = static_cast<const char*>(s.getRawBufferData());
+        return std::string(b, b + s.getTotalBytesCount());
+    };
+    const std::string today = bytesOf(current);
+    const std::string name = CVisualLandmarksMap::GetRuntimeClassIdStatic().className;
+    const size_t version_at = today.find(name) + name.size();
+    ASSERT_NE(today.find(name), std::string::npos);
+    ASSERT_EQ(today[version_at], 4) << "the current version";
+    const std::string v3 = today.substr(0, version_at) + char{3} + bytesOf(body) + today.back();
+    EXPECT_EQ(v3.size(), today.size() + 12 * map.size()) << "an int64 and a uint32 per landmark";
+
+    mrpt::io::CMemoryStream in_buf;
+    in_buf.Write(v3.data(), v3.size());
+    in_buf.Seek(0);
+    CVisualLandmarksMap back;
+    mrpt::serialization::archiveFrom(in_buf) >> back;
+    ASSERT_EQ(back.size(), map.size());
+    map.landmarks().forEach([&](uint32_t id, const TVisualLandmark& lm) {
+        const TVisualLandmark* b = back.landmark(id);
+        ASSERT_NE(b, nullptr) << id;
+        EXPECT_EQ(b->mean, lm.mean) << id;
+        EXPECT_EQ(b->cov, lm.cov) << id;
+        EXPECT_EQ(b->times_seen, lm.times_seen) << id;
+        EXPECT_EQ(b->seen_by, lm.seen_by) << id;
+        EXPECT_EQ(back.descriptorPool().descriptor(id), map.descriptorPool().descriptor(id));
+    });
+    // written again, it is today's file
+    mrpt::io::CMemoryStream again;
+    mrpt::serialization::archiveFrom(again) << back;
+    EXPECT_EQ(bytesOf(again), today);
+}
+
 TEST(CVisualLandmarksMap, SerializesCreatesFromIniAndWritesMapTxt)
 {
     mrpt::config::CConfigFileMemory ini(R"(

@@ -9,6 +9,7 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
+#include <mrpt_vslam/multirobot/LandmarkIdentityTally.h>
 #include <mrpt_vslam/test/SyntheticTeamWorld.h>
 
 #include <Eigen/Cholesky>
@@ -149,7 +150,8 @@ TEST(RangeBearingMeasurement, SpatialModelMatchesTheSphericalCoordinates)
 }
 
 // Without descriptors every candidate has E = 0: the association takes the smallest D, not
-// the first landmark created, and counts fused measurements of another identity.
+// the first landmark created; the tally of its correspondences counts fused measurements of
+// another identity.
 TEST(RangeBearingMeasurement, WithoutDescriptorsTheNearestGatedLandmarkIsTaken)
 {
     CVisualLandmarksMap map;
@@ -157,11 +159,14 @@ TEST(RangeBearingMeasurement, WithoutDescriptorsTheNearestGatedLandmarkIsTaken)
     TRangeBearingNoise noise;
     noise.std_range = 0.1;
     noise.std_bearing = 0.02;  // 6 cm across at 3 m: the gate D0 = 11.34 reaches 0.29 m
+    std::vector<TCorrespondence> history;
     auto fuse = [&](double r, double b, int id) {
         const auto z = measurementsFromBearingRange(observation({{r, b, double(id)}}), noise);
         const auto in_map = toMapFrame(z[0], mrpt::math::TPose2D(0, 0, 0));
         auto candidates = map.findCandidates(z[0], in_map);
-        return map.fuse(z[0], in_map, candidates, 0);
+        const TFusionResult f = map.fuse(z[0], in_map, candidates, 0);
+        history.push_back({0, f.id, z[0].track_id});
+        return f;
     };
     const auto a = fuse(3.0, 0.00, 1);  // landmark A at (3, 0)
     const auto b = fuse(3.0, 0.12, 2);  // B at (2.98, 0.36): 0.36 m from A, outside its gate
@@ -175,9 +180,11 @@ TEST(RangeBearingMeasurement, WithoutDescriptorsTheNearestGatedLandmarkIsTaken)
     // the same point with identity 1: B again, counted as a conflict
     const auto d = fuse(3.0, 0.075, 1);
     EXPECT_EQ(d.id, b.id);
-    EXPECT_EQ(map.landmark(b.id)->identity, 2);
-    EXPECT_EQ(map.landmark(b.id)->identity_conflicts, 1u);
-    EXPECT_EQ(map.landmark(a.id)->identity_conflicts, 0u);
+    const auto tally = TLandmarkIdentityTally::of(history, map);
+    EXPECT_EQ(tally.landmarks_with_identity, 2u);
+    EXPECT_EQ(tally.identities, 2u);
+    EXPECT_EQ(tally.fused_measurements, 2u);
+    EXPECT_EQ(tally.fused_with_another_identity, 1u);  // d: identity 1 into 2's landmark
 }
 
 // Two robots on overlapping circles in a 14 × 7 m room with 15 landmarks, range-bearing

@@ -48,7 +48,9 @@ namespace mrpt_vslam::multirobot {
  *      motion is sampled. The robots' motions are independent, so this is the same posterior
  *      processed one robot at a time; it keeps the particles from having to be good for all
  *      K robots at once, which the joint product over a 3K-dimensional proposal rarely is.
- *  The best particle is the one with the largest Σ_t log ω_t (Eq. 14). */
+ *  The best particle is the one with the largest Σ_t log ω_t (Eq. 14). Each step's path node
+ *  of a particle keeps the step's correspondences (FastSLAM's c_t: the landmark each measurement
+ *  went to, with its track_id), for the evaluation of the associations. */
 class CMultiRobotVisualSLAM
     : public mrpt::bayes::CParticleFilterData<TTeamParticle,
                                               mrpt::bayes::particle_storage_mode::POINTER>,
@@ -99,28 +101,6 @@ class CMultiRobotVisualSLAM
         /// Resample (if N_eff < BETA) after each robot's measurements too (ours; paper: once
         /// per step). Pays off with 3 robots (doc/multirobot.md).
         bool resample_per_robot = false;
-        /// Keep every measurement and odometry increment, for mapAlongPath() and
-        /// smoothPaths() (ours).
-        bool map_along_path = false;
-        /// mapAlongPath(): D0 of its gate, and the fewest measurements a landmark of it needs.
-        double map_along_path_D0 = 30;
-        unsigned int map_along_path_min_times_seen = 1;
-        /// smoothPaths() as the result (needs map_along_path): rounds of mapping along the
-        /// path and least squares, and the Huber threshold [σ] of its readings (0: none).
-        bool smooth_paths = false;
-        unsigned int smooth_paths_rounds = 2;
-        double smooth_paths_huber = 3;
-        /// smoothPaths(): σ of the prior N(1, σ²) on each robot's odometry scales (distance,
-        /// turn; 0: no scales), and the factor on the odometry covariance.
-        double smooth_paths_odometry_scale_std = 0;
-        double smooth_paths_motion_cov_factor = 1;
-        /// smoothPaths(): a robot's readings more than this apart [s] (0: never) split its
-        /// path; each round, a part after such a gap is moved onto the robot's odometry from the
-        /// part before when that raises the fraction of its readings that fit a landmark also
-        /// read outside it by more than smooth_paths_reanchor_gain (reanchorAfterGaps()).
-        double smooth_paths_reanchor_gap = 0;
-        double smooth_paths_reanchor_gain = 0.1;
-
         /** The sensor label of robot k's observations for a label suffix: `<ROBOT>` + suffix
          *  for a team, sensor_label for one robot ("": any label). */
         std::string inputLabel(size_t k, const std::string& suffix) const
@@ -143,6 +123,32 @@ class CMultiRobotVisualSLAM
         size_t non_positive_ranges = 0;  ///< range-bearing readings left out (range ≤ 0)
     } lastStepStats;
 
+    /// One robot's odometry increment as a Gaussian (with the floor), L its Cholesky factor.
+    struct TMotionGaussian {
+        mrpt::math::TPose2D mean;
+        Eigen::Matrix3d cov, L;
+    };
+    /// A reading of another robot of the team: its index and where robot k saw it.
+    struct TRobotReading {
+        size_t robot;
+        TLandmarkMeasurement m;
+    };
+    /** Told of what the filter takes in (TeamPathSmoother records the run with it): of
+     *  reset(), and once per robot and step of its inputs, before its motion is sampled. */
+    struct TStepObserver {
+        virtual ~TStepObserver() = default;
+        /// reset(): the start poses; the particles' poses of every robot but the first are
+        /// drawn around them with σ initial_std_xy [m], initial_std_phi [rad].
+        virtual void onReset(const std::vector<mrpt::math::TPose2D>& start_poses,
+                             double initial_std_xy, double initial_std_phi) = 0;
+        /** Robot `robot` in step `step` (1 for the first, the index of the step's path node;
+         *  robots in the order of options.robots): its odometry Gaussian, its B measurements
+         *  and its readings of other robots of the team. */
+        virtual void onRobotStep(size_t step, size_t robot, const TMotionGaussian& motion,
+                                 const std::vector<TLandmarkMeasurement>& z,
+                                 const std::vector<TRobotReading>& readings) = 0;
+    };
+
     /** \param map_template options every particle's map starts with (must be empty)
      *  \param particle_count M \param seed of the filter's own random generator */
     CMultiRobotVisualSLAM(const CVisualLandmarksMap& map_template, size_t particle_count,
@@ -158,38 +164,9 @@ class CMultiRobotVisualSLAM
     /// One robot's path in a particle, oldest first: (timestamp, pose).
     static std::vector<std::pair<double, mrpt::math::TPose2D>> pathOf(const TTeamParticle& p,
                                                                       size_t robot);
-    /** The map of every measurement fused since reset(), made again along the final path of
-     *  particle `p` (ours; mapping with known poses, doc/multirobot.md §3): frame by frame in
-     *  the order of the run, each robot's measurements at that particle's pose of the step,
-     *  fused by CVisualLandmarksMap::fuseFrame() (distinct landmarks per frame) with the
-     *  filter's insertion options but D0 = options.map_along_path_D0; then the landmarks seen
-     *  fewer than options.map_along_path_min_times_seen times are removed. The poses do not
-     *  move, so a wrong association here costs the map only, not the paths, and the gate can
-     *  be wider than the filter's. \pre options.map_along_path since reset() */
-    CVisualLandmarksMap mapAlongPath(const TTeamParticle& p) const;
-
-    /// The team's paths and map after smoothPaths().
-    struct TSmoothedTeam {
-        /// one per robot, oldest first, as pathOf()
-        std::vector<std::vector<std::pair<double, mrpt::math::TPose2D>>> paths;
-        CVisualLandmarksMap map;      ///< mapped along `paths` as mapAlongPath() maps
-        size_t iterations = 0;        ///< least-squares iterations, all rounds
-        size_t outlier_readings = 0;  ///< beyond the Huber threshold after the last round
-        size_t reanchored = 0;        ///< parts of paths reanchorAfterGaps() moved, all rounds
-        /// per robot (distance, turn), with smooth_paths_odometry_scale_std > 0
-        std::vector<Eigen::Vector2d> odometry_scales;
-    };
-    /** The most probable paths given every odometry increment and reading since reset() and
-     *  the associations of the map along particle `p`'s path (ours; doc/multirobot.md §3):
-     *  options.smooth_paths_rounds times, map along the current paths (mapAlongPath()'s rules,
-     *  the landmarks below the count threshold left out), then solve the
-     *  PlanarPoseLandmarkGraph of the start poses (the first robot's fixed, the others with
-     *  initial_std_*), the odometry Gaussians (covariance × smooth_paths_motion_cov_factor;
-     *  with smooth_paths_odometry_scale_std, scaled by one distance and one turn scale per
-     *  robot, estimated with the rest), the readings of the mapped landmarks and of the other
-     *  robots (Huber); with smooth_paths_reanchor_gap, reanchorAfterGaps() after each
-     *  mapping; finally map along the result. \pre options.map_along_path since reset() */
-    TSmoothedTeam smoothPaths(const TTeamParticle& p) const;
+    /// `observer` (nullptr: none) is told of every reset() and step from now on; it must
+    /// outlive its use by the filter.
+    void setStepObserver(TStepObserver* observer) { m_observer = observer; }
 
   protected:
     void prediction_and_update_pfStandardProposal(
@@ -200,21 +177,11 @@ class CMultiRobotVisualSLAM
         const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options) override;
 
   private:
-    /// One robot's odometry increment as a Gaussian (with the floor), L its Cholesky factor.
-    struct TMotionGaussian {
-        mrpt::math::TPose2D mean;
-        Eigen::Matrix3d cov, L;
-    };
     TMotionGaussian motionOf(size_t k, const mrpt::obs::CActionRobotMovement2D& odometry) const;
     /// Robot k's B measurements in the frame (`<ROBOT>_LANDMARKS` or `<ROBOT>_RB`), selected as
     /// `observation_selection` says (random: drawn from the filter's generator).
     std::vector<TLandmarkMeasurement> measurementsOf(size_t k,
                                                      const mrpt::obs::CSensoryFrame& frame);
-    /// A reading of another robot of the team: its index and where robot k saw it.
-    struct TRobotReading {
-        size_t robot;
-        TLandmarkMeasurement m;
-    };
     /// Robot k's readings of the other robots of the team (`<ROBOT>_ROBOTS`); others dropped.
     std::vector<TRobotReading> robotReadingsOf(size_t k, const mrpt::obs::CSensoryFrame& frame);
     /// pfStandardProposal: multiplies each particle's weight by its robot readings' likelihood.
@@ -241,40 +208,8 @@ class CMultiRobotVisualSLAM
                         const std::vector<TLandmarkMeasurement>& z,
                         const std::vector<TRobotReading>& readings);
 
-    /// A robot's measurements of one step, kept for mapAlongPath(): `step` indexes the path
-    /// node of that step (0: the start poses).
-    struct TFusedFrame {
-        size_t step, robot;
-        std::vector<TLandmarkMeasurement> z;
-        std::vector<TRobotReading> readings;
-    };
-    std::vector<TFusedFrame> m_fusedFrames;
-    /// With map_along_path: each step's odometry Gaussians, [step − 1][robot].
-    std::vector<std::vector<TMotionGaussian>> m_motions;
-    std::vector<mrpt::math::TPose2D> m_startPoses;
-    size_t m_steps = 0;  ///< since reset()
-
-    /// A particle's team poses per path node, [step][robot] (0: the start poses).
-    using TTeamPath = std::vector<std::vector<mrpt::math::TPose2D>>;
-    static TTeamPath teamPathOf(const TTeamParticle& p);
-    /// mapAlongPath() along `path`; `ids` (if given) gets, per fused frame and measurement,
-    /// the landmark it went to, or std::nullopt if that landmark was removed.
-    using TFrameIds = std::vector<std::vector<std::optional<uint32_t>>>;
-    CVisualLandmarksMap mapAlong(const TTeamPath& path, TFrameIds* ids) const;
-    /** Of the landmark readings in fused frames `frames` (one robot's), the fraction that fit
-     *  (squared Mahalanobis distance < 9.21, 99 % for 2 dof) a landmark of `map` (made along
-     *  `path`, `ids` its associations) that readings outside `frames` also went to. */
-    double supportedFraction(const std::vector<size_t>& frames, const TTeamPath& path,
-                             const CVisualLandmarksMap& map, const TFrameIds& ids) const;
-    /** Ours (doc/multirobot.md §3): per robot, its path split where its landmark readings are
-     *  more than options.smooth_paths_reanchor_gap apart; in the order of the run, each part
-     *  after a gap (the gap included) is replaced by the robot's odometry (scaled by `scales`,
-     *  if any) from the last pose before it, where that raises the part's supportedFraction()
-     *  by more than options.smooth_paths_reanchor_gain. `map` and `ids` follow `path`.
-     *  \return how many parts moved */
-    size_t reanchorAfterGaps(TTeamPath& path, const std::vector<double>& times,
-                             const std::vector<Eigen::Vector2d>& scales, CVisualLandmarksMap& map,
-                             TFrameIds& ids) const;
+    size_t m_steps = 0;                   ///< since reset()
+    TStepObserver* m_observer = nullptr;  ///< setStepObserver()
 
     CVisualLandmarksMap m_template;  ///< empty; shares the particles' descriptor pool
     mrpt::random::CRandomGenerator m_rng;

@@ -13,10 +13,6 @@ struct TVisualLandmark {
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();   ///< Σ [m²]
     uint32_t times_seen = 0;  ///< measurements fused, the initializing one included
     uint32_t seen_by = 0;     ///< bit k set: robot k measured it (merged vs per-robot landmarks)
-    /// Diagnostics where measurements carry identities (range-bearing data with kept ids): the
-    /// identity of the measurement that created it, and how many fused measurements had another.
-    int64_t identity = -1;
-    uint32_t identity_conflicts = 0;
 };
 
 }  // namespace mrpt_vslam::multirobot

@@ -1,0 +1,153 @@
+#pragma once
+
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/math/TPose2D.h>
+#include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
+#include <mrpt_vslam/multirobot/CVisualLandmarksMap.h>
+#include <mrpt_vslam/multirobot/TeamParticle.h>
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mrpt_vslam::multirobot {
+
+/** What is made after the filter, along the best particle's path (ours; doc/multirobot.md §3):
+ *  the map of every measurement made again along the path (mapAlongPath()) and the most
+ *  probable paths given every odometry increment and reading (smoothPaths()).
+ *
+ *  It records the run as CMultiRobotVisualSLAM's step observer: each robot's odometry
+ *  Gaussian, measurements and readings of other robots, step by step, and the start poses.
+ *  Usage: `TeamPathSmoother smoother(map_template); smoother.options = ...;
+ *  filter.setStepObserver(&smoother);` before `filter.reset()`, run the filter, then
+ *  `smoother.smoothPaths(filter.bestParticle())` or `smoother.mapAlongPath(...)`. */
+class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
+  public:
+    /// Options (ini section `[TeamPathSmoother]` in multirobot-vslam).
+    struct TOptions : public mrpt::config::CLoadableOptions {
+        /// The output map is the map along the best particle's path (mapAlongPath()); the
+        /// app then records the run for this smoother.
+        bool map_along_path = false;
+        /// Mapping along a path: D0 of its gate, and the fewest measurements a landmark of it
+        /// needs.
+        double D0 = 30;
+        unsigned int min_times_seen = 1;
+        /// smoothPaths() as the result (needs map_along_path): rounds of mapping along the
+        /// path and least squares, and the Huber threshold [σ] of its readings (0: none).
+        bool smooth_paths = false;
+        unsigned int rounds = 2;
+        double huber = 3;
+        /// smoothPaths(): σ of the prior N(1, σ²) on each robot's odometry scales (distance,
+        /// turn; 0: no scales), and the factor on the odometry covariance.
+        double odometry_scale_std = 0;
+        double motion_cov_factor = 1;
+        /// smoothPaths(): a robot's readings more than this apart [s] (0: never) split its
+        /// path; each round, a part after such a gap is moved onto the robot's odometry from the
+        /// part before when that raises the fraction of its readings that fit a landmark also
+        /// read outside it by more than reanchor_gain (reanchorAfterGaps()).
+        double reanchor_gap = 0;
+        double reanchor_gain = 0.1;
+
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
+                                const std::string& section) override;
+        void saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
+                              const std::string& section) const override;
+    } options;
+
+    /// \param map_template its insertion options are those of every map made along a path
+    /// (the filter's), but D0 = options.D0
+    explicit TeamPathSmoother(const CVisualLandmarksMap& map_template);
+
+    /// @name CMultiRobotVisualSLAM::TStepObserver: what the run is made of
+    /// @{
+    /// Forgets the run recorded so far.
+    void onReset(const std::vector<mrpt::math::TPose2D>& start_poses, double initial_std_xy,
+                 double initial_std_phi) override;
+    void onRobotStep(size_t step, size_t robot,
+                     const CMultiRobotVisualSLAM::TMotionGaussian& motion,
+                     const std::vector<TLandmarkMeasurement>& z,
+                     const std::vector<CMultiRobotVisualSLAM::TRobotReading>& readings) override;
+    /// @}
+
+    /** The map of every measurement fused since reset(), made again along the final path of
+     *  particle `p` (mapping with known poses): frame by frame in the order of the run, each
+     *  robot's measurements at that particle's pose of the step, fused by
+     *  CVisualLandmarksMap::fuseFrame() (distinct landmarks per frame) with the filter's
+     *  insertion options but D0 = options.D0; then the landmarks seen fewer than
+     *  options.min_times_seen times are removed. The poses do not move, so a wrong
+     *  association here costs the map only, not the paths, and the gate can be wider than
+     *  the filter's. `correspondences` (if given) gets those of the map's landmarks, in the
+     *  order of the run. \pre registered with the filter before its reset() */
+    CVisualLandmarksMap mapAlongPath(const TTeamParticle& p,
+                                     std::vector<TCorrespondence>* correspondences = nullptr) const;
+
+    /// The team's paths and map after smoothPaths().
+    struct TSmoothedTeam {
+        /// one per robot, oldest first, as CMultiRobotVisualSLAM::pathOf()
+        std::vector<std::vector<std::pair<double, mrpt::math::TPose2D>>> paths;
+        CVisualLandmarksMap map;  ///< mapped along `paths` as mapAlongPath() maps
+        /// those `map` was made with, as mapAlongPath() gives them
+        std::vector<TCorrespondence> correspondences;
+        size_t iterations = 0;        ///< least-squares iterations, all rounds
+        size_t outlier_readings = 0;  ///< beyond the Huber threshold after the last round
+        size_t reanchored = 0;        ///< parts of paths reanchorAfterGaps() moved, all rounds
+        /// per robot (distance, turn), with options.odometry_scale_std > 0
+        std::vector<Eigen::Vector2d> odometry_scales;
+    };
+    /** The most probable paths given every odometry increment and reading since reset() and
+     *  the associations of the map along particle `p`'s path: options.rounds times, map along
+     *  the current paths (mapAlongPath()'s rules, the landmarks below the count threshold left
+     *  out), then solve the PlanarPoseLandmarkGraph of the start poses (the first robot's
+     *  fixed, the others with the filter's initial_std_*), the odometry Gaussians (covariance
+     *  × options.motion_cov_factor; with options.odometry_scale_std, scaled by one distance and
+     *  one turn scale per robot, estimated with the rest), the readings of the mapped
+     *  landmarks and of the other robots (Huber); with options.reanchor_gap,
+     *  reanchorAfterGaps() after each mapping; finally map along the result.
+     *  \pre registered with the filter before its reset() */
+    TSmoothedTeam smoothPaths(const TTeamParticle& p) const;
+
+  private:
+    /// A robot's measurements of one step: `step` indexes the path node of that step (0: the
+    /// start poses).
+    struct TFusedFrame {
+        size_t step, robot;
+        std::vector<TLandmarkMeasurement> z;
+        std::vector<CMultiRobotVisualSLAM::TRobotReading> readings;
+    };
+    std::vector<TFusedFrame> m_fusedFrames;  ///< those with measurements or readings
+    /// Each step's odometry Gaussians, [step − 1][robot].
+    std::vector<std::vector<CMultiRobotVisualSLAM::TMotionGaussian>> m_motions;
+    std::vector<mrpt::math::TPose2D> m_startPoses;
+    double m_initialStdXY = 0, m_initialStdPhi = 0;  ///< the filter's initial_std_*
+
+    size_t robotCount() const { return m_startPoses.size(); }
+    /// A particle's team poses per path node, [step][robot] (0: the start poses).
+    using TTeamPath = std::vector<std::vector<mrpt::math::TPose2D>>;
+    /// `p`'s path, which must have one node per step recorded (and the start).
+    TTeamPath recordedPathOf(const TTeamParticle& p) const;
+    /// mapAlongPath() along `path`; `ids` (if given) gets, per fused frame and measurement,
+    /// the landmark it went to, or std::nullopt if that landmark was removed.
+    using TFrameIds = std::vector<std::vector<std::optional<uint32_t>>>;
+    CVisualLandmarksMap mapAlong(const TTeamPath& path, TFrameIds* ids) const;
+    /// The correspondences of mapAlong()'s `ids`, those of removed landmarks left out.
+    std::vector<TCorrespondence> correspondencesOf(const TFrameIds& ids) const;
+    /** Of the landmark readings in fused frames `frames` (one robot's), the fraction that fit
+     *  (squared Mahalanobis distance < 9.21, 99 % for 2 dof) a landmark of `map` (made along
+     *  `path`, `ids` its associations) that readings outside `frames` also went to. */
+    double supportedFraction(const std::vector<size_t>& frames, const TTeamPath& path,
+                             const CVisualLandmarksMap& map, const TFrameIds& ids) const;
+    /** Per robot, its path split where its landmark readings are more than
+     *  options.reanchor_gap apart; in the order of the run, each part after a gap (the gap
+     *  included) is replaced by the robot's odometry (scaled by `scales`, if any) from the
+     *  last pose before it, where that raises the part's supportedFraction() by more than
+     *  options.reanchor_gain. `map` and `ids` follow `path`. \return how many parts moved */
+    size_t reanchorAfterGaps(TTeamPath& path, const std::vector<double>& times,
+                             const std::vector<Eigen::Vector2d>& scales, CVisualLandmarksMap& map,
+                             TFrameIds& ids) const;
+
+    CVisualLandmarksMap m_template;  ///< empty; the options of the maps along paths
+};
+
+}  // namespace mrpt_vslam::multirobot

@@ -1,0 +1,239 @@
+#include <mrpt/config/CConfigFileBase.h>
+#include <mrpt_vslam/multirobot/PlanarPoseLandmarkGraph.h>
+#include <mrpt_vslam/multirobot/TeamPathSmoother.h>
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+
+namespace mrpt_vslam::multirobot {
+
+using mrpt::math::TPose2D;
+
+namespace {
+void requireKey(bool ok, const std::string& section, const char* key, const char* what)
+{
+    if (!ok) throw std::invalid_argument("[" + section + "] " + key + ": " + what);
+}
+
+/// A count key (>= 1).
+unsigned int readCount(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+                       const char* key, unsigned int value)
+{
+    const int n = cfg.read_int(section, key, static_cast<int>(value));
+    requireKey(n >= 1, section, key, "must be >= 1");
+    return static_cast<unsigned int>(n);
+}
+}  // namespace
+
+void TeamPathSmoother::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
+                                                    const std::string& section)
+{
+    MRPT_LOAD_CONFIG_VAR(map_along_path, bool, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(D0, double, cfg, section);
+    min_times_seen = readCount(cfg, section, "min_times_seen", min_times_seen);
+    MRPT_LOAD_CONFIG_VAR(smooth_paths, bool, cfg, section);
+    rounds = readCount(cfg, section, "rounds", rounds);
+    MRPT_LOAD_CONFIG_VAR(huber, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(odometry_scale_std, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(motion_cov_factor, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(reanchor_gap, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(reanchor_gain, double, cfg, section);
+
+    requireKey(D0 > 0, section, "D0", "must be > 0");
+    requireKey(!smooth_paths || map_along_path, section, "smooth_paths",
+               "needs map_along_path = true");
+    requireKey(huber >= 0, section, "huber", "must be >= 0");
+    requireKey(odometry_scale_std >= 0, section, "odometry_scale_std", "must be >= 0");
+    requireKey(motion_cov_factor > 0, section, "motion_cov_factor", "must be > 0");
+    requireKey(reanchor_gap >= 0, section, "reanchor_gap", "must be >= 0");
+    requireKey(reanchor_gain > 0 && reanchor_gain < 1, section, "reanchor_gain",
+               "must be in (0, 1)");
+}
+
+void TeamPathSmoother::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
+                                                  const std::string& section) const
+{
+    cfg.write(section, "map_along_path", map_along_path);
+    cfg.write(section, "D0", D0);
+    cfg.write(section, "min_times_seen", min_times_seen);
+    cfg.write(section, "smooth_paths", smooth_paths);
+    cfg.write(section, "rounds", rounds);
+    cfg.write(section, "huber", huber);
+    cfg.write(section, "odometry_scale_std", odometry_scale_std);
+    cfg.write(section, "motion_cov_factor", motion_cov_factor);
+    cfg.write(section, "reanchor_gap", reanchor_gap);
+    cfg.write(section, "reanchor_gain", reanchor_gain);
+}
+
+TeamPathSmoother::TeamPathSmoother(const CVisualLandmarksMap& map_template)
+{
+    m_template.insertionOptions = map_template.insertionOptions;
+    m_template.renderOptions = map_template.renderOptions;
+    m_template.genericMapParams = map_template.genericMapParams;
+}
+
+void TeamPathSmoother::onReset(const std::vector<TPose2D>& start_poses, double initial_std_xy,
+                               double initial_std_phi)
+{
+    m_fusedFrames.clear();
+    m_motions.clear();
+    m_startPoses = start_poses;
+    m_initialStdXY = initial_std_xy;
+    m_initialStdPhi = initial_std_phi;
+}
+
+void TeamPathSmoother::onRobotStep(
+    size_t step, size_t robot, const CMultiRobotVisualSLAM::TMotionGaussian& motion,
+    const std::vector<TLandmarkMeasurement>& z,
+    const std::vector<CMultiRobotVisualSLAM::TRobotReading>& readings)
+{
+    if (robot == 0) m_motions.emplace_back();
+    m_motions.back().push_back(motion);
+    if (!z.empty() || !readings.empty()) m_fusedFrames.push_back({step, robot, z, readings});
+}
+
+TeamPathSmoother::TTeamPath TeamPathSmoother::recordedPathOf(const TTeamParticle& p) const
+{
+    TTeamPath path;
+    for (const TTeamPathNode* n = p.path.get(); n; n = n->previous.get()) path.push_back(n->poses);
+    std::reverse(path.begin(), path.end());
+    if (path.size() != m_motions.size() + 1)
+        throw std::logic_error(
+            "TeamPathSmoother: the particle's path is not that of the steps recorded since the "
+            "filter's reset() (setStepObserver() before reset())");
+    return path;
+}
+
+CVisualLandmarksMap TeamPathSmoother::mapAlong(const TTeamPath& path, TFrameIds* ids) const
+{
+    CVisualLandmarksMap map(
+        std::make_shared<LandmarkDescriptorPool>(m_template.insertionOptions.grid_cell_size));
+    map.insertionOptions = m_template.insertionOptions;
+    map.insertionOptions.D0 = options.D0;
+    map.renderOptions = m_template.renderOptions;
+    map.genericMapParams = m_template.genericMapParams;
+    std::vector<TMapMeasurement> in_map;
+    std::vector<TMeasurementCandidates> candidates;
+    if (ids) ids->clear();
+    for (const auto& f : m_fusedFrames) {
+        const TPlanarTransform pose(path.at(f.step).at(f.robot));
+        in_map.resize(f.z.size());
+        candidates.resize(f.z.size());
+        for (size_t j = 0; j < f.z.size(); j++) {
+            in_map[j] = toMapFrame(f.z[j], pose);
+            candidates[j] = map.findCandidates(f.z[j], in_map[j]);
+        }
+        const auto fused =
+            map.fuseFrame(f.z, in_map, candidates, static_cast<unsigned>(f.robot), true);
+        if (ids) {
+            ids->emplace_back();
+            for (const auto& r : fused) ids->back().push_back(r.id);
+        }
+    }
+    map.removeLandmarksSeenLessThan(options.min_times_seen);
+    if (ids)
+        for (auto& frame : *ids)
+            for (auto& id : frame)
+                if (!map.landmarks().find(*id)) id.reset();
+    return map;
+}
+
+std::vector<TCorrespondence> TeamPathSmoother::correspondencesOf(const TFrameIds& ids) const
+{
+    std::vector<TCorrespondence> c;
+    for (size_t f = 0; f < m_fusedFrames.size(); f++)
+        for (size_t j = 0; j < ids[f].size(); j++)
+            if (ids[f][j])
+                c.push_back({static_cast<uint32_t>(m_fusedFrames[f].robot), *ids[f][j],
+                             m_fusedFrames[f].z[j].track_id});
+    return c;
+}
+
+CVisualLandmarksMap TeamPathSmoother::mapAlongPath(
+    const TTeamParticle& p, std::vector<TCorrespondence>* correspondences) const
+{
+    TFrameIds ids;
+    CVisualLandmarksMap map = mapAlong(recordedPathOf(p), correspondences ? &ids : nullptr);
+    if (correspondences) *correspondences = correspondencesOf(ids);
+    return map;
+}
+
+TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticle& p) const
+{
+    const size_t K = robotCount();
+    TTeamPath path = recordedPathOf(p);
+    auto node = [K](size_t step, size_t robot) { return step * K + robot; };
+    auto planar = [](const Eigen::Matrix3d& R) { return Eigen::Matrix2d(R.topLeftCorner<2, 2>()); };
+    // the start poses: the first robot's defines the map frame (a tight prior, as the filter's
+    // reset() keeps it exact), the others as reset() spreads them
+    const double fixed = 1e-3;
+    const double sxy = std::max(m_initialStdXY, fixed);
+    const double sphi = std::max(m_initialStdPhi, fixed);
+    const double scaleStd = options.odometry_scale_std;
+
+    TSmoothedTeam result;
+    result.odometry_scales.assign(scaleStd > 0 ? K : 0, Eigen::Vector2d(1, 1));
+    std::vector<double> times;
+    for (const auto& [t, pose] : CMultiRobotVisualSLAM::pathOf(p, 0)) times.push_back(t);
+    TFrameIds ids;
+    for (unsigned round = 0; round < options.rounds; round++) {
+        CVisualLandmarksMap map = mapAlong(path, &ids);
+        if (options.reanchor_gap > 0)
+            result.reanchored += reanchorAfterGaps(path, times, result.odometry_scales, map, ids);
+        PlanarPoseLandmarkGraph graph;
+        for (const auto& poses : path)
+            for (const auto& x : poses) graph.addPose(x);
+        std::map<uint32_t, size_t> pointOf;
+        map.landmarks().forEach([&](uint32_t id, const TVisualLandmark& lm) {
+            pointOf[id] = graph.addPoint(lm.mean.head<2>());
+        });
+        for (size_t k = 0; k < K; k++) {
+            const double s = k == 0 ? fixed : sxy, a = k == 0 ? fixed : sphi;
+            graph.addPosePrior(node(0, k), m_startPoses[k],
+                               Eigen::Vector3d(s * s, s * s, a * a).asDiagonal());
+        }
+        for (const auto& initial : result.odometry_scales)
+            graph.addOdometryScale(initial, {1, 1},
+                                   Eigen::Matrix2d::Identity() * scaleStd * scaleStd);
+        for (size_t step = 1; step < path.size(); step++)
+            for (size_t k = 0; k < K; k++) {
+                const CMultiRobotVisualSLAM::TMotionGaussian& u = m_motions[step - 1][k];
+                const Eigen::Matrix3d cov = u.cov * options.motion_cov_factor;
+                if (scaleStd > 0)
+                    graph.addOdometry(node(step - 1, k), node(step, k), u.mean, cov, k);
+                else
+                    graph.addOdometry(node(step - 1, k), node(step, k), u.mean, cov);
+            }
+        for (size_t f = 0; f < m_fusedFrames.size(); f++) {
+            const TFusedFrame& frame = m_fusedFrames[f];
+            const size_t from = node(frame.step, frame.robot);
+            for (size_t j = 0; j < frame.z.size(); j++)
+                if (ids[f][j])
+                    graph.addPointReading(from, pointOf.at(*ids[f][j]), frame.z[j].z.head<2>(),
+                                          planar(frame.z[j].R));
+            for (const auto& r : frame.readings)
+                graph.addPoseReading(from, node(frame.step, r.robot), r.m.z.head<2>(),
+                                     planar(r.m.R));
+        }
+        PlanarPoseLandmarkGraph::TOptions lsq;
+        lsq.huber_threshold = options.huber;
+        const auto solved = graph.optimize(lsq);
+        result.iterations += solved.iterations;
+        result.outlier_readings = solved.outlier_readings;
+        for (size_t step = 0; step < path.size(); step++)
+            for (size_t k = 0; k < K; k++) path[step][k] = graph.pose(node(step, k));
+        for (size_t k = 0; k < result.odometry_scales.size(); k++)
+            result.odometry_scales[k] = graph.odometryScale(k);
+    }
+    result.map = mapAlong(path, &ids);
+    result.correspondences = correspondencesOf(ids);
+    for (size_t k = 0; k < K; k++) {
+        result.paths.push_back(CMultiRobotVisualSLAM::pathOf(p, k));  // for the timestamps
+        for (size_t step = 0; step < path.size(); step++)
+            result.paths[k][step].second = path[step][k];
+    }
+    return result;
+}
+
+}  // namespace mrpt_vslam::multirobot
