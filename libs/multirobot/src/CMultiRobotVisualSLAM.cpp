@@ -21,12 +21,6 @@ namespace mrpt_vslam::multirobot {
 using mrpt::math::TPose2D;
 
 namespace {
-TPose2D compose(const TPose2D& a, const TPose2D& b)
-{
-    const double c = std::cos(a.phi), s = std::sin(a.phi);
-    return {a.x + c * b.x - s * b.y, a.y + s * b.x + c * b.y, mrpt::math::wrapToPi(a.phi + b.phi)};
-}
-
 void requireKey(bool ok, const std::string& section, const char* key, const char* what)
 {
     if (!ok) throw std::invalid_argument("[" + section + "] " + key + ": " + what);
@@ -109,9 +103,7 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
                    "must be `nearest` or `random`");
         observation_selection = s == "random" ? TSelection::Random : TSelection::Nearest;
     }
-    MRPT_LOAD_CONFIG_VAR(min_motion_std_xy, double, cfg, section);
-    min_motion_std_phi = mrpt::DEG2RAD(
-        cfg.read_double(section, "min_motion_std_phi_deg", mrpt::RAD2DEG(min_motion_std_phi)));
+    motion_noise_floor.loadFromConfigFile(cfg, section);
     MRPT_LOAD_CONFIG_VAR(initial_std_xy, double, cfg, section);
     initial_std_phi = mrpt::DEG2RAD(
         cfg.read_double(section, "initial_std_phi_deg", mrpt::RAD2DEG(initial_std_phi)));
@@ -138,8 +130,6 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
                    section, "robot_reading_ids", "must not repeat an id");
     requireKey(max_observations_per_robot >= 1, section, "max_observations_per_robot",
                "must be >= 1");
-    requireKey(min_motion_std_xy > 0, section, "min_motion_std_xy", "must be > 0");
-    requireKey(min_motion_std_phi > 0, section, "min_motion_std_phi_deg", "must be > 0");
     requireKey(initial_std_xy >= 0, section, "initial_std_xy", "must be >= 0");
     requireKey(initial_std_phi >= 0, section, "initial_std_phi_deg", "must be >= 0");
 }
@@ -162,8 +152,7 @@ void CMultiRobotVisualSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     cfg.write(section, "max_observations_per_robot", max_observations_per_robot);
     cfg.write(section, "observation_selection",
               observation_selection == TSelection::Random ? "random" : "nearest");
-    cfg.write(section, "min_motion_std_xy", min_motion_std_xy);
-    cfg.write(section, "min_motion_std_phi_deg", mrpt::RAD2DEG(min_motion_std_phi));
+    motion_noise_floor.saveToConfigFile(cfg, section);
     cfg.write(section, "initial_std_xy", initial_std_xy);
     cfg.write(section, "initial_std_phi_deg", mrpt::RAD2DEG(initial_std_phi));
     cfg.write(section, "resample_per_robot", resample_per_robot);
@@ -205,7 +194,7 @@ void CMultiRobotVisualSLAM::reset(const std::vector<TPose2D>& start_poses, doubl
             d.poses[k].phi = mrpt::math::wrapToPi(
                 d.poses[k].phi + options.initial_std_phi * m_rng.drawGaussian1D_normalized());
         }
-        d.path = std::make_shared<const TTeamPathNode>(timestamp, d.poses, nullptr);
+        d.path = std::make_shared<const TTeamPathNode>(timestamp, TTeamStep{d.poses, {}}, nullptr);
         d.map = m_template;
         d.accumulated_log_w = 0;
         d.correspondences.clear();
@@ -215,47 +204,23 @@ void CMultiRobotVisualSLAM::reset(const std::vector<TPose2D>& start_poses, doubl
         m_observer->onReset(start_poses, options.initial_std_xy, options.initial_std_phi);
 }
 
-const TTeamParticle& CMultiRobotVisualSLAM::bestParticle() const
-{
-    const auto best =
-        std::max_element(m_particles.begin(), m_particles.end(), [](const auto& a, const auto& b) {
-            return a.d->accumulated_log_w < b.d->accumulated_log_w;
-        });
-    return *best->d;
-}
-
 std::vector<std::pair<double, TPose2D>> CMultiRobotVisualSLAM::pathOf(const TTeamParticle& p,
                                                                       size_t robot)
 {
     std::vector<std::pair<double, TPose2D>> path;
-    for (const TTeamPathNode* n = p.path.get(); n; n = n->previous.get())
-        path.emplace_back(n->timestamp, n->poses.at(robot));
-    std::reverse(path.begin(), path.end());
+    for (const auto* n : core::nodesOldestFirst(p.path.get()))
+        path.emplace_back(n->timestamp, n->state.poses.at(robot));
     return path;
 }
 
-CMultiRobotVisualSLAM::TMotionGaussian CMultiRobotVisualSLAM::motionOf(
+core::TOdometryGaussian CMultiRobotVisualSLAM::motionOf(
     size_t k, const mrpt::obs::CActionRobotMovement2D& odometry) const
 {
-    mrpt::math::CMatrixDouble33 cov;
-    mrpt::poses::CPose2D mean;
-    odometry.poseChange->getCovarianceAndMean(cov, mean);
-    TMotionGaussian g;
-    g.mean = TPose2D(mean.x(), mean.y(), mean.phi());
-    g.cov = cov.asEigen();
-    g.cov.diagonal() += Eigen::Vector3d(options.min_motion_std_xy * options.min_motion_std_xy,
-                                        options.min_motion_std_xy * options.min_motion_std_xy,
-                                        options.min_motion_std_phi * options.min_motion_std_phi);
-    if (!g.cov.allFinite() || !std::isfinite(g.mean.x) || !std::isfinite(g.mean.y) ||
-        !std::isfinite(g.mean.phi))
-        throw std::runtime_error(options.robots[k] +
-                                 ": odometry with a non-finite increment or covariance");
-    const Eigen::LLT<Eigen::Matrix3d> llt(g.cov);
-    if (llt.info() != Eigen::Success)
-        throw std::runtime_error(options.robots[k] +
-                                 ": odometry covariance is not positive definite");
-    g.L = llt.matrixL();
-    return g;
+    try {
+        return core::TOdometryGaussian::from(&odometry, options.motion_noise_floor);
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(options.robots[k] + ": " + e.what());
+    }
 }
 
 std::vector<TLandmarkMeasurement> CMultiRobotVisualSLAM::measurementsOf(
@@ -307,25 +272,17 @@ void CMultiRobotVisualSLAM::weighRobotReadings(size_t k, const std::vector<TRobo
             const TPose2D& other = p.d->poses[r.robot];
             const double log_w =
                 robotReadingLogLikelihood(w.z - Eigen::Vector3d(other.x, other.y, 0), w.R);
-            p.log_w += log_w;
-            p.d->accumulated_log_w += log_w;
+            addLogWeight(p, log_w);
         }
     }
 }
 
-Eigen::Vector3d CMultiRobotVisualSLAM::drawGaussian(const Eigen::Matrix3d& L)
-{
-    Eigen::Vector3d n;
-    for (int i = 0; i < 3; i++) n[i] = m_rng.drawGaussian1D_normalized();
-    return L * n;
-}
-
-void CMultiRobotVisualSLAM::sampleMotion(size_t k, const TMotionGaussian& motion)
+void CMultiRobotVisualSLAM::sampleMotion(size_t k, const core::TOdometryGaussian& motion)
 {
     for (auto& p : m_particles) {  // Alg. 1 line 18, p(x_t | x_{t-1}, u_t) per robot
-        const Eigen::Vector3d dx = drawGaussian(motion.L);
-        p.d->poses[k] = compose(p.d->poses[k], TPose2D(motion.mean.x + dx[0], motion.mean.y + dx[1],
-                                                       motion.mean.phi + dx[2]));
+        const Eigen::Vector3d dx = core::drawGaussian(m_rng, motion.L);
+        p.d->poses[k] = p.d->poses[k] + TPose2D(motion.mean.x + dx[0], motion.mean.y + dx[1],
+                                                motion.mean.phi + dx[2]);
     }
 }
 
@@ -384,21 +341,20 @@ void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandma
             p.d->map.fuseFrame(z, in_map, candidates, static_cast<unsigned>(k), false);
         for (size_t j = 0; j < z.size(); j++) {
             const TFusionResult& r = fused[j];
-            p.log_w += r.log_w;  // line 44 and line 11: the product over the team
-            p.d->accumulated_log_w += r.log_w;
+            addLogWeight(p, r.log_w);  // line 44 and line 11: the product over the team
             (r.created ? lastStepStats.created : lastStepStats.associated)++;
             p.d->correspondences.push_back({static_cast<uint32_t>(k), r.id, z[j].track_id});
         }
     }
 }
 
-void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const TMotionGaussian& motion,
+void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussian& motion,
                                            const std::vector<TLandmarkMeasurement>& z,
                                            const std::vector<TRobotReading>& readings)
 {
     // x̂ = x_{t-1} ⊕ u for every particle; the search also covers 3σ of the motion noise
     std::vector<TPose2D> predicted = posesOf(k);
-    for (auto& x : predicted) x = compose(x, motion.mean);
+    for (auto& x : predicted) x = x + motion.mean;
     auto candidates =
         searchCandidates(predicted, 3 * std::sqrt(motion.cov(0, 0) + motion.cov(1, 1)),
                          3 * std::sqrt(motion.cov(2, 2)), z);
@@ -473,7 +429,7 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const TMotionGaussian& moti
         if (!L.ok)
             throw std::runtime_error(options.robots[k] +
                                      ": proposal covariance is not positive definite");
-        const Eigen::Vector3d x = mu + drawGaussian(L.factor());
+        const Eigen::Vector3d x = mu + core::drawGaussian(m_rng, L.factor());
         p.poses[k] = TPose2D(x[0], x[1], mrpt::math::wrapToPi(x[2]));
 
         // the landmarks updated from the sampled pose, with the associations made above
@@ -484,8 +440,7 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const TMotionGaussian& moti
             (r.created ? lastStepStats.created : lastStepStats.associated)++;
             p.correspondences.push_back({static_cast<uint32_t>(k), r.id, z[j].track_id});
         }
-        m_particles[i].log_w += log_w;  // line 11: the product over the team
-        p.accumulated_log_w += log_w;
+        addLogWeight(m_particles[i], log_w);  // line 11: the product over the team
     }
 }
 
@@ -506,7 +461,7 @@ void CMultiRobotVisualSLAM::runStep(
             throw std::runtime_error("action " + std::to_string(k) +
                                      " of a step is not a CActionRobotMovement2D");
         timestamp = std::max(timestamp, mrpt::Clock::toDouble(odo->timestamp));
-        const TMotionGaussian motion = motionOf(k, *odo);
+        const core::TOdometryGaussian motion = motionOf(k, *odo);
         const auto z =
             observation ? measurementsOf(k, *observation) : std::vector<TLandmarkMeasurement>();
         const auto readings =
@@ -525,8 +480,8 @@ void CMultiRobotVisualSLAM::runStep(
             performResampling(pf_options);
     }
     for (auto& p : m_particles) {
-        p.d->path = std::make_shared<const TTeamPathNode>(timestamp, p.d->poses, p.d->path,
-                                                          std::move(p.d->correspondences));
+        p.d->path = std::make_shared<const TTeamPathNode>(
+            timestamp, TTeamStep{p.d->poses, std::move(p.d->correspondences)}, p.d->path);
         p.d->correspondences.clear();
     }
     m_steps++;

@@ -29,11 +29,10 @@ TLandmarkIdentityTally TLandmarkIdentityTally::of(const std::vector<TCorresponde
 
 std::vector<TCorrespondence> TLandmarkIdentityTally::historyOf(const TTeamParticle& p)
 {
-    std::vector<const TTeamPathNode*> nodes;
-    for (const TTeamPathNode* n = p.path.get(); n; n = n->previous.get()) nodes.push_back(n);
     std::vector<TCorrespondence> history;
-    for (auto n = nodes.rbegin(); n != nodes.rend(); ++n)
-        history.insert(history.end(), (*n)->correspondences.begin(), (*n)->correspondences.end());
+    for (const auto* n : core::nodesOldestFirst(p.path.get()))
+        history.insert(history.end(), n->state.correspondences.begin(),
+                       n->state.correspondences.end());
     return history;
 }
 

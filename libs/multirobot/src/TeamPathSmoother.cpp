@@ -84,7 +84,7 @@ void TeamPathSmoother::onReset(const std::vector<TPose2D>& start_poses, double i
 }
 
 void TeamPathSmoother::onRobotStep(
-    size_t step, size_t robot, const CMultiRobotVisualSLAM::TMotionGaussian& motion,
+    size_t step, size_t robot, const core::TOdometryGaussian& motion,
     const std::vector<TLandmarkMeasurement>& z,
     const std::vector<CMultiRobotVisualSLAM::TRobotReading>& readings)
 {
@@ -96,7 +96,8 @@ void TeamPathSmoother::onRobotStep(
 TeamPathSmoother::TTeamPath TeamPathSmoother::recordedPathOf(const TTeamParticle& p) const
 {
     TTeamPath path;
-    for (const TTeamPathNode* n = p.path.get(); n; n = n->previous.get()) path.push_back(n->poses);
+    for (const TTeamPathNode* n = p.path.get(); n; n = n->previous.get())
+        path.push_back(n->state.poses);
     std::reverse(path.begin(), path.end());
     if (path.size() != m_motions.size() + 1)
         throw std::logic_error(
@@ -198,7 +199,7 @@ TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticl
                                    Eigen::Matrix2d::Identity() * scaleStd * scaleStd);
         for (size_t step = 1; step < path.size(); step++)
             for (size_t k = 0; k < K; k++) {
-                const CMultiRobotVisualSLAM::TMotionGaussian& u = m_motions[step - 1][k];
+                const core::TOdometryGaussian& u = m_motions[step - 1][k];
                 const Eigen::Matrix3d cov = u.cov * options.motion_cov_factor;
                 if (scaleStd > 0)
                     graph.addOdometry(node(step - 1, k), node(step, k), u.mean, cov, k);

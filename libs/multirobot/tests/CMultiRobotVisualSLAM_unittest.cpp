@@ -131,7 +131,7 @@ TEST(CMultiRobotVisualSLAM, PathNodesHoldTheCorrespondencesOfTheParticlesMap)
             resets++;
             EXPECT_EQ(start.size(), 2u);
         }
-        void onRobotStep(size_t step, size_t robot, const CMultiRobotVisualSLAM::TMotionGaussian&,
+        void onRobotStep(size_t step, size_t robot, const mrpt_vslam::core::TOdometryGaussian&,
                          const std::vector<TLandmarkMeasurement>& z,
                          const std::vector<CMultiRobotVisualSLAM::TRobotReading>&) override
         {

@@ -133,10 +133,10 @@ Eigen::Matrix3d stepWithoutResampling(
     acts.getActionByClass<mrpt::obs::CActionRobotMovement2D>()->poseChange->getCovarianceAndMean(
         cov, mean);
     Eigen::Matrix3d prior_cov = cov.asEigen();
-    prior_cov.diagonal() +=
-        Eigen::Vector3d(filter.options.min_motion_std_xy, filter.options.min_motion_std_xy,
-                        filter.options.min_motion_std_phi)
-            .cwiseAbs2();
+    prior_cov.diagonal() += Eigen::Vector3d(filter.options.motion_noise_floor.std_xy,
+                                            filter.options.motion_noise_floor.std_xy,
+                                            filter.options.motion_noise_floor.std_phi)
+                                .cwiseAbs2();
     return prior_cov;
 }
 

@@ -123,19 +123,21 @@ TEST(TeamPathSmoother, SmoothingReanchorsAPartDisplacedAfterAGap)
     mrpt::obs::CSensoryFrame sf;
     const size_t steps = 60, gapFrom = 20, gapTo = 35;  // R2 blind in steps [gapFrom, gapTo)
     TTeamParticle truth, displaced;
-    truth.path = displaced.path =
-        std::make_shared<const TTeamPathNode>(world.time, world.startPoses(), nullptr);
+    truth.path = displaced.path = std::make_shared<const TTeamPathNode>(
+        world.time, TTeamStep{world.startPoses(), {}}, nullptr);
     const mrpt::poses::CPose2D by(0.3, -0.3, 20 * M_PI / 180);
     mrpt::poses::CPose2D at;  // R2's true pose after the gap
     for (size_t i = 1; i <= steps; i++) {
         world.step(acts, sf);
         if (i >= gapFrom && i < gapTo) sf.eraseByLabel("R2_LANDMARKS");
         pf.executeOn(filter, &acts, &sf);
-        truth.path = std::make_shared<const TTeamPathNode>(world.time, world.truth, truth.path);
+        truth.path = std::make_shared<const TTeamPathNode>(world.time, TTeamStep{world.truth, {}},
+                                                           truth.path);
         auto poses = world.truth;
         if (i == gapTo) at = mrpt::poses::CPose2D(poses[1]);
         if (i >= gapTo) poses[1] = (at + by + (mrpt::poses::CPose2D(poses[1]) - at)).asTPose();
-        displaced.path = std::make_shared<const TTeamPathNode>(world.time, poses, displaced.path);
+        displaced.path =
+            std::make_shared<const TTeamPathNode>(world.time, TTeamStep{poses, {}}, displaced.path);
     }
     // R2's error after the gap
     auto errorAfterGap = [&](const TeamPathSmoother::TSmoothedTeam& s) {

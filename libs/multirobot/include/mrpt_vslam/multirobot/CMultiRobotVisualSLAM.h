@@ -6,6 +6,7 @@
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/random/RandomGenerators.h>
+#include <mrpt_vslam/core/OdometryGaussian.h>
 #include <mrpt_vslam/core/ParticleFilterDataImpl.h>
 #include <mrpt_vslam/multirobot/TeamParticle.h>
 
@@ -91,9 +92,9 @@ class CMultiRobotVisualSLAM
         /// `observation_selection = nearest | random`; the paper does not say): the nearest, the
         /// most precise for a stereo pair, or a uniform random subset.
         enum class TSelection { Nearest, Random } observation_selection = TSelection::Nearest;
-        /// Added to the odometry covariance (std) so the proposal never degenerates.
-        double min_motion_std_xy = 0.002;              ///< [m]
-        double min_motion_std_phi = 0.1 * M_PI / 180;  ///< [rad] (ini: min_motion_std_phi_deg)
+        /// Added to the odometry covariance so the proposal never degenerates (ini:
+        /// min_motion_std_xy [m], min_motion_std_phi_deg).
+        core::TMotionNoiseFloor motion_noise_floor{0.002, 0.1 * M_PI / 180};
         /// Spread of the initial poses of every robot but the first, whose start defines the
         /// map frame (Sec. 6.1: "the initial position ... is known approximately").
         double initial_std_xy = 0.05;               ///< [m]
@@ -123,11 +124,6 @@ class CMultiRobotVisualSLAM
         size_t non_positive_ranges = 0;  ///< range-bearing readings left out (range ≤ 0)
     } lastStepStats;
 
-    /// One robot's odometry increment as a Gaussian (with the floor), L its Cholesky factor.
-    struct TMotionGaussian {
-        mrpt::math::TPose2D mean;
-        Eigen::Matrix3d cov, L;
-    };
     /// A reading of another robot of the team: its index and where robot k saw it.
     struct TRobotReading {
         size_t robot;
@@ -144,7 +140,7 @@ class CMultiRobotVisualSLAM
         /** Robot `robot` in step `step` (1 for the first, the index of the step's path node;
          *  robots in the order of options.robots): its odometry Gaussian, its B measurements
          *  and its readings of other robots of the team. */
-        virtual void onRobotStep(size_t step, size_t robot, const TMotionGaussian& motion,
+        virtual void onRobotStep(size_t step, size_t robot, const core::TOdometryGaussian& motion,
                                  const std::vector<TLandmarkMeasurement>& z,
                                  const std::vector<TRobotReading>& readings) = 0;
     };
@@ -159,8 +155,6 @@ class CMultiRobotVisualSLAM
     void reset(const std::vector<mrpt::math::TPose2D>& start_poses, double timestamp);
 
     size_t robotCount() const { return options.robots.size(); }
-    /// The particle with the largest accumulated log-weight (Eq. 14).
-    const TTeamParticle& bestParticle() const;
     /// One robot's path in a particle, oldest first: (timestamp, pose).
     static std::vector<std::pair<double, mrpt::math::TPose2D>> pathOf(const TTeamParticle& p,
                                                                       size_t robot);
@@ -177,7 +171,8 @@ class CMultiRobotVisualSLAM
         const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options) override;
 
   private:
-    TMotionGaussian motionOf(size_t k, const mrpt::obs::CActionRobotMovement2D& odometry) const;
+    core::TOdometryGaussian motionOf(size_t k,
+                                     const mrpt::obs::CActionRobotMovement2D& odometry) const;
     /// Robot k's B measurements in the frame (`<ROBOT>_LANDMARKS` or `<ROBOT>_RB`), selected as
     /// `observation_selection` says (random: drawn from the filter's generator).
     std::vector<TLandmarkMeasurement> measurementsOf(size_t k,
@@ -186,7 +181,6 @@ class CMultiRobotVisualSLAM
     std::vector<TRobotReading> robotReadingsOf(size_t k, const mrpt::obs::CSensoryFrame& frame);
     /// pfStandardProposal: multiplies each particle's weight by its robot readings' likelihood.
     void weighRobotReadings(size_t k, const std::vector<TRobotReading>& readings);
-    Eigen::Vector3d drawGaussian(const Eigen::Matrix3d& L);
     std::vector<mrpt::math::TPose2D> posesOf(size_t k) const;
     /// One step: every robot moves and measures (lines 7-9); `optimal` selects the proposal.
     void runStep(const mrpt::obs::CActionCollection* action,
@@ -194,7 +188,7 @@ class CMultiRobotVisualSLAM
                  const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf_options,
                  bool optimal);
     /// Sec. 3.1 for robot k: sample its pose in every particle from the motion model.
-    void sampleMotion(size_t k, const TMotionGaussian& motion);
+    void sampleMotion(size_t k, const core::TOdometryGaussian& motion);
     /** The pool's candidates for each measurement, searched once for all particles around
      *  the mean of `poses`, widened by their spread plus extra_xy [m] and extra_phi [rad]. */
     std::vector<TMeasurementCandidates> searchCandidates(
@@ -204,7 +198,7 @@ class CMultiRobotVisualSLAM
     void fuseMeasurements(size_t k, const std::vector<TLandmarkMeasurement>& z);
     /// pfOptimalProposal for robot k: Gaussian proposal from the motion and the measurements,
     /// weight p(z | x_{t-1}, u, map), then the landmark updates from the sampled pose.
-    void proposeAndFuse(size_t k, const TMotionGaussian& motion,
+    void proposeAndFuse(size_t k, const core::TOdometryGaussian& motion,
                         const std::vector<TLandmarkMeasurement>& z,
                         const std::vector<TRobotReading>& readings);
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <mrpt/math/TPose2D.h>
+#include <mrpt_vslam/core/PathNode.h>
 #include <mrpt_vslam/multirobot/CVisualLandmarksMap.h>
 
 #include <cstdint>
@@ -18,27 +19,13 @@ struct TCorrespondence {
     int64_t track_id = -1;
 };
 
-/** The team's poses at one step of a particle's history; nodes are shared between the copies
- *  resampling makes, so a copy costs one pointer, not a path. */
-struct TTeamPathNode {
-    double timestamp = 0;                                   ///< [s]
-    std::vector<mrpt::math::TPose2D> poses;                 ///< one per robot
-    mutable std::shared_ptr<const TTeamPathNode> previous;  ///< mutable: see the destructor
-    /// The step's correspondences, robot by robot in the order they were fused.
+/** One step of a particle's history: the team's poses and the step's correspondences, robot by
+ *  robot in the order they were fused. */
+struct TTeamStep {
+    std::vector<mrpt::math::TPose2D> poses;  ///< one per robot
     std::vector<TCorrespondence> correspondences;
-
-    TTeamPathNode(double t, std::vector<mrpt::math::TPose2D> p,
-                  std::shared_ptr<const TTeamPathNode> prev, std::vector<TCorrespondence> c = {})
-        : timestamp(t),
-          poses(std::move(p)),
-          previous(std::move(prev)),
-          correspondences(std::move(c))
-    {
-    }
-    /// Releases a chain of nodes nobody else holds iteratively (a long run would otherwise
-    /// recurse once per step).
-    ~TTeamPathNode();
 };
+using TTeamPathNode = core::TPathNode<TTeamStep>;
 
 /** One particle of the team filter (Gil et al. 2010, Eq. 5 and Table 1): the K robot poses, their
  *  paths and the map they share. */

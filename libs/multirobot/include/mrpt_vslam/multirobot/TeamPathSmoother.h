@@ -65,8 +65,7 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
     /// Forgets the run recorded so far.
     void onReset(const std::vector<mrpt::math::TPose2D>& start_poses, double initial_std_xy,
                  double initial_std_phi) override;
-    void onRobotStep(size_t step, size_t robot,
-                     const CMultiRobotVisualSLAM::TMotionGaussian& motion,
+    void onRobotStep(size_t step, size_t robot, const core::TOdometryGaussian& motion,
                      const std::vector<TLandmarkMeasurement>& z,
                      const std::vector<CMultiRobotVisualSLAM::TRobotReading>& readings) override;
     /// @}
@@ -118,7 +117,7 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
     };
     std::vector<TFusedFrame> m_fusedFrames;  ///< those with measurements or readings
     /// Each step's odometry Gaussians, [step − 1][robot].
-    std::vector<std::vector<CMultiRobotVisualSLAM::TMotionGaussian>> m_motions;
+    std::vector<std::vector<core::TOdometryGaussian>> m_motions;
     std::vector<mrpt::math::TPose2D> m_startPoses;
     double m_initialStdXY = 0, m_initialStdPhi = 0;  ///< the filter's initial_std_*
 
