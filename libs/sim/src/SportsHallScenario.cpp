@@ -35,11 +35,8 @@ void SportsHallScenario::loadConfig(const mrpt::config::CConfigFileBase& cfg)
 
 TSimulationSummary SportsHallScenario::run(const TSimulationOptions& options)
 {
-    if (options.robots != -1 && options.robots != 1)
-        throw core::UsageError(name() + " has a single robot: --robots must be 1 or absent");
-    const int n = options.frames < 0 ? trajectory.frames : options.frames;
-    if (n <= 0) throw core::UsageError("the number of frames must be > 0");
-    const std::vector<mrpt::math::TPose2D> poses = trajectory.generate(n);
+    const std::vector<mrpt::math::TPose2D> poses = singleRobotPoses(name(), options, trajectory);
+    const int n = static_cast<int>(poses.size());
 
     odometry.reset(deriveStreamSeed(options.seed, RandomStream::Odometry));
     detections.reset(deriveStreamSeed(options.seed, RandomStream::Detections));

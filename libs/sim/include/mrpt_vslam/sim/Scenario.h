@@ -1,10 +1,12 @@
 #pragma once
 
 #include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/math/TPose2D.h>
 
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace mrpt_vslam::sim {
 
@@ -43,5 +45,13 @@ class Scenario {
     /// Simulates and writes the dataset; throws on any I/O error.
     virtual TSimulationSummary run(const TSimulationOptions& options) = 0;
 };
+
+class WaypointTrajectory;
+/** The robot poses of a single-robot scenario's run: all frames of `trajectory`, or
+ *  options.frames of them. \throw core::UsageError for --robots other than 1 or a frame count
+ *  ≤ 0, naming `scenario` */
+std::vector<mrpt::math::TPose2D> singleRobotPoses(const std::string& scenario,
+                                                  const TSimulationOptions& options,
+                                                  const WaypointTrajectory& trajectory);
 
 }  // namespace mrpt_vslam::sim
