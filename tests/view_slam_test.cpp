@@ -8,8 +8,11 @@
 #include <mrpt_vslam/test/ScratchFolder.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace fs = std::filesystem;
 using mrpt_vslam::test::TCommandResult;
@@ -131,6 +134,19 @@ TEST_F(ViewSLAMApp, BadInputGivesOneLineErrors)
     expectError(kConfig + " " MRPT_VSLAM_SOURCE_DIR "/datasets/office-team/team2.rawlog -q --out " +
                     out("e5"),
                 1, "team2.rawlog");
-    for (const char* d : {"e1", "e2", "e3", "e4", "e5"})
+    // impossible or misread values
+    const std::vector<std::pair<std::string, std::string>> impossible = {
+        {"ViewObserver.max_iterations=2000000000", "max_iterations"},
+        {"ViewObserver.max_iterations=1e9", "max_iterations = 1e9: not an integer"},
+        {"MotionModel.a1=inf", "[MotionModel] a1: must be finite and >= 0"},
+        {"ViewSLAM.gate_probability=nan", "gate_probability"}};
+    for (const auto& [setting, message] : impossible)
+        expectError(kConfig + " " + kRawlog + " -q --out " + out("e6") + " --set " + setting, 2,
+                    message);
+    const std::string garbage = out("garbage.ini");
+    std::ofstream(garbage) << "this is not an ini file\n";
+    expectError(garbage + " " + kRawlog + " -q --out " + out("e7"), 2,
+                "garbage.ini: line 1 is not `key = value`, a [section] or a comment");
+    for (const char* d : {"e1", "e2", "e3", "e4", "e5", "e6", "e7"})
         EXPECT_FALSE(fs::exists(out(d) + "/run.json")) << d;
 }

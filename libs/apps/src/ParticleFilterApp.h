@@ -20,8 +20,12 @@ class ParticleFilterApp : public SlamApp {
   protected:
     ParticleFilterApp(core::AppArguments args, std::string name, std::string section);
 
-    /** Throws a usage error unless sampleSize >= 1, adaptiveSampleSize is off and PF_algorithm
-     *  is pfStandardProposal or pfOptimalProposal; `proposals` names these two for the app. */
+    /// The most particles a run may ask for (each carries a map).
+    static constexpr size_t kMaxParticles = 100000;
+    /** Throws a usage error unless 1 <= sampleSize <= kMaxParticles, BETA is in [0, 1],
+     *  powFactor in (0, 1], max_loglikelihood_dyn_range finite and > 0, adaptiveSampleSize is off
+     *  and PF_algorithm is pfStandardProposal or pfOptimalProposal; `proposals` names these two
+     *  for the app. */
     void checkParticleFilterOptions(const std::string& proposals) const;
 
     /// The map every particle starts from: the only map of `[MappingApplication]`, defined by

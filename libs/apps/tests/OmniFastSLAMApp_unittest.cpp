@@ -20,6 +20,8 @@
 
 #include <cmath>
 #include <fstream>
+#include <utility>
+#include <vector>
 
 using namespace mrpt_vslam;
 
@@ -110,4 +112,32 @@ TEST(OmniFastSLAMApp, FailsOnARawlogWithoutLightMeasurements)
     app.initialize();
     EXPECT_THROW(app.run(), std::runtime_error);
     EXPECT_FALSE(mrpt::system::fileExists(out + "/run.json"));
+}
+
+// Impossible or misread values: a usage error naming the key and the problem, in one line.
+TEST(OmniFastSLAMApp, RejectsImpossibleValuesNamingTheKey)
+{
+    const std::vector<std::pair<std::string, std::string>> impossible = {
+        {"ParticleFilter.sampleSize=1e12", "[ParticleFilter] sampleSize = 1e12: not an integer"},
+        {"ParticleFilter.sampleSize=0", "sampleSize must be 1 to 100000"},
+        {"ParticleFilter.BETA=nan", "BETA (the N_eff/N threshold of resampling) must be in"},
+        {"ParticleFilter.powFactor=nan", "powFactor must be in (0, 1]"},
+        {"ParticleFilter.PF_algorithm=bogus", "Invalid value 'bogus'"},
+        {"ParticleFilter.adaptiveSampleSize=maybe",
+         "adaptiveSampleSize = maybe: not a boolean (true, false) or an integer"},
+        {"MotionModel.a1=inf", "[MotionModel] a1: must be finite and >= 0"},
+        {"MotionModel.minStdXY=0", "[MotionModel] minStdXY: must be finite and > 0"},
+        {"OmniFastSLAM.min_motion_std_phi_deg=-1", "min_motion_std_phi_deg: must be > 0"},
+        {"OmniFastSLAM.min_motion_std_xy=abc", "min_motion_std_xy = abc: not a number"}};
+    for (const auto& [setting, message] : impossible) {
+        apps::OmniFastSLAMApp app(args({kConfig, kRawlog, "--set", setting, "--quiet"}));
+        try {
+            app.initialize();
+            ADD_FAILURE() << setting << " accepted";
+        } catch (const core::UsageError& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find(message), std::string::npos) << setting << ": " << what;
+            EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+        }
+    }
 }

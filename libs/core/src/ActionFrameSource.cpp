@@ -5,6 +5,7 @@
 #include <mrpt_vslam/core/UsageError.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 
@@ -35,8 +36,14 @@ mrpt::obs::CActionRobotMovement2D::TMotionModelOptions ActionFrameSource::loadMo
     g.minStdXY = cfg.read_double(section, "minStdXY", g.minStdXY);
     g.minStdPHI =
         mrpt::DEG2RAD(cfg.read_double(section, "minStdPHI_deg", mrpt::RAD2DEG(g.minStdPHI)));
-    if (!(g.a1 >= 0 && g.a2 >= 0 && g.a3 >= 0 && g.a4 >= 0 && g.minStdXY >= 0 && g.minStdPHI >= 0))
-        throw UsageError("[" + section + "] the noise parameters must be >= 0");
+    for (const auto& [key, value] :
+         {std::pair<const char*, double>{"a1", g.a1}, {"a2", g.a2}, {"a3", g.a3}, {"a4", g.a4}})
+        if (!(value >= 0 && std::isfinite(value)))
+            throw UsageError("[" + section + "] " + key + ": must be finite and >= 0");
+    if (!(g.minStdXY > 0 && std::isfinite(g.minStdXY)))
+        throw UsageError("[" + section + "] minStdXY: must be finite and > 0 [m]");
+    if (!(g.minStdPHI > 0 && std::isfinite(g.minStdPHI)))
+        throw UsageError("[" + section + "] minStdPHI_deg: must be finite and > 0 [deg]");
     return model;
 }
 

@@ -69,10 +69,9 @@ void saveNoise(mrpt::config::CConfigFileBase& cfg, const std::string& section,
 void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                                          const std::string& section)
 {
-    const std::string names = cfg.read_string(section, "robots", "");
-    if (!names.empty()) {
+    if (cfg.keyExists(section, "robots")) {
         robots.clear();
-        mrpt::system::tokenize(names, " \t,", robots);
+        mrpt::system::tokenize(cfg.read_string(section, "robots", ""), " \t,", robots);
     }
     MRPT_LOAD_CONFIG_VAR(sensor_label, string, cfg, section);
     MRPT_LOAD_CONFIG_VAR(landmarks_suffix, string, cfg, section);
@@ -128,8 +127,8 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
         requireKey(std::count(robot_reading_ids.begin(), robot_reading_ids.end(),
                               robot_reading_ids[i]) == 1,
                    section, "robot_reading_ids", "must not repeat an id");
-    requireKey(max_observations_per_robot >= 1, section, "max_observations_per_robot",
-               "must be >= 1");
+    requireKey(max_observations_per_robot >= 1 && max_observations_per_robot <= 1000, section,
+               "max_observations_per_robot", "must be 1 to 1000");
     requireKey(initial_std_xy >= 0, section, "initial_std_xy", "must be >= 0");
     requireKey(initial_std_phi >= 0, section, "initial_std_phi_deg", "must be >= 0");
 }

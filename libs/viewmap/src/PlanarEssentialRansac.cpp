@@ -112,7 +112,8 @@ void PlanarEssentialRansac::TOptions::validate() const
     require(inlier_threshold > 0 && inlier_threshold < M_PI / 2, "inlier_threshold_deg",
             mrpt::RAD2DEG(inlier_threshold), "must be in (0, 90)");
     require(confidence > 0 && confidence < 1, "confidence", confidence, "must be in (0, 1)");
-    require(max_iterations >= 1, "max_iterations", max_iterations, "must be >= 1");
+    require(max_iterations >= 1 && max_iterations <= 100000, "max_iterations", max_iterations,
+            "must be 1 to 100000");
     require(min_inliers >= int(kSampleSize), "min_inliers", min_inliers, "must be >= 4");
     require(min_parallax >= 0 && min_parallax < M_PI, "min_parallax_deg",
             mrpt::RAD2DEG(min_parallax), "must be in [0, 180)");

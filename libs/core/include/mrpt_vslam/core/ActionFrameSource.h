@@ -35,8 +35,8 @@ class ActionFrameSource {
                       std::vector<std::string> odometry_labels = {});
 
     /** MRPT's Gaussian odometry model from an ini section: a1, a2, a3, a4, minStdXY [m],
-     *  minStdPHI_deg (MRPT's defaults where absent). Throws UsageError naming the section for
-     *  negative values. */
+     *  minStdPHI_deg (MRPT's defaults where absent). Throws UsageError naming the section and key
+     *  unless a1-a4 are finite and >= 0 and the two minimum stds finite and > 0. */
     static mrpt::obs::CActionRobotMovement2D::TMotionModelOptions loadMotionModel(
         const mrpt::config::CConfigFileBase& cfg, const std::string& section);
 
