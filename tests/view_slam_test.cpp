@@ -55,6 +55,7 @@ TEST_F(ViewSLAMApp, ShortSequenceIsAccurateAndConsistentWithBothPolicies)
         const double est = metrics["estimate"]["ate_rmse_m"];
         const double odo = metrics["odometry"]["ate_rmse_m"];
         const auto runJson = json(dir + "/run.json");
+        EXPECT_EQ(runJson["completed"], true);
         const auto& res = runJson["results"];
         std::cout << policy << ": ATE " << est << " m (odometry " << odo << "), views "
                   << runJson["counts"]["views"] << ", NEES in bounds " << res["nees_in_95_bounds"]
@@ -147,6 +148,10 @@ TEST_F(ViewSLAMApp, BadInputGivesOneLineErrors)
     std::ofstream(garbage) << "this is not an ini file\n";
     expectError(garbage + " " + kRawlog + " -q --out " + out("e7"), 2,
                 "garbage.ini: line 1 is not `key = value`, a [section] or a comment");
-    for (const char* d : {"e1", "e2", "e3", "e4", "e5", "e6", "e7"})
+    for (const char* d : {"e1", "e2", "e3", "e4", "e6", "e7"})
         EXPECT_FALSE(fs::exists(out(d) + "/run.json")) << d;
+    // a run that started and failed says so in its run.json
+    const auto failed = json(out("e5") + "/run.json");
+    EXPECT_EQ(failed["completed"], false);
+    EXPECT_NE(failed["error"].get<std::string>().find("team2.rawlog"), std::string::npos);
 }

@@ -7,6 +7,7 @@
 #include <mrpt_vslam/core/RunEvaluation.h>
 #include <mrpt_vslam/core/RunOutputs.h>
 
+#include <cstdio>
 #include <opencv2/core/version.hpp>
 #include <stdexcept>
 
@@ -56,22 +57,33 @@ std::vector<std::string> SlamApp::odometryLabels() const { return {}; }
 void SlamApp::run()
 {
     core::OutputDirectory out(args.outDir);
+    // a previous run's report must not stand for this one
+    for (const char* report : {"run.json", "metrics.json"}) std::remove(out.file(report).c_str());
     core::RunTimer timer;
-    core::RawlogReader reader(rawlog);
-    core::ProgressReporter progress(name, 0, args.quiet);
-    startRun(out);
-    core::ActionFrameSource source(reader, stepObservations(), m_motionModel, odometryLabels());
-    mrpt::obs::CActionCollection::Ptr actions;
-    mrpt::obs::CSensoryFrame::Ptr frame;
-    while (source.next(actions, frame)) {
-        step(actions, *frame, timer);
-        progress.update(++steps);
-        if (m_window)
-            m_window->show([this](mrpt::opengl::COpenGLScene& scene) { drawLive(scene); });
+    try {
+        core::RawlogReader reader(rawlog);
+        core::ProgressReporter progress(name, 0, args.quiet);
+        startRun(out);
+        core::ActionFrameSource source(reader, stepObservations(), m_motionModel, odometryLabels());
+        mrpt::obs::CActionCollection::Ptr actions;
+        mrpt::obs::CSensoryFrame::Ptr frame;
+        while (source.next(actions, frame)) {
+            step(actions, *frame, timer);
+            progress.update(++steps);
+            if (m_window)
+                m_window->show([this](mrpt::opengl::COpenGLScene& scene) { drawLive(scene); });
+        }
+        progress.finish(steps);
+        endSteps(reader.summary());
+        writeRunFolder(out, timer);
+    } catch (const std::exception& e) {
+        core::RunReport report(name);
+        args.describeInputs(report, cfg.effectiveText(), rawlog, seed);
+        report.setTiming(timer);
+        report.setFailed(core::oneLineMessage(e));
+        report.write(out.file("run.json"));
+        throw;
     }
-    progress.finish(steps);
-    endSteps(reader.summary());
-    writeRunFolder(out, timer);
     if (m_window && !args.quiet) m_window->waitUntilClosed();
 }
 
@@ -99,15 +111,16 @@ void SlamApp::writeRunFolder(const core::OutputDirectory& out, const core::RunTi
     report.setOpenCvVersion(CV_VERSION);
     report.setTiming(timer);
     const auto groundTruth = groundTruthName();
-    if (groundTruth) report.setGroundTruth(*groundTruth);
-    report.write(out.file("run.json"));
-
     if (groundTruth) {
+        report.setGroundTruth(*groundTruth);
         core::TEvalParams eval;
         eval.run_dir = out.path();
         eval.ground_truth = *groundTruth;
         core::evaluateRunFolder(eval);
     }
+    // last: a run.json that says completed stands for a whole folder
+    report.setCompleted();
+    report.write(out.file("run.json"));
 }
 
 core::TumTrajectory SlamApp::asTrajectory(

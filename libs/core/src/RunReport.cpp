@@ -36,6 +36,8 @@ RunReport::RunReport(const std::string& app_name) : m_impl(std::make_unique<Impl
     for (const char* key : {"opencv_version", "command_line", "config_file", "config", "rawlog",
                             "ground_truth", "seed", "start_time"})
         d[key] = nullptr;
+    d["completed"] = false;
+    d["error"] = nullptr;
     d["counts"] = Json::object();
     d["timing"] = {{"total_s", nullptr},
                    {"steps", 0},
@@ -66,6 +68,14 @@ void RunReport::setOpenCvVersion(const std::string& v) { m_impl->doc["opencv_ver
 void RunReport::setStartTime(std::chrono::system_clock::time_point t)
 {
     m_impl->doc["start_time"] = isoTimeUtc(t);
+}
+
+void RunReport::setCompleted() { m_impl->doc["completed"] = true; }
+
+void RunReport::setFailed(const std::string& error)
+{
+    m_impl->doc["completed"] = false;
+    m_impl->doc["error"] = error;
 }
 
 void RunReport::setCount(const std::string& name, double value)

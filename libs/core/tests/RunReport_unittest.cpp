@@ -141,3 +141,18 @@ TEST(RunReport, IsoTimeIsUtc)
     EXPECT_EQ(RunReport::isoTimeUtc(system_clock::time_point(seconds(951782400))),
               "2000-02-29T00:00:00Z");
 }
+
+TEST(RunReport, SaysWhetherTheRunCompleted)
+{
+    mrpt_vslam::core::RunReport r("app");
+    auto j = nlohmann::json::parse(r.toJson());
+    EXPECT_EQ(j["completed"], false);
+    EXPECT_TRUE(j["error"].is_null());
+    r.setFailed("x.rawlog: step 3: timestamps go backwards");
+    j = nlohmann::json::parse(r.toJson());
+    EXPECT_EQ(j["completed"], false);
+    EXPECT_EQ(j["error"], "x.rawlog: step 3: timestamps go backwards");
+    mrpt_vslam::core::RunReport ok("app");
+    ok.setCompleted();
+    EXPECT_EQ(nlohmann::json::parse(ok.toJson())["completed"], true);
+}

@@ -14,8 +14,9 @@ namespace mrpt_vslam::core {
  *
  *  Fields, in this order (doc/app-conventions.md): app, version, mrpt_version, opencv_version,
  *  command_line, config_file, config (effective text), rawlog, ground_truth, seed, start_time (ISO
- * 8601 UTC), counts {name: number}, timing {total_s, steps, per_step_ms {mean, median, p95, max}},
- *  results {name: value}. Fields never set are null; non-finite numbers are written as null.
+ * 8601 UTC), completed (false until setCompleted()), error (setFailed()), counts {name: number},
+ * timing {total_s, steps, per_step_ms {mean, median, p95, max}}, results {name: value}. Fields
+ * never set are null; non-finite numbers are written as null.
  *
  *  Usage: create at start-up (records the start time), fill it as the run goes, write() at
  *  the end (atomically, so a run.json is always complete).
@@ -37,6 +38,10 @@ class RunReport {
     void setSeed(uint32_t seed);
     void setOpenCvVersion(const std::string& version);
     void setStartTime(std::chrono::system_clock::time_point t);
+    /** The run went to its end: every output of the folder is written. */
+    void setCompleted();
+    /** The run stopped with `error`: the folder's other outputs are missing or partial. */
+    void setFailed(const std::string& error);
     /** @} */
 
     /** @name What came out
