@@ -20,6 +20,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <utility>
 #include <vector>
 
@@ -111,7 +112,13 @@ TEST(OmniFastSLAMApp, FailsOnARawlogWithoutLightMeasurements)
               "OmniFastSLAM.bearings_label=NONE", "--set", "OmniFastSLAM.image_label=NONE"}));
     app.initialize();
     EXPECT_THROW(app.run(), std::runtime_error);
-    EXPECT_FALSE(mrpt::system::fileExists(out + "/run.json"));
+    // the run.json of a run that failed says so, and no other output stands as if whole
+    std::ifstream in(out + "/run.json");
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("\"completed\": false"), std::string::npos) << text;
+    EXPECT_NE(text.find("NONE"), std::string::npos) << text;
+    EXPECT_FALSE(mrpt::system::fileExists(out + "/estimated_path.tum"));
+    EXPECT_FALSE(mrpt::system::fileExists(out + "/metrics.json"));
 }
 
 // Impossible or misread values: a usage error naming the key and the problem, in one line.
