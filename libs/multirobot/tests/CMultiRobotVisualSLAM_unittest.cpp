@@ -11,24 +11,9 @@
 #include <utility>
 
 using namespace mrpt_vslam::multirobot;
+using mrpt_vslam::test::positionError;
+using mrpt_vslam::test::standardFilter;
 using mrpt_vslam::test::SyntheticTeamWorld;
-
-namespace {
-mrpt::bayes::CParticleFilter standardFilter()
-{
-    mrpt::bayes::CParticleFilter pf;
-    pf.m_options.PF_algorithm = mrpt::bayes::CParticleFilter::pfStandardProposal;
-    pf.m_options.resamplingMethod = mrpt::bayes::CParticleFilter::prSystematic;
-    pf.m_options.BETA = 0.5;  // Alg. 1 line 13
-    pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
-    return pf;
-}
-
-double positionError(const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b)
-{
-    return std::hypot(a.x - b.x, a.y - b.y);
-}
-}  // namespace
 
 TEST(CMultiRobotVisualSLAM, TeamWeightIsTheProductOverRobotsAndMeasurements)
 {

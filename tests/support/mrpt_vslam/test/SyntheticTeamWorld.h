@@ -1,5 +1,6 @@
 #pragma once
 
+#include <mrpt/bayes/CParticleFilter.h>
 #include <mrpt/maps/CLandmarksMap.h>
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -211,5 +212,23 @@ class SyntheticTeamWorld {
         return d;
     }
 };
+
+/// MRPT's particle filter as Gil et al. (2010) run it: standard proposal, systematic resampling
+/// when N_eff < 0.5 M (Alg. 1 line 13).
+inline mrpt::bayes::CParticleFilter standardFilter()
+{
+    mrpt::bayes::CParticleFilter pf;
+    pf.m_options.PF_algorithm = mrpt::bayes::CParticleFilter::pfStandardProposal;
+    pf.m_options.resamplingMethod = mrpt::bayes::CParticleFilter::prSystematic;
+    pf.m_options.BETA = 0.5;
+    pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
+    return pf;
+}
+
+/// Distance between the positions of two poses [m].
+inline double positionError(const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b)
+{
+    return std::hypot(a.x - b.x, a.y - b.y);
+}
 
 }  // namespace mrpt_vslam::test
