@@ -117,6 +117,7 @@ RawlogReader::~RawlogReader() = default;
 
 void RawlogReader::validate(const std::string& file)
 {
+    constexpr int kReadError = 3;  ///< the child's status when reading threw
     struct TShared {
         uint64_t objects = 0;
         char message[2048] = {};
@@ -144,10 +145,10 @@ void RawlogReader::validate(const std::string& file)
             std::snprintf(shared->message, sizeof(shared->message),
                           "%s: corrupt rawlog: entry %llu asks for more memory than 4 GiB",
                           file.c_str(), static_cast<unsigned long long>(shared->objects + 1));
-            status = 1;
+            status = kReadError;
         } catch (const std::exception& e) {
             std::snprintf(shared->message, sizeof(shared->message), "%s", e.what());
-            status = 1;
+            status = kReadError;
         }
         _exit(status);
     }
@@ -159,7 +160,9 @@ void RawlogReader::validate(const std::string& file)
     munmap(memory, sizeof(TShared));
     if (child < 0) throw std::runtime_error(file + ": cannot validate the rawlog (fork failed)");
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 1) throw std::runtime_error(result.message);
+    if (WIFEXITED(status) && WEXITSTATUS(status) == kReadError && result.message[0] != '\0')
+        throw std::runtime_error(result.message);
+    // a signal, or a sanitizer's report of one (it exits instead)
     const std::string how = WIFSIGNALED(status)
                                 ? strsignal(WTERMSIG(status))
                                 : "exit status " + std::to_string(WEXITSTATUS(status));
