@@ -14,14 +14,16 @@
 #      $RESULTS): position RMSE (unaligned and SE(2)-aligned), landmarks mapped vs true, landmark error mean (one-to-one
 #      matching within vslam-eval's 1.5 m), run time (wall clock of the process).
 # Writes rawlogs, run folders (metrics.json, paths.png, ...) and logs under
-# out/reproduce-range-bearing/ (or $OUT). Builds first (scripts/setup.sh). The kf-slam half takes
-# about 10 s (6 rawlogs, well under a second each).
-# Environment: OUT, SEEDS (multirobot-vslam seeds, default 1; several: the table has their mean),
+# out/reproduce-range-bearing/ (or $OUT). Builds first (scripts/setup.sh). Takes about 2 min
+# (30 rawlogs; each tool well under a second per rawlog at the default SEEDS).
+# Environment: OUT, SIM_SEEDS (simulation seeds, default "1 2 3 4 5": one rawlog per noise level,
+# IDs kept or hidden and seed), SEEDS (multirobot-vslam seeds, default 1; several: the table has
+# their mean),
 # NOISE_LEVELS (default "low medium high"), TOOLS (default "kf-slam multirobot-vslam"), RESULTS.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 # the command line for the table, with the variables given to it
-COMMAND="$(for v in OUT SEEDS NOISE_LEVELS TOOLS RESULTS; do
+COMMAND="$(for v in OUT SIM_SEEDS SEEDS NOISE_LEVELS TOOLS RESULTS; do
   [ -z "${!v+x}" ] || printf '%s=%q ' "$v" "${!v}"; done)scripts/reproduce-range-bearing.sh"
 source "$REPO_DIR/scripts/setup.sh"
 
@@ -30,6 +32,7 @@ BIN="$BUILD_DIR/bin"
 CONFIGS="$REPO_DIR/share/mrpt-vslam/config"
 PEER="$CONFIGS/peer-comparison"
 SEEDS="${SEEDS:-1}"
+SIM_SEEDS="${SIM_SEEDS:-1 2 3 4 5}"
 NOISE_LEVELS="${NOISE_LEVELS:-low medium high}"
 TOOLS="${TOOLS:-kf-slam multirobot-vslam}"
 RESULTS="${RESULTS:-$REPO_DIR/doc/results/range-bearing.md}"
@@ -68,11 +71,11 @@ ini_copy() {
 # reading). simul-landmarks 2.5.8 stamps the readings with the clock at simulation time (a few
 # microseconds apart): NAME.stamps.txt is rawlog-edit's list of them (6 decimals, as our TUM
 # files), and the ground truth and estimates use those stamps.
-simulate() {  # simulate NAME NOISE IDS(true|false)
-  local name="$1" noise="$2" ids="$3"
+simulate() {  # simulate NAME NOISE IDS(true|false) SIM_SEED
+  local name="$1" noise="$2" ids="$3" sim_seed="$4"
   local ini="$DATA/$name.simul-landmarks.ini"
   ini_copy "$PEER/simul-landmarks-noise-$noise.ini" "$ini" outFile="$name.rawlog" outDir=. \
-    sensorDetectsIDs="$ids"
+    sensorDetectsIDs="$ids" random_seed="$sim_seed"
   rm -f "$DATA/$name.rawlog"*
   (cd "$DATA" && simul-landmarks "$name.simul-landmarks.ini" < /dev/null > "$name.simul-landmarks.log")
   # simul-landmarks prints an error and exits 0: check its files
@@ -196,6 +199,12 @@ metrics() {
   echo "${rmse:--} ${aligned:--} ${lm:-- - - -}"
 }
 
+# mrv_dirs NAME: multirobot-vslam's run folders of rawlog NAME, one per seed
+mrv_dirs() {
+  local seed
+  for seed in $SEEDS; do echo "$OUT/multirobot-vslam/$1-seed$seed"; done
+}
+
 # cells DIR...: " RMSE | aligned RMSE | landmarks | error | time |" of one tool (mean over the run
 # folders when several; "-" where a run has no number)
 cells() {
@@ -214,14 +223,16 @@ cells() {
 NAMES=()
 for noise in $NOISE_LEVELS; do
   for ids in kept hidden; do
-    name="range-bearing-ids-$ids-noise-$noise"
-    NAMES+=("$name:$noise:$ids")
-    simulate "$name" "$noise" "$([ "$ids" = kept ] && echo true || echo false)"
+    for sim in $SIM_SEEDS; do
+      name="range-bearing-ids-$ids-noise-$noise-sim$sim"
+      NAMES+=("$name:$noise:$ids:$sim")
+      simulate "$name" "$noise" "$([ "$ids" = kept ] && echo true || echo false)" "$sim"
+    done
   done
 done
 
 for entry in "${NAMES[@]}"; do
-  IFS=: read -r name noise ids <<< "$entry"
+  IFS=: read -r name noise ids sim <<< "$entry"
   for tool in $TOOLS; do
     case "$tool" in
       kf-slam) run_kf_slam "$name" "$noise" ;;
@@ -248,7 +259,7 @@ mkdir -p "$(dirname "$RESULTS")"
     "$(ini_value "$first" nLandmarks) landmarks, range ≤ $(ini_value "$first" maxSensorDistance) m," \
     "$(ini_value "$first" fieldOfView_deg)° field of view, odometry noise" \
     "$(ini_value "$first" odometryNoiseXY_std) m and $(ini_value "$first" odometryNoisePhi_std_deg)° per" \
-    "step, simulation seed $(ini_value "$first" random_seed). IDs kept: every reading carries its" \
+    "step, simulation seeds $SIM_SEEDS (each its own landmarks, odometry and reading noise). IDs kept: every reading carries its" \
     "landmark's ID; hidden: ID −1, so each tool associates by itself (kf-slam: nearest neighbour" \
     "within a $(ini_value "$PEER/kf-slam-2d.ini" data_assoc_IC_chi2_thres) Mahalanobis gate," \
     "kf-slam-2d.ini says why). Position RMSE: vslam-eval's ATE, unaligned, and after the SE(2)" \
@@ -258,15 +269,39 @@ mkdir -p "$(dirname "$RESULTS")"
     "true (matched one-to-one within 1.5 m); error: mean over the matched ones. Time: wall" \
     "clock of the tool's process (reading, filtering, writing)."
   echo
-  echo "| rawlog | IDs | noise (σ range, σ bearing) | kf-slam RMSE [m] | kf-slam aligned RMSE [m] | kf-slam landmarks | kf-slam landmark error [m] | kf-slam time [s] | multirobot-vslam RMSE [m] | multirobot-vslam aligned RMSE [m] | multirobot-vslam landmarks | multirobot-vslam landmark error [m] | multirobot-vslam time [s] |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "## Per rawlog"
+  echo
+  echo "| rawlog | IDs | noise (σ range, σ bearing) | simulation seed | kf-slam RMSE [m] | kf-slam aligned RMSE [m] | kf-slam landmarks | kf-slam landmark error [m] | kf-slam time [s] | multirobot-vslam RMSE [m] | multirobot-vslam aligned RMSE [m] | multirobot-vslam landmarks | multirobot-vslam landmark error [m] | multirobot-vslam time [s] |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   for entry in "${NAMES[@]}"; do
-    IFS=: read -r name noise ids <<< "$entry"
-    sim="$PEER/simul-landmarks-noise-$noise.ini"
-    mrv=()
-    for seed in $SEEDS; do mrv+=("$OUT/multirobot-vslam/$name-seed$seed"); done
-    echo "| $name | $ids | $noise ($(ini_value "$sim" stdRange) m, $(ini_value "$sim" stdYaw_deg)°) |$(cells "$OUT/kf-slam/$name")$(cells "${mrv[@]}")"
+    IFS=: read -r name noise ids sim <<< "$entry"
+    s="$PEER/simul-landmarks-noise-$noise.ini"
+    echo "| $name | $ids | $noise ($(ini_value "$s" stdRange) m, $(ini_value "$s" stdYaw_deg)°) | $sim |$(cells "$OUT/kf-slam/$name")$(cells $(mrv_dirs "$name"))"
   done
+  if [[ " $TOOLS " == *" kf-slam "* && " $TOOLS " == *" multirobot-vslam "* ]]; then
+    echo
+    echo "## Over the simulation seeds"
+    echo
+    echo "Means over the simulation seeds ($SIM_SEEDS), and on how many rawlogs multirobot-vslam's" \
+      "figure is at most kf-slam's (the RMSE to the millimetre)."
+    echo
+    echo "| IDs | noise | kf-slam RMSE [m] | multirobot-vslam RMSE [m] | RMSE ≤ kf-slam's | kf-slam aligned RMSE [m] | multirobot-vslam aligned RMSE [m] | aligned RMSE ≤ kf-slam's | kf-slam landmark error [m] | multirobot-vslam landmark error [m] | landmark error ≤ kf-slam's |"
+    echo "|---|---|---|---|---|---|---|---|---|---|---|"
+    for noise in $NOISE_LEVELS; do
+      for ids in kept hidden; do
+        for sim in $SIM_SEEDS; do
+          name="range-bearing-ids-$ids-noise-$noise-sim$sim"
+          echo "$(metrics "$OUT/kf-slam/$name") $(cells $(mrv_dirs "$name") | tr -d '|' | awk '{ print $1, $2, $8 }')"
+        done | awk -v ids="$ids" -v noise="$noise" '
+          # kf-slam: rmse aligned est true matched error; multirobot-vslam: rmse aligned error
+          { n++; kr += $1; ka += $2; ke += $6; mr += $7; ma += $8; me += $9
+            wr += mm($7) <= mm($1); wa += mm($8) <= mm($2); we += mm($9) <= mm($6) }
+          function mm(v) { return int(v * 1000 + 0.5) }
+          END { printf "| %s | %s | %.3f | %.3f | %d of %d | %.3f | %.3f | %d of %d | %.3f | %.3f | %d of %d |\n",
+                  ids, noise, kr / n, mr / n, wr, n, ka / n, ma / n, wa, n, ke / n, me / n, we, n }'
+      done
+    done
+  fi
 } > "$RESULTS"
 cat "$RESULTS"
 echo
