@@ -101,10 +101,14 @@ void plotPaths(const core::TEvalResult& result, bool aligned, const std::string&
     b.pad(0.05);
 
     // The legend goes in the free column right of the plot; the page is as tall as the
-    // equal-aspect plot needs (wide maps get a low page), with room for the legend.
-    const double plotHeightPx = 1200 * 0.54 * (b.y1 - b.y0) / (b.x1 - b.x0) / 0.82;
-    PngFigure fig(file, 1200, static_cast<int>(std::clamp(plotHeightPx, 480.0, 800.0)));
-    fig.axes(0.1, 0.64, 0.1, 0.92, b.x0, b.x1, b.y0, b.y1, "x [m]", "y [m]",
+    // equal-aspect plot needs (wide maps get a low page), with room for the legend, and fixed
+    // margins in pixels for the tick labels, the axis labels and the title.
+    const double bottomPx = 90, topPx = 45;
+    const double plotHeightPx = 1200 * 0.54 * (b.y1 - b.y0) / (b.x1 - b.x0) + bottomPx + topPx;
+    const int heightPx = static_cast<int>(std::clamp(plotHeightPx, 480.0, 800.0));
+    PngFigure fig(file, 1200, heightPx);
+    fig.axes(0.1, 0.64, bottomPx / heightPx, 1 - topPx / heightPx, b.x0, b.x1, b.y0, b.y1, "x [m]",
+             "y [m]",
              aligned ? "Paths (estimate SE(2)-aligned to ground truth)" : "Paths", true);
     if (result.landmarks)  // thin links from each true landmark to its matched estimate
         for (const auto& m : result.landmarks->matches)
