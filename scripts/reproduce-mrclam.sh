@@ -14,8 +14,7 @@
 #      association alone makes of the readings;
 #   3c. robots 1-3 with known correspondences (associate_by_identity): the filter's paths when
 #      the association is right;
-#   4. omni-fastslam in planar bearing-only mode on robot 1 (mrclam-bearing-only.ini): ATE vs
-#      odometry and the landmark table.
+# (omni-fastslam's planar mode on robot 1: scripts/reproduce-omni-fastslam.sh.)
 # Writes run folders (paths.png, errors.png, metrics.json, run.json), tables and plots under
 # out/reproduce-mrclam/ (or $OUT) and prints markdown tables. Builds first (scripts/setup.sh).
 # Takes about 30 min on one core (M = 2000 as shipped).
@@ -51,8 +50,6 @@ import r2 2 0.2
 import r3 3 0.2
 import r12 1,2 0.2 --keep-robot-measurements
 import r12345 1,2,3,4,5 0.2 --keep-robot-measurements
-# omni-fastslam's config was chosen on the commands as recorded (doc/omni-fastslam.md §12)
-import r1-omni 1 0 --keep-ids
 
 # run DIR RAWLOG ROBOTS [options...]: one multirobot-vslam run and its evaluation (robot Rn reads
 # as id n; READINGS_OF_ROBOTS=no drops those readings); prints
@@ -197,25 +194,5 @@ for seed in $SEEDS; do
     "$dir/summary.txt") | ${w[5]} |"
 done
 
-# --- 4. omni-fastslam, planar bearing-only, robot 1 ---------------------------------------------
-echo
-echo "### omni-fastslam planar bearing-only on robot 1 (mrclam-bearing-only.ini)"
-echo
-echo "| seed | ATE RMSE [m] | odometry [m] | landmarks matched | false | wrong associations | of | run [s] |"
-echo "|---|---|---|---|---|---|---|---|"
-for seed in 1 2 3 4 5 6 7 8; do
-  dir="$OUT/omni-r1-seed$seed"
-  "$BIN/omni-fastslam" "$CONFIGS/omni-fastslam/mrclam-bearing-only.ini" "$OUT/data/r1-omni.rawlog" \
-    --out "$dir" --quiet --seed "$seed"
-  "$BIN/vslam-eval" "$dir" --ground-truth "$OUT/data/r1-omni" > "$dir/summary.txt"
-  est=$(awk '/^R1 estimate:/ {print $5}' "$dir/summary.txt")
-  odo=$(awk '/^R1 odometry:/ {print $5}' "$dir/summary.txt")
-  lm=$(sed -n 's/^landmarks: .*estimated: \([0-9]*\) matched, \([0-9]*\) false.*/\1 \2/p' "$dir/summary.txt")
-  wrong=$(grep -o '"wrong_associations": *[0-9]*' "$dir/run.json" | awk '{print $2}')
-  labelled=$(grep -o '"labelled_associations": *[0-9]*' "$dir/run.json" | awk '{print $2}')
-  t=$(grep -o '"total_s": *[0-9.e-]*' "$dir/run.json" | awk '{printf "%.2f", $2}')
-  read -r matched fals <<< "$lm"
-  echo "| $seed | $est | $odo | $matched | $fals | $wrong | $labelled | $t |"
-done
 echo
 echo "Run folders (paths.png, errors.png, metrics.json, run.json) in $OUT"

@@ -1,39 +1,234 @@
 #!/usr/bin/env bash
-# Gamallo et al. 2013, Sec. IV on the shipped sports-hall dataset: the default run (Table I
-# equivalent and errors over time, Fig. 6) and 10 seeds with Hungarian vs maximum-likelihood
-# association (Fig. 7/8). Writes every run folder, metrics.json and plots under
-# out/reproduce-omni-fastslam/ (or $OUT) and prints a markdown table of the seeds. Builds first
-# (scripts/setup.sh).
+# Gamallo et al. 2013, Sec. IV on the shipped sports-hall dataset, written to
+# doc/results/omni-fastslam.md (or $RESULTS) with its plots in doc/results/omni-fastslam/:
+#   1. the default run (sports-hall.ini, seed 1): accuracy, the per-light table (the paper's
+#      Table I) and the path / error plots (Fig. 6);
+#   2. SEEDS with the hierarchical Hungarian and with maximum-likelihood association (Figs. 7-9);
+#   3. bearings input against light detection in the images (input = images), seeds 1-3;
+#   4. the deviations from the paper, each against the paper's value over SEEDS: the initial
+#      landmark covariance Sigma0 and the refinement of a new landmark;
+#   5. with MRPT_VSLAM_MRCLAM_DIR (the folder of UTIAS MRCLAM dataset 7, doc/real-data.md):
+#      the planar bearing-only mode on robot 1 (mrclam-bearing-only.ini, MRCLAM_SEEDS), in
+#      doc/results/omni-fastslam-mrclam-r1.md (or $RESULTS_MRCLAM); skipped without it.
+# Run folders (metrics.json, run.json, plots) under out/reproduce-omni-fastslam/ (or $OUT).
+# Builds first (scripts/setup.sh). Takes about 1 min (2 more with the MRCLAM part).
+# Environment: OUT, SEEDS (default 1..10), MRCLAM_SEEDS (default 1..8), RESULTS, RESULTS_MRCLAM.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+COMMAND="$(for v in OUT SEEDS MRCLAM_SEEDS RESULTS RESULTS_MRCLAM; do
+  [ -z "${!v+x}" ] || printf '%s=%q ' "$v" "${!v}"; done)scripts/reproduce-omni-fastslam.sh"
 source "$REPO_DIR/scripts/setup.sh"
 
 OUT="${OUT:-$REPO_DIR/out/reproduce-omni-fastslam}"
 BIN="$BUILD_DIR/bin"
+CONFIGS="$REPO_DIR/share/mrpt-vslam/config/omni-fastslam"
 DATA="$REPO_DIR/datasets/sports-hall/hall"
-CONFIG="$REPO_DIR/share/mrpt-vslam/config/omni-fastslam/sports-hall.ini"
 SEEDS="${SEEDS:-1 2 3 4 5 6 7 8 9 10}"
+MRCLAM_SEEDS="${MRCLAM_SEEDS:-1 2 3 4 5 6 7 8}"
+RESULTS="${RESULTS:-$REPO_DIR/doc/results/omni-fastslam.md}"
+RESULTS_MRCLAM="${RESULTS_MRCLAM:-$REPO_DIR/doc/results/omni-fastslam-mrclam-r1.md}"
+PLOTS="${RESULTS%.md}"
+INSERT="MappingApplication_ceilingLightsMap_00_insertOpts"
+mkdir -p "$OUT" "$PLOTS"
 
-# One run + evaluation; prints "ate ate_max heading_share matched false dup missed lm_mean lm_max time"
+# run NAME CONFIG RAWLOG GROUND_TRUTH [OPTION...]: one run and its evaluation in $OUT/NAME
 run() {
-  local dir="$1"; shift
-  "$BIN/omni-fastslam" "$CONFIG" "$DATA.rawlog" --out "$dir" --quiet "$@"
-  "$BIN/vslam-eval" "$dir" --ground-truth "$DATA" > "$dir/summary.txt"
-  local traj lm
-  traj=$(sed -n 's/^estimate: *ATE RMSE \([0-9.]*\) m (max \([0-9.]*\) m).* \([0-9]*\)% of frames.*/\1 \2 \3%/p' "$dir/summary.txt")
-  lm=$(sed -n 's/^landmarks: .*estimated: \([0-9]*\) matched, \([0-9]*\) false (\([0-9]*\) duplicated), \([0-9]*\) missed; error mean \([0-9.]*\) m, max \([0-9.]*\) m/\1 \2 \3 \4 \5 \6/p' "$dir/summary.txt")
-  echo -n "$traj $lm"
-  grep -o '"total_s": *[0-9.e-]*' "$dir/run.json" | awk '{printf " %s\n", $2}'
+  local dir="$OUT/$1" config="$2" rawlog="$3" truth="$4"; shift 4
+  "$BIN/omni-fastslam" "$config" "$rawlog" --out "$dir" --quiet "$@"
+  "$BIN/vslam-eval" "$dir" --ground-truth "$truth" > "$dir/summary.txt"
 }
 
-echo "| association | seed | ATE RMSE [m] | ATE max [m] | heading < 5° | matched | false | dup | missed | landmark mean [m] | landmark max [m] | run [s] |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+# hall NAME [OPTION...]: a run on the shipped hall with sports-hall.ini
+hall() {
+  local name="$1"; shift
+  run "$name" "$CONFIGS/sports-hall.ini" "$DATA.rawlog" "$DATA" "$@"
+}
+
+# header TITLE: the results file's first lines (what, when, where, how)
+header() {
+  echo "# $1"
+  echo
+  echo "Made $(date -u '+%Y-%m-%d %H:%M UTC') on $(sed -n 's/^model name[[:space:]]*: *//p' /proc/cpuinfo | head -1)," \
+    "$(nproc) cores (load average $(cut -d' ' -f1-3 /proc/loadavg) at the end), MRPT $(dpkg-query -W -f='${Version}' libmrpt-dev 2>/dev/null || echo '?'), by" \
+    "\`$COMMAND\`. Run times: the app's whole run (run.json \`timing.total_s\`: reading, filtering," \
+    "writing), one core."
+  echo
+}
+
+echo "1-2. Hungarian and ML association, seeds $SEEDS"
 for method in hungarian ml; do
   for seed in $SEEDS; do
-    read -r ate atemax share matched fals dup missed lmmean lmmax t < <(run "$OUT/$method-seed$seed" \
-      --seed "$seed" --set "MappingApplication_ceilingLightsMap_00_insertOpts.association_method=$method")
-    echo "| $method | $seed | $ate | $atemax | $share | $matched | $fals | $dup | $missed | $lmmean | $lmmax | $t |"
+    hall "$method-seed$seed" --seed "$seed" --set "$INSERT.association_method=$method"
   done
 done
-echo
-echo "Run folders (map.txt, metrics.json with the per-light table, paths.png, errors.png) in $OUT"
+echo "3. images input, seeds 1-3"
+for seed in 1 2 3; do
+  hall "images-seed$seed" --seed "$seed" --set OmniFastSLAM.input=images
+done
+echo "4. the paper's Sigma0 and no refinement, seeds $SEEDS"
+for seed in $SEEDS; do
+  for s0 in 0.0025 0.01; do
+    hall "sigma0-$s0-seed$seed" --seed "$seed" --set "$INSERT.sigma0_xx=$s0" \
+      --set "$INSERT.sigma0_yy=$s0" --set "$INSERT.sigma0_zz=$s0"
+  done
+  hall "no-refinement-seed$seed" --seed "$seed" --set "$INSERT.refine_initialization=false"
+done
+for f in paths errors landmark_errors; do
+  cp "$OUT/hungarian-seed1/$f.png" "$PLOTS/$f.png"
+done
+
+# The tables, from the run folders' metrics.json and run.json.
+{
+  header "Omnidirectional FastSLAM on the shipped sports hall"
+  python3 - "$OUT" "$SEEDS" "$(basename "$PLOTS")" <<'PY'
+import json, statistics, sys
+out, seeds, plots = sys.argv[1], sys.argv[2].split(), sys.argv[3]
+
+def load(name):
+    m = json.load(open(f"{out}/{name}/metrics.json"))
+    r = json.load(open(f"{out}/{name}/run.json"))
+    return m, r
+
+def row(name):
+    m, r = load(name)
+    e, lm = m["estimate"], m["landmarks"]
+    return {"ate": e["ate_rmse_m"], "ate_max": e["ate_max_m"],
+            "aligned": e["aligned_se2"]["ate_rmse_m"],
+            "heading": 100 * e["heading_share_under_threshold"],
+            "matched": lm["matched"], "false": lm["false"], "dup": lm["duplicated"],
+            "missed": lm["missed"], "lm_mean": lm["error_mean_m"], "lm_max": lm["error_max_m"],
+            "height": statistics.mean(t["ez"] for t in lm["table"] if t.get("ez") is not None),
+            "odometry": m["odometry"]["ate_rmse_m"], "time": r["timing"]["total_s"]}
+
+def once(r):  # every light mapped exactly once
+    return r["false"] == 0 and r["dup"] == 0 and r["missed"] == 0
+
+default = row("hungarian-seed1")
+m, _ = load("hungarian-seed1")
+print("## 1. The default run")
+print()
+print("`sports-hall.ini` as shipped (M = 10, hierarchical Hungarian association, bearings input),"
+      " seed 1.")
+print()
+print("| ATE RMSE [m] | ATE max [m] | after SE(2) alignment [m] | dead reckoning ATE RMSE [m] |"
+      " lights matched / false / duplicated / missed | light error mean [m] | light error max [m] |"
+      " run [s] |")
+print("|---|---|---|---|---|---|---|---|")
+d = default
+print(f"| {d['ate']:.3f} | {d['ate_max']:.3f} | {d['aligned']:.3f} | {d['odometry']:.3f} |"
+      f" {d['matched']} / {d['false']} / {d['dup']} / {d['missed']} | {d['lm_mean']:.3f} |"
+      f" {d['lm_max']:.3f} | {d['time']:.2f} |")
+print()
+print("Per light (the paper's Table I; the paper, on real data: mean 0.48 m, max 1.05 m):")
+print()
+print("| light | estimated x y z [m] | true x y z [m] | error x y z [m] | error [m] |")
+print("|---|---|---|---|---|")
+for t in sorted(m["landmarks"]["table"], key=lambda t: t["true_id"]):
+    if t.get("ez") is None:
+        print(f"| {t['true_id']} | missed | {t['x']:.2f} {t['y']:.2f} {t['z']:.2f} | | |")
+        continue
+    print(f"| {t['true_id']} | {t['ex']:.2f} {t['ey']:.2f} {t['ez']:.2f} |"
+          f" {t['x']:.2f} {t['y']:.2f} {t['z']:.2f} |"
+          f" {t['ex'] - t['x']:+.2f} {t['ey'] - t['y']:+.2f} {t['ez'] - t['z']:+.2f} |"
+          f" {t['error']:.2f} |")
+print()
+print(f"![estimated path, odometry, ground truth and lights, seed 1]({plots}/paths.png)")
+print(f"![position and heading error over time, seed 1 (the paper's Fig. 6)]({plots}/errors.png)")
+print(f"![error per light, seed 1]({plots}/landmark_errors.png)")
+print()
+
+def seed_table(title, variants):
+    """variants: [(label, name prefix)]: a row per seed and variant, then a summary per variant."""
+    print(title)
+    print()
+    print("| variant | seed | ATE RMSE [m] | ATE max [m] | heading < 5° | matched | false |"
+          " duplicated | missed | light error mean [m] | mean light height [m] | run [s] |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    rows = {}
+    for label, prefix in variants:
+        rows[label] = [row(f"{prefix}-seed{s}") for s in seeds]
+        for s, r in zip(seeds, rows[label]):
+            print(f"| {label} | {s} | {r['ate']:.3f} | {r['ate_max']:.3f} | {r['heading']:.0f} % |"
+                  f" {r['matched']} | {r['false']} | {r['dup']} | {r['missed']} |"
+                  f" {r['lm_mean']:.3f} | {r['height']:.2f} | {r['time']:.2f} |")
+    print()
+    print("| variant | seeds | ATE RMSE mean [m] | ATE RMSE min-max [m] | seeds with ATE ≤ 0.30 m |"
+          " seeds with every light once | run mean [s] |")
+    print("|---|---|---|---|---|---|---|")
+    for label, rs in rows.items():
+        ates = [r["ate"] for r in rs]
+        print(f"| {label} | {len(rs)} | {statistics.mean(ates):.3f} | {min(ates):.3f}-{max(ates):.3f} |"
+              f" {sum(a <= 0.30 for a in ates)} of {len(rs)} | {sum(map(once, rs))} of {len(rs)} |"
+              f" {statistics.mean(r['time'] for r in rs):.2f} |")
+    print()
+
+seed_table("## 2. Hungarian and maximum-likelihood association (the paper's Figs. 7-9)\n\n"
+           "`sports-hall.ini`, `association_method` = hungarian (shipped) or ml; the true light"
+           " height is 6.5 m.",
+           [("hungarian", "hungarian"), ("ml", "ml")])
+seeds_all = seeds
+seeds = ["1", "2", "3"]
+seed_table("## 3. Bearings or images\n\n"
+           "`input = auto` (the rawlog's bearings, shipped) against `input = images` (lights"
+           " detected in the OMNICAM images: decoding, detection and the camera model's LUT in the"
+           " run time).",
+           [("bearings", "hungarian"), ("images", "images")])
+seeds = seeds_all
+seed_table("## 4. Deviations from the paper\n\n"
+           "Each against the shipped value: the paper's initial landmark covariance"
+           " Σ0 = 0.0025 m² (and 0.01 m²) against the shipped 0.1 m²; `refine_initialization ="
+           " false` (the paper: a new light at its best cross-point only).",
+           [("shipped", "hungarian"), ("Σ0 = 0.0025", "sigma0-0.0025"),
+            ("Σ0 = 0.01", "sigma0-0.01"), ("no refinement", "no-refinement")])
+PY
+} > "$RESULTS.tmp"
+mv "$RESULTS.tmp" "$RESULTS"
+echo "wrote $RESULTS"
+
+# --- 5. planar bearing-only mode on MRCLAM robot 1 ------------------------------------------------
+if [ -z "${MRPT_VSLAM_MRCLAM_DIR:-}" ]; then
+  echo "5. skipped: MRPT_VSLAM_MRCLAM_DIR is not set (the MRCLAM part needs dataset 7)"
+  exit 0
+fi
+echo "5. MRCLAM robot 1, planar bearing-only, seeds $MRCLAM_SEEDS"
+MRCLAM="$OUT/mrclam"
+mkdir -p "$MRCLAM"
+"$BIN/mrclam2rawlog" "$MRPT_VSLAM_MRCLAM_DIR" --out "$MRCLAM/dataset7_r1.rawlog" --robots 1 \
+  --keep-ids > "$MRCLAM/import.log"
+for seed in $MRCLAM_SEEDS; do
+  run "mrclam/seed$seed" "$CONFIGS/mrclam-bearing-only.ini" "$MRCLAM/dataset7_r1.rawlog" \
+    "$MRCLAM/dataset7_r1" --seed "$seed"
+done
+{
+  header "Planar bearing-only mode on robot 1 of UTIAS MRCLAM dataset 7"
+  python3 - "$MRCLAM" "$MRCLAM_SEEDS" <<'PY'
+import json, statistics, sys
+out, seeds = sys.argv[1], sys.argv[2].split()
+print("`mrclam-bearing-only.ini` as shipped on robot 1 (`mrclam2rawlog --robots 1 --keep-ids`:"
+      " the landmark numbers are read for counting wrong associations only). Wrong associations:"
+      " those whose landmark number is not the most frequent one of their map landmark."
+      " Landmarks matched one-to-one within 1.5 m.")
+print()
+print("| seed | ATE RMSE [m] | after SE(2) alignment [m] | heading RMSE [deg] | matched | false |"
+      " estimated | wrong associations | run [s] |")
+print("|---|---|---|---|---|---|---|---|---|")
+rows = []
+for s in seeds:
+    m = json.load(open(f"{out}/seed{s}/metrics.json"))
+    r = json.load(open(f"{out}/seed{s}/run.json"))
+    e, lm = m["robots"]["R1"]["estimate"], m["landmarks"]
+    res = r["results"]
+    rows.append((e["ate_rmse_m"], e["aligned_se2"]["ate_rmse_m"], e["heading_rmse_deg"]))
+    wrong = f"{res['wrong_associations']} of {res['labelled_associations']}"
+    print(f"| {s} | {e['ate_rmse_m']:.2f} | {e['aligned_se2']['ate_rmse_m']:.2f} |"
+          f" {e['heading_rmse_deg']:.0f} | {lm['matched']} | {lm['false']} |"
+          f" {lm['estimated_landmarks']} | {wrong} | {r['timing']['total_s']:.2f} |")
+odo = m["robots"]["R1"]["odometry"]
+print(f"| mean | {statistics.mean(r[0] for r in rows):.2f} | {statistics.mean(r[1] for r in rows):.2f} |"
+      f" {statistics.mean(r[2] for r in rows):.0f} | | | | | |")
+print(f"| dead reckoning | {odo['ate_rmse_m']:.2f} | {odo['aligned_se2']['ate_rmse_m']:.2f} |"
+      f" {odo['heading_rmse_deg']:.0f} | | | | | |")
+PY
+} > "$RESULTS_MRCLAM.tmp"
+mv "$RESULTS_MRCLAM.tmp" "$RESULTS_MRCLAM"
+echo "wrote $RESULTS_MRCLAM"

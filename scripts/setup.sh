@@ -11,7 +11,7 @@ SANITIZE="${SANITIZE:-OFF}"
 JOBS="${JOBS:-$(nproc)}"
 
 DEBIAN_PACKAGES=(
-  build-essential cmake ccache git clang-format
+  build-essential cmake ccache git clang-format python3
   libmrpt-dev mrpt-apps
   libopencv-dev libeigen3-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
