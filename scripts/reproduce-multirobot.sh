@@ -10,11 +10,15 @@
 #      threshold E0 (0.25 vs 0.7) and the paper's R_t pixel sigmas (1, 10, 10) vs ours on team2,
 #      and RMSE vs B with the paper's sigmas, nearest and random B;
 #   5. team3 without resample_per_robot, with the optimal proposal, and with the paper's sigmas.
-# Writes run folders, tables (*.txt) and plots (*.png) under out/reproduce-multirobot/ (or $OUT)
-# and prints markdown tables. Builds first (scripts/setup.sh). Takes about 75 min on one core.
-# Environment: SEEDS (default 1 2 3 4 5), SWEEP_SEEDS for sections 2 and 3 (default 1 to 10), OUT.
+# The tables go to doc/results/multirobot.md (or $RESULTS), the plots (Fig. 3, 4 and 6) to
+# doc/results/multirobot/; run folders and the series (*.txt) under out/reproduce-multirobot/ (or
+# $OUT). Builds first (scripts/setup.sh). Takes about 75 min on one core.
+# Environment: SEEDS (default 1 2 3 4 5), SWEEP_SEEDS for sections 2 and 3 (default 1 to 10), OUT,
+# RESULTS.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+COMMAND="$(for v in OUT SEEDS SWEEP_SEEDS RESULTS; do
+  [ -z "${!v+x}" ] || printf '%s=%q ' "$v" "${!v}"; done)scripts/reproduce-multirobot.sh"
 source "$REPO_DIR/scripts/setup.sh"
 
 OUT="${OUT:-$REPO_DIR/out/reproduce-multirobot}"
@@ -24,7 +28,9 @@ CONFIGS="$REPO_DIR/share/mrpt-vslam/config/multirobot-vslam"
 SEEDS="${SEEDS:-1 2 3 4 5}"
 SWEEP_SEEDS="${SWEEP_SEEDS:-1 2 3 4 5 6 7 8 9 10}"
 MAP_OPTS="MappingApplication_visualLandmarksMap_00_insertOpts"
-mkdir -p "$OUT"
+RESULTS="${RESULTS:-$REPO_DIR/doc/results/multirobot.md}"
+PLOTS="${RESULTS%.md}"
+mkdir -p "$OUT" "$PLOTS"
 
 # run DIR CONFIG RAWLOG [multirobot-vslam options...]: one run and its evaluation; prints
 # "est_1 odo_1 est_2 odo_2 [...] | merged shared step_ms" (RMSE in m).
@@ -73,8 +79,26 @@ team_table() {
     awk -v r="R$r" '$1 == r {e += $2; o += $3; n++} END {printf "R%s mean over seeds: RMSE %.3f m, odometry %.3f m, ratio %.2f\n", substr(r, 2), e / n, o / n, e / o}' "$OUT/$name-rmse.txt"
   done
 }
+{
+echo "# Multi-robot visual SLAM on the shipped office-team datasets"
+echo
+echo "Made $(date -u '+%Y-%m-%d %H:%M UTC') on $(sed -n 's/^model name[[:space:]]*: *//p' /proc/cpuinfo | head -1)," \
+  "$(nproc) cores, MRPT $(dpkg-query -W -f='${Version}' libmrpt-dev 2>/dev/null || echo '?'), by" \
+  "\`$COMMAND\`. Position RMSE: vslam-eval's ATE of each robot, unaligned; step: the mean time" \
+  "of a filter step (run.json), one core. Merged / shared: of the true landmarks seen by several" \
+  "robots, how many are one landmark of the final map."
+echo "## 1. The shipped configurations (Fig. 3 and Fig. 6)" >&2
 team_table team2 "$CONFIGS/office-team-2.ini" "$DATA/team2.rawlog" 2
 team_table team3 "$CONFIGS/office-team-3.ini" "$DATA/team3.rawlog" 3
+
+echo
+echo "![team2, seed 1: paths and map (Fig. 3)](multirobot/team2-paths.png)"
+echo "![team2, seed 1: errors over time](multirobot/team2-errors.png)"
+echo "![team3, seed 1: paths and map (Fig. 6)](multirobot/team3-paths.png)"
+echo "![team3, seed 1: errors over time](multirobot/team3-errors.png)"
+for t in team2 team3; do
+  for f in paths errors; do cp "$OUT/$t-seed1/$f.png" "$PLOTS/$t-$f.png"; done
+done
 
 # --- 2./3. Fig. 4: RMSE (mean of both robots) vs M and vs B, both proposals --------------------
 # sweep NAME KEY PROPOSAL VALUES...: one series of rmse-vs-NAME.txt (SWEEP_RAWLOG: team2 if unset;
@@ -112,10 +136,11 @@ for proposal in pfOptimalProposal pfStandardProposal; do
   sweep M ParticleFilter.sampleSize "$proposal" 1 10 50 100 200 500 1000 1500 2500
   sweep B MultiRobotVSLAM.max_observations_per_robot "$proposal" 1 5 10 20
 done
-"$BIN/vslam-plot" "$OUT/rmse-vs-M.txt" "$OUT/rmse-vs-M.png" --log-x --y-from-zero \
+echo "## 2-3. RMSE vs M and B (Fig. 4)" >&2
+"$BIN/vslam-plot" "$OUT/rmse-vs-M.txt" "$PLOTS/rmse-vs-M.png" --log-x --y-from-zero \
   --title "RMSE vs number of particles M (B = 8, mean ± sd over seeds)" \
   --x-label "M" --y-label "position RMSE [m]"
-"$BIN/vslam-plot" "$OUT/rmse-vs-B.txt" "$OUT/rmse-vs-B.png" --y-from-zero \
+"$BIN/vslam-plot" "$OUT/rmse-vs-B.txt" "$PLOTS/rmse-vs-B.png" --y-from-zero \
   --title "RMSE vs observations per robot and step B (M = 500, mean ± sd over seeds)" \
   --x-label "B" --y-label "position RMSE [m]"
 # the same with B measurements drawn at random instead of the B nearest (the paper does not say)
@@ -124,11 +149,17 @@ for proposal in pfOptimalProposal pfStandardProposal; do
   SWEEP_SET=MultiRobotVSLAM.observation_selection=random sweep B-random \
     MultiRobotVSLAM.max_observations_per_robot "$proposal" 1 5 10 20
 done
-"$BIN/vslam-plot" "$OUT/rmse-vs-B-random.txt" "$OUT/rmse-vs-B-random.png" --y-from-zero \
+"$BIN/vslam-plot" "$OUT/rmse-vs-B-random.txt" "$PLOTS/rmse-vs-B-random.png" --y-from-zero \
   --title "RMSE vs B, B measurements drawn at random (M = 500, mean ± sd over seeds)" \
   --x-label "B" --y-label "position RMSE [m]"
 
+echo
+echo "![RMSE vs M (Fig. 4a)](multirobot/rmse-vs-M.png)"
+echo "![RMSE vs B, the nearest B (Fig. 4b)](multirobot/rmse-vs-B.png)"
+echo "![RMSE vs B, B drawn at random](multirobot/rmse-vs-B-random.png)"
+
 # --- 4. E0 and the paper's R_t ------------------------------------------------------------------
+echo "## 4. Variants on team2" >&2
 echo
 echo "### Variants (team2, seeds $SEEDS): mean RMSE of both robots, merged / shared landmarks"
 echo
@@ -177,11 +208,15 @@ for proposal in pfOptimalProposal pfStandardProposal; do
   SWEEP_RAWLOG="$OUT/paper-sigma/team2.rawlog" SWEEP_SET=MultiRobotVSLAM.observation_selection=random \
     sweep B-paper-sigma-random MultiRobotVSLAM.max_observations_per_robot "$proposal" 1 5 10 20
 done
-"$BIN/vslam-plot" "$OUT/rmse-vs-B-paper-sigma-random.txt" "$OUT/rmse-vs-B-paper-sigma-random.png" \
+"$BIN/vslam-plot" "$OUT/rmse-vs-B-paper-sigma-random.txt" "$PLOTS/rmse-vs-B-paper-sigma-random.png" \
   --y-from-zero --x-label "B" --y-label "position RMSE [m]" \
   --title "RMSE vs B, the paper's R_t, B drawn at random (M = 500, mean ± sd over seeds)"
 
+echo
+echo "![RMSE vs B, the paper's R_t, B drawn at random](multirobot/rmse-vs-B-paper-sigma-random.png)"
+
 # --- 5. team3 with the paper's R_t sigmas (1, 10, 10), and without resample_per_robot --------
+echo "## 5. Variants on team3" >&2
 paper_sigma_rawlog team3 3
 echo
 echo "### team3 variants (seeds $SEEDS): mean RMSE per robot"
@@ -203,6 +238,6 @@ team3_variant "resample_per_robot = false" team3-no-rpr "$DATA/team3.rawlog" \
 team3_variant "pfOptimalProposal" team3-optimal "$DATA/team3.rawlog" \
   --set ParticleFilter.PF_algorithm=pfOptimalProposal
 team3_variant "paper sigma 1/10/10" team3-paper-sigma "$OUT/paper-sigma/team3.rawlog"
-
-echo
-echo "Run folders (paths.png, errors.png, metrics.json, run.json), tables and plots in $OUT"
+} > "$RESULTS.tmp"
+mv "$RESULTS.tmp" "$RESULTS"
+echo "wrote $RESULTS and its plots in $PLOTS; run folders and series in $OUT"

@@ -12,6 +12,7 @@ pages=(
   doc/README.md
   doc/app-conventions.md
   doc/architecture.md
+  doc/multirobot.md
   doc/omni-fastslam.md
   doc/references.md
   doc/view-slam.md
