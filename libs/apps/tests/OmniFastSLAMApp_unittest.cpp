@@ -121,6 +121,26 @@ TEST(OmniFastSLAMApp, FailsOnARawlogWithoutLightMeasurements)
     EXPECT_FALSE(mrpt::system::fileExists(out + "/metrics.json"));
 }
 
+// A frame with more bearings than max_bearings_per_frame stops the run with one line naming it
+// (the shipped hall's frames hold 4 to 12 lights).
+TEST(OmniFastSLAMApp, RefusesAFrameWithTooManyBearings)
+{
+    const test::ScratchFolder scratch("OmniFastSLAMApp_bearings");
+    apps::OmniFastSLAMApp app(args({kConfig, kRawlog, "--out", scratch.file("out"), "--quiet",
+                                    "--set", "OmniFastSLAM.max_bearings_per_frame=2"}));
+    app.initialize();
+    try {
+        app.run();
+        FAIL() << "a frame with more bearings than allowed was accepted";
+    } catch (const std::runtime_error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("bearings in one frame, more than max_bearings_per_frame = 2"),
+                  std::string::npos)
+            << what;
+        EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+}
+
 // Impossible or misread values: a usage error naming the key and the problem, in one line.
 TEST(OmniFastSLAMApp, RejectsImpossibleValuesNamingTheKey)
 {
@@ -135,7 +155,8 @@ TEST(OmniFastSLAMApp, RejectsImpossibleValuesNamingTheKey)
         {"MotionModel.a1=inf", "[MotionModel] a1: must be finite and >= 0"},
         {"MotionModel.minStdXY=0", "[MotionModel] minStdXY: must be finite and > 0"},
         {"OmniFastSLAM.min_motion_std_phi_deg=-1", "min_motion_std_phi_deg: must be > 0"},
-        {"OmniFastSLAM.min_motion_std_xy=abc", "min_motion_std_xy = abc: not a number"}};
+        {"OmniFastSLAM.min_motion_std_xy=abc", "min_motion_std_xy = abc: not a number"},
+        {"OmniFastSLAM.max_bearings_per_frame=0", "max_bearings_per_frame must be >= 1"}};
     for (const auto& [setting, message] : impossible) {
         apps::OmniFastSLAMApp app(args({kConfig, kRawlog, "--set", setting, "--quiet"}));
         try {

@@ -7,6 +7,11 @@
 
 namespace mrpt_vslam::multirobot {
 
+namespace {
+/// Cells per axis that the grid keys tell apart (21 bits per axis; farther cells share keys).
+constexpr int64_t kKeySpan = int64_t{1} << 21;
+}  // namespace
+
 LandmarkDescriptorPool::LandmarkDescriptorPool(double cell_size) : m_cell(cell_size)
 {
     if (!(cell_size > 0) || !std::isfinite(cell_size))
@@ -15,13 +20,15 @@ LandmarkDescriptorPool::LandmarkDescriptorPool(double cell_size) : m_cell(cell_s
 
 int64_t LandmarkDescriptorPool::cellIndex(double v) const
 {
-    return static_cast<int64_t>(std::floor(v / m_cell));
+    // clamped so that the cast is defined for any finite coordinate
+    constexpr double kLimit = 1e15;
+    return static_cast<int64_t>(std::clamp(std::floor(v / m_cell), -kLimit, kLimit));
 }
 
 int64_t LandmarkDescriptorPool::cellKey(int64_t ix, int64_t iy, int64_t iz) const
 {
-    // 21 bits per axis: ±1e6 cells, far beyond any indoor map
-    constexpr int64_t kOffset = 1 << 20, kMask = (1 << 21) - 1;
+    // ±1e6 cells per axis, far beyond any indoor map
+    constexpr int64_t kOffset = kKeySpan / 2, kMask = kKeySpan - 1;
     return ((ix + kOffset) & kMask) | (((iy + kOffset) & kMask) << 21) |
            (((iz + kOffset) & kMask) << 42);
 }
@@ -88,18 +95,31 @@ void LandmarkDescriptorPool::findCandidates(const Eigen::Vector3d& center, doubl
     if (!center.allFinite() || !(radius >= 0)) return;
     const size_t first = out.size();
     const double r2 = radius * radius;
+    const auto consider = [&](const std::vector<uint32_t>& ids) {
+        for (const uint32_t id : ids) {
+            if ((m_positions[id] - center).squaredNorm() > r2) continue;
+            const float E = squaredDistance(query, m_descriptors[id]);
+            if (E <= max_E) out.push_back({id, E});
+        }
+    };
     const Eigen::Vector3d lo = center.array() - radius, hi = center.array() + radius;
-    for (int64_t ix = cellIndex(lo.x()); ix <= cellIndex(hi.x()); ix++)
-        for (int64_t iy = cellIndex(lo.y()); iy <= cellIndex(hi.y()); iy++)
-            for (int64_t iz = cellIndex(lo.z()); iz <= cellIndex(hi.z()); iz++) {
-                const auto it = m_grid.find(cellKey(ix, iy, iz));
-                if (it == m_grid.end()) continue;
-                for (const uint32_t id : it->second) {
-                    if ((m_positions[id] - center).squaredNorm() > r2) continue;
-                    const float E = squaredDistance(query, m_descriptors[id]);
-                    if (E <= max_E) out.push_back({id, E});
+    const int64_t x0 = cellIndex(lo.x()), x1 = cellIndex(hi.x()), y0 = cellIndex(lo.y()),
+                  y1 = cellIndex(hi.y()), z0 = cellIndex(lo.z()), z1 = cellIndex(hi.z());
+    // a query box of more cells than the grid holds (a radius far larger than the cells) visits
+    // the occupied cells instead; so does one wider than the keys' span, where keys would repeat
+    const double boxCells = (static_cast<double>(x1 - x0) + 1) *
+                            (static_cast<double>(y1 - y0) + 1) * (static_cast<double>(z1 - z0) + 1);
+    if (boxCells > static_cast<double>(m_grid.size()) || x1 - x0 >= kKeySpan ||
+        y1 - y0 >= kKeySpan || z1 - z0 >= kKeySpan) {
+        for (const auto& [key, ids] : m_grid) consider(ids);
+    } else {
+        for (int64_t ix = x0; ix <= x1; ix++)
+            for (int64_t iy = y0; iy <= y1; iy++)
+                for (int64_t iz = z0; iz <= z1; iz++) {
+                    const auto it = m_grid.find(cellKey(ix, iy, iz));
+                    if (it != m_grid.end()) consider(it->second);
                 }
-            }
+    }
     std::sort(
         out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
         [](const auto& a, const auto& b) { return a.E < b.E || (a.E == b.E && a.id < b.id); });

@@ -10,6 +10,11 @@
 
 namespace mrpt_vslam::multirobot {
 
+namespace {
+/// [m] A measured point farther than this from its sensor is a corrupt reading.
+constexpr double kMaxMeasuredDistance = 1e5;
+}  // namespace
+
 std::vector<TLandmarkMeasurement> measurementsFromObservation(
     const mrpt::obs::CObservationVisualLandmarks& obs)
 {
@@ -34,6 +39,8 @@ std::vector<TLandmarkMeasurement> measurementsFromObservation(
         if (C.llt().info() != Eigen::Success)
             fail("has a covariance that is not positive definite");
         if (!(p.z() > 0)) fail("is not in front of the camera");
+        if (p.norm() > kMaxMeasuredDistance)
+            fail(mrpt::format("is %g m from the camera: not a plausible measurement", p.norm()));
         m.z = rot * p + t;
         m.R = rot * C * rot.transpose();
         std::copy(lm.features[0].descriptors.SURF->begin(), lm.features[0].descriptors.SURF->end(),
@@ -81,6 +88,8 @@ std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
         if (!std::isfinite(s.pitch)) failOn("has a non-finite pitch");
         if (!spatial && s.pitch != 0)
             failOn("has a non-zero pitch, but no pitch noise (sensor_std_pitch = 0): planar model");
+        if (s.range > kMaxMeasuredDistance)
+            failOn(mrpt::format("has a range of %g m: not a plausible measurement", s.range));
         if (!(s.range > 0)) {
             if (non_positive) (*non_positive)++;
             continue;

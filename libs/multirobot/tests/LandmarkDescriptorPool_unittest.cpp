@@ -21,13 +21,14 @@ LandmarkDescriptorPool::TDescriptor randomDescriptor(std::mt19937& gen)
     for (auto& v : d) v /= std::sqrt(norm);
     return d;
 }
-}  // namespace
 
-TEST(LandmarkDescriptorPool, CandidatesEqualABruteForceScan)
+/// 2000 landmarks in a box of ±10 x scale (z: a fifth), queried 200 times with radii
+/// (0.3 + 0.4 k) x scale: the candidates equal a scan of every landmark, sorted by E.
+void expectCandidatesOfABruteForceScan(double cell_size, double scale)
 {
     std::mt19937 gen(5);
-    std::uniform_real_distribution<double> u(-10, 10);
-    LandmarkDescriptorPool pool(0.7);
+    std::uniform_real_distribution<double> u(-10 * scale, 10 * scale);
+    LandmarkDescriptorPool pool(cell_size);
     // a few families of equal descriptors plus unique ones, so both E outcomes occur
     std::vector<LandmarkDescriptorPool::TDescriptor> families;
     for (int f = 0; f < 7; f++) families.push_back(randomDescriptor(gen));
@@ -40,7 +41,7 @@ TEST(LandmarkDescriptorPool, CandidatesEqualABruteForceScan)
     size_t total = 0;
     for (int q = 0; q < 200; q++) {
         const Eigen::Vector3d c(u(gen), u(gen), u(gen) / 5);
-        const double radius = 0.3 + (q % 10) * 0.4;
+        const double radius = (0.3 + (q % 10) * 0.4) * scale;
         const auto query = ds[q % ds.size()];
         const double max_E = (q % 3) * 0.5;
         std::vector<TLandmarkCandidate> got;
@@ -63,6 +64,20 @@ TEST(LandmarkDescriptorPool, CandidatesEqualABruteForceScan)
         total += got.size();
     }
     EXPECT_GT(total, 100u) << "the queries must find something for the comparison to mean much";
+}
+}  // namespace
+
+TEST(LandmarkDescriptorPool, CandidatesEqualABruteForceScan)
+{
+    expectCandidatesOfABruteForceScan(0.7, 1);
+}
+
+// Radii of millions of cells (a tiny cell size) and coordinates beyond the keys' span of cells
+// (far landmarks): the same candidates, found without walking every cell of the query box.
+TEST(LandmarkDescriptorPool, CandidatesOfHugeQueryBoxesEqualABruteForceScan)
+{
+    expectCandidatesOfABruteForceScan(1e-6, 1);
+    expectCandidatesOfABruteForceScan(1.0, 1e9);
 }
 
 TEST(LandmarkDescriptorPool, IdsAndErrors)

@@ -1,5 +1,6 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
+#include <mrpt/core/format.h>
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -46,6 +47,11 @@ void COmniFastSLAM::TOptions::loadFromConfigFile(const mrpt::config::CConfigFile
         cfg.read_double(section, "prediction_margin_deg", mrpt::RAD2DEG(prediction_margin)));
     if (!(prediction_margin >= 0))
         throw std::invalid_argument("[" + section + "] prediction_margin_deg must be >= 0");
+    const int maxBearings = cfg.read_int(section, "max_bearings_per_frame",
+                                         static_cast<int>(max_bearings_per_frame));
+    if (maxBearings < 1)
+        throw std::invalid_argument("[" + section + "] max_bearings_per_frame must be >= 1");
+    max_bearings_per_frame = static_cast<unsigned int>(maxBearings);
 }
 
 void COmniFastSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
@@ -54,6 +60,7 @@ void COmniFastSLAM::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cf
     cfg.write(section, "bearings_label", bearings_label);
     motion_noise_floor.saveToConfigFile(cfg, section);
     cfg.write(section, "prediction_margin_deg", mrpt::RAD2DEG(prediction_margin));
+    cfg.write(section, "max_bearings_per_frame", max_bearings_per_frame);
 }
 
 size_t TAssociationTally::labelled() const
@@ -127,6 +134,11 @@ std::vector<TBearingMeasurement> COmniFastSLAM::measurementsFromFrame(
         const auto* b = dynamic_cast<const mrpt::obs::CObservationBearingRange*>(obs.get());
         if (!b || (!options.bearings_label.empty() && b->sensorLabel != options.bearings_label))
             continue;
+        if (b->sensedData.size() > options.max_bearings_per_frame)
+            throw std::runtime_error(mrpt::format(
+                "%s: %zu bearings in one frame, more than max_bearings_per_frame = %u",
+                b->sensorLabel.empty() ? "CObservationBearingRange" : b->sensorLabel.c_str(),
+                b->sensedData.size(), options.max_bearings_per_frame));
         timestamp = mrpt::Clock::toDouble(b->timestamp);
         return map.measurementsFromObservation(*b);
     }

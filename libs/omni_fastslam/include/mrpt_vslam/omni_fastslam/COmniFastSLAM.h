@@ -85,6 +85,9 @@ class COmniFastSLAM
         /// Landmarks whose predicted θ exceeds the perceptual range by more than this are
         /// skipped in Alg. 2 (they cannot have produced a measurement).
         double prediction_margin = 5.0 * M_PI / 180;  ///< [rad] (ini: prediction_margin_deg)
+        /// A frame with more bearings is refused (the association's cost grows with their
+        /// cube; a ceiling camera sees tens of lights).
+        unsigned int max_bearings_per_frame = 200;
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                 const std::string& section) override;
