@@ -36,8 +36,10 @@ shoot() {
     kill "$viewer"
     return 1
   fi
-  python3 "$REPO_DIR/scripts/screenshot-x11.py" "$2" --window "$window" --scale 2
+  local status=0
+  python3 "$REPO_DIR/scripts/screenshot-x11.py" "$2" --window "$window" --scale 2 || status=$?
   kill "$viewer"
+  return "$status"
 }
 export OUT REPO_DIR
 

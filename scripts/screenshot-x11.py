@@ -90,7 +90,9 @@ def main():
     parser.add_argument("--window", help="id of a top-level window (e.g. 0x20000c, from "
                         "xwininfo) to move to the top-left corner and resize to the whole screen "
                         "first (there is no window manager to maximize it)")
-    parser.add_argument("--settle", type=float, default=60,
+    parser.add_argument("--ignore-bottom", type=int, default=40,
+                        help="rows at the bottom not compared while waiting")
+    parser.add_argument("--settle", type=float, default=120,
                         help="at most this many seconds to wait for the screen to stop changing")
     parser.add_argument("--scale", type=int, default=1, help="scale down by this integer factor")
     args = parser.parse_args()
@@ -109,13 +111,15 @@ def main():
         xlib.XMoveResizeWindow(display, int(args.window, 16), 0, 0, width, height)
         xlib.XSync(display, 0)
     # a big scene keeps software OpenGL busy for a while: wait until the window covers the whole
-    # screen (its bottom-right pixel is no longer the bare black root) and two grabs agree
+    # screen (its bottom-right pixel is no longer the bare black root) and two grabs agree but
+    # for the bottom rows (a status bar may count frames per second)
     rows, waited = grab(xlib, display, width, height), 0.0
     while waited < args.settle:
         time.sleep(2)
         waited += 2
         previous, rows = rows, grab(xlib, display, width, height)
-        if rows == previous and rows[-1][-3:] != b"\0\0\0":
+        top = height - args.ignore_bottom
+        if rows[:top] == previous[:top] and rows[-1][-3:] != b"\0\0\0":
             break
     else:
         sys.exit("screenshot-x11: the screen did not settle in %g s" % args.settle)
