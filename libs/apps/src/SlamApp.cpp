@@ -6,6 +6,7 @@
 #include <mrpt_vslam/core/ProgressReporter.h>
 #include <mrpt_vslam/core/RunEvaluation.h>
 #include <mrpt_vslam/core/RunOutputs.h>
+#include <mrpt_vslam/core/SceneFraming.h>
 
 #include <cstdio>
 #include <opencv2/core/version.hpp>
@@ -104,6 +105,7 @@ void SlamApp::writeRunFolder(const core::OutputDirectory& out, const core::RunTi
     core::RunReport report(name);
     mrpt::opengl::COpenGLScene scene;
     writeResults(out, scene, report);
+    core::frameSceneOnContent(scene);
     core::saveScene(scene, out.file("final.3Dscene"));
 
     cfg.writeEffectiveConfig(out.file("config.ini"));

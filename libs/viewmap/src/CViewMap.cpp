@@ -196,7 +196,6 @@ void CViewMap::getVisualizationInto(mrpt::opengl::CSetOfObjects& o) const
     // One triangle per view in the XY plane, its centroid on the view and its tip along yaw.
     auto marks = mrpt::opengl::CSetOfTriangles::Create();
     marks->setName("views");
-    marks->setColor(0.1f, 0.3f, 1.0f);
     const double L = renderOptions.view_size;
     for (const TView& v : m_views) {
         const double c = std::cos(v.pose.phi), s = std::sin(v.pose.phi);
@@ -224,6 +223,8 @@ void CViewMap::getVisualizationInto(mrpt::opengl::CSetOfObjects& o) const
             o.insert(label);
         }
     }
+    // after the triangles: setColor() recolours those present, new ones come in black
+    marks->setColor(0.1f, 0.3f, 1.0f);
     o.insert(marks);
 }
 

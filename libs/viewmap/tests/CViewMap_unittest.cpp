@@ -429,6 +429,15 @@ TEST(CViewMap, VisualizationDrawsAMarkPerViewAndSkipsDegenerateEllipses)
     EXPECT_NEAR(t.y(1), 1.9, 1e-6);
     EXPECT_NEAR(t.x(2), 1.1, 1e-6);
     EXPECT_NEAR(t.y(2), 1.9, 1e-6);
+    // every vertex in the marks' blue (0.1, 0.3, 1.0), not the black of a new triangle
+    for (size_t i = 0; i < marks->getTrianglesCount(); i++) {
+        marks->getTriangle(i, t);
+        for (const auto& v : t.vertices) {
+            EXPECT_EQ(v.xyzrgba.r, 25);
+            EXPECT_EQ(v.xyzrgba.g, 76);
+            EXPECT_EQ(v.xyzrgba.b, 255);
+        }
+    }
 
     map.renderOptions.draw_ellipses = false;
     mrpt::opengl::CSetOfObjects without;
