@@ -79,8 +79,7 @@ void SlamApp::run()
         writeRunFolder(out, timer);
     } catch (const std::exception& e) {
         core::RunReport report(name);
-        args.describeInputs(report, cfg.effectiveText(), rawlog, seed);
-        report.setTiming(timer);
+        describeRun(report, timer);
         report.setFailed(core::oneLineMessage(e));
         report.write(out.file("run.json"));
         throw;
@@ -109,9 +108,7 @@ void SlamApp::writeRunFolder(const core::OutputDirectory& out, const core::RunTi
     core::saveScene(scene, out.file("final.3Dscene"));
 
     cfg.writeEffectiveConfig(out.file("config.ini"));
-    args.describeInputs(report, cfg.effectiveText(), rawlog, seed);
-    report.setOpenCvVersion(CV_VERSION);
-    report.setTiming(timer);
+    describeRun(report, timer);
     const auto groundTruth = groundTruthName();
     if (groundTruth) {
         report.setGroundTruth(*groundTruth);
@@ -123,6 +120,13 @@ void SlamApp::writeRunFolder(const core::OutputDirectory& out, const core::RunTi
     // last: a run.json that says completed stands for a whole folder
     report.setCompleted();
     report.write(out.file("run.json"));
+}
+
+void SlamApp::describeRun(core::RunReport& report, const core::RunTimer& timer) const
+{
+    args.describeInputs(report, cfg.effectiveText(), rawlog, seed);
+    report.setOpenCvVersion(CV_VERSION);
+    report.setTiming(timer);
 }
 
 core::TumTrajectory SlamApp::asTrajectory(

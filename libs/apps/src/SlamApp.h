@@ -131,6 +131,9 @@ class SlamApp {
 
     /// The results, `final.3Dscene`, `config.ini`, `run.json` and `metrics.json`.
     void writeRunFolder(const core::OutputDirectory& out, const core::RunTimer& timer);
+    /// What ran (inputs, effective config, seed, versions) and its timing, in `report`: the
+    /// part of run.json that a failed run writes too.
+    void describeRun(core::RunReport& report, const core::RunTimer& timer) const;
 
     const std::string m_section;
     /// Motion model of the actions built for observation-only rawlogs ([MotionModel]).
