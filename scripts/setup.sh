@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Shared set-up for run-demo.sh and run-tests.sh: installs the Debian packages the project needs
 # (only those missing), then configures and builds into build/. Idempotent.
-# Environment: BUILD_DIR (default build), BUILD_TYPE (RelWithDebInfo), SANITIZE (OFF|ON), JOBS.
+# Environment: BUILD_DIR (default build), BUILD_TYPE (RelWithDebInfo), SANITIZE (OFF|ON), JOBS,
+# BUILD_TARGETS (default: everything; else the CMake targets to build, e.g. "view-slam vslam-eval").
 set -euo pipefail
 
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -9,6 +10,7 @@ BUILD_DIR="${BUILD_DIR:-$REPO_DIR/build}"
 BUILD_TYPE="${BUILD_TYPE:-RelWithDebInfo}"
 SANITIZE="${SANITIZE:-OFF}"
 JOBS="${JOBS:-$(nproc)}"
+BUILD_TARGETS="${BUILD_TARGETS:-}"
 
 DEBIAN_PACKAGES=(
   build-essential cmake ccache git clang-format python3
@@ -45,7 +47,8 @@ configure_and_build() {
     cmake -S "$REPO_DIR" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE="$BUILD_TYPE" \
       -DMRPT_VSLAM_SANITIZE="$SANITIZE" >/dev/null
   fi
-  cmake --build "$BUILD_DIR" -j "$JOBS"
+  # shellcheck disable=SC2086  # BUILD_TARGETS is a list
+  cmake --build "$BUILD_DIR" -j "$JOBS" ${BUILD_TARGETS:+--target $BUILD_TARGETS}
 }
 
 install_missing_packages
