@@ -149,7 +149,7 @@ unsigned int TeamPathSmoother::minTimesSeen() const
 {
     const auto frames = std::count_if(m_fusedFrames.begin(), m_fusedFrames.end(),
                                       [](const TFusedFrame& f) { return !f.z.empty(); });
-    // a product within 1e-9 of a whole count is that count (0.02 × 7500 is 150, not 151)
+    // a product within 1e-9 of a whole count is that count (0.07 × 100 is 7, not 8)
     return static_cast<unsigned int>(
         std::ceil(options.min_seen_fraction * static_cast<double>(frames) - 1e-9));
 }

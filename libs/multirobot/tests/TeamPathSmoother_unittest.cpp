@@ -94,16 +94,16 @@ TEST(TeamPathSmoother, MapAlongPathWithTheFiltersGateIsTheParticlesMap)
     EXPECT_THROW(smoother.mapAlongPath(before), std::logic_error);
 }
 
-// The count threshold is relative to the run: of 10 frames with landmark measurements (two
+// The count threshold is relative to the run: of 100 frames with landmark measurements (two
 // steps without any and one with a reading of a robot only do not count), landmarks read in
-// 10, 6, 3 and 1 of them; a fraction f keeps those read in at least ceil(10 f) frames.
+// 100, 60, 7 and 1 of them; a fraction f keeps those read in at least ceil(100 f) frames.
 TEST(TeamPathSmoother, MinSeenFractionRemovesTheLandmarksReadInFewerFrames)
 {
     TeamPathSmoother smoother(CVisualLandmarksMap{});
     const std::vector<mrpt::math::TPose2D> start{{0, 0, 0}, {0, -5, 0}};
     smoother.onReset(start, 0, 0);
     const std::vector<Eigen::Vector3d> at{{2, 0, 0}, {0, 2, 0}, {-2, 0, 0}, {0, -2, 0}};
-    const std::vector<size_t> frames_read{10, 6, 3, 1};
+    const std::vector<size_t> frames_read{100, 60, 7, 1};
     auto measurement = [](const Eigen::Vector3d& z) {
         TLandmarkMeasurement m;
         m.z = z;
@@ -112,14 +112,14 @@ TEST(TeamPathSmoother, MinSeenFractionRemovesTheLandmarksReadInFewerFrames)
     };
     TTeamParticle p;
     p.path = std::make_shared<const TTeamPathNode>(0, TTeamStep{start, {}}, nullptr);
-    const size_t steps = 13;
+    const size_t frames = 100, steps = frames + 3;
     for (size_t step = 1; step <= steps; step++) {
         std::vector<TLandmarkMeasurement> z;
         std::vector<CMultiRobotVisualSLAM::TRobotReading> readings;
-        if (step <= 10) {
+        if (step <= frames) {
             for (size_t l = 0; l < at.size(); l++)
                 if (step <= frames_read[l]) z.push_back(measurement(at[l]));
-        } else if (step == 11) {
+        } else if (step == frames + 1) {
             readings.push_back({1, measurement({0, -5, 0})});
         }
         smoother.onRobotStep(step, 0, mrpt_vslam::core::TOdometryGaussian(), z, readings);
@@ -135,15 +135,15 @@ TEST(TeamPathSmoother, MinSeenFractionRemovesTheLandmarksReadInFewerFrames)
         return counts;
     };
     using Counts = std::multiset<unsigned>;
-    EXPECT_EQ(keptCounts(0), (Counts{1, 3, 6, 10}));
+    EXPECT_EQ(keptCounts(0), (Counts{1, 7, 60, 100}));
     EXPECT_EQ(smoother.minTimesSeen(), 0u);
-    EXPECT_EQ(keptCounts(0.3), (Counts{3, 6, 10}));
-    EXPECT_EQ(smoother.minTimesSeen(), 3u);
-    EXPECT_EQ(keptCounts(0.31), (Counts{6, 10}));
-    EXPECT_EQ(smoother.minTimesSeen(), 4u);
-    EXPECT_EQ(keptCounts(0.6), (Counts{6, 10}));
-    EXPECT_EQ(keptCounts(0.61), (Counts{10}));
-    EXPECT_EQ(keptCounts(1), (Counts{10}));
+    EXPECT_EQ(keptCounts(0.07), (Counts{7, 60, 100}));  // 0.07 × 100 rounds to 7.000000000000001
+    EXPECT_EQ(smoother.minTimesSeen(), 7u);
+    EXPECT_EQ(keptCounts(0.071), (Counts{60, 100}));
+    EXPECT_EQ(smoother.minTimesSeen(), 8u);
+    EXPECT_EQ(keptCounts(0.6), (Counts{60, 100}));
+    EXPECT_EQ(keptCounts(0.601), (Counts{100}));
+    EXPECT_EQ(keptCounts(1), (Counts{100}));
 }
 
 // reanchorAfterGaps() through smoothPaths(), from particles whose paths are the true ones: R2
