@@ -128,8 +128,8 @@ team() {  # team NAME RAWLOG ROBOTS
   local name="$1" rawlog="$2" robots="$3"
   : > "$OUT/team.tmp"
   for seed in $SEEDS; do
-    # the filter alone: the map along the path's count threshold (min_times_seen) is set for
-    # robots 1-3 over the whole dataset, and the smoothing needs it
+    # the filter alone: the map along the path (and the smoothing, which needs it) was chosen
+    # for robots 1-3 jointly
     res=$(run "$OUT/$name-seed$seed" "$rawlog" "$robots" --seed "$seed" \
       --set TeamPathSmoother.map_along_path=false --set TeamPathSmoother.smooth_paths=false)
     echo "$res" >> "$OUT/team.tmp"

@@ -44,7 +44,7 @@ constexpr const char* kSmootherSection = "TeamPathSmoother";
 constexpr std::pair<const char*, const char*> kMovedKeys[] = {
     {"map_along_path", "map_along_path"},
     {"map_along_path_D0", "D0"},
-    {"map_along_path_min_times_seen", "min_times_seen"},
+    {"map_along_path_min_times_seen", "min_seen_fraction"},
     {"smooth_paths", "smooth_paths"},
     {"smooth_paths_rounds", "rounds"},
     {"smooth_paths_huber", "huber"},
@@ -513,8 +513,11 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
                     nonPositiveRanges);
     report.setCount("particles", static_cast<double>(filter->particlesCount()));
     report.setCount("landmarks", static_cast<double>(map.size()));
-    if (smootherOptions.map_along_path)
+    if (smootherOptions.map_along_path) {
         report.setCount("particle_map_landmarks", static_cast<double>(best.map.size()));
+        report.setCount("map_along_path_min_times_seen",
+                        static_cast<double>(smoother->minTimesSeen()));
+    }
     if (alongPath) report.setResult("map_along_path_s", alongPathSeconds);
     if (smoothed) {
         report.setResult("smoothing_s", smoothingSeconds);

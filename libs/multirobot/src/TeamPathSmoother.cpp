@@ -3,6 +3,7 @@
 #include <mrpt_vslam/multirobot/TeamPathSmoother.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <stdexcept>
 
@@ -31,7 +32,7 @@ void TeamPathSmoother::TOptions::loadFromConfigFile(const mrpt::config::CConfigF
 {
     MRPT_LOAD_CONFIG_VAR(map_along_path, bool, cfg, section);
     MRPT_LOAD_CONFIG_VAR(D0, double, cfg, section);
-    min_times_seen = readCount(cfg, section, "min_times_seen", min_times_seen);
+    MRPT_LOAD_CONFIG_VAR(min_seen_fraction, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(smooth_paths, bool, cfg, section);
     rounds = readCount(cfg, section, "rounds", rounds);
     MRPT_LOAD_CONFIG_VAR(huber, double, cfg, section);
@@ -40,7 +41,11 @@ void TeamPathSmoother::TOptions::loadFromConfigFile(const mrpt::config::CConfigF
     MRPT_LOAD_CONFIG_VAR(reanchor_gap, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(reanchor_gain, double, cfg, section);
 
+    requireKey(!cfg.keyExists(section, "min_times_seen"), section, "min_times_seen",
+               "replaced by min_seen_fraction, a fraction of the frames with landmark readings");
     requireKey(D0 > 0, section, "D0", "must be > 0");
+    requireKey(min_seen_fraction >= 0 && min_seen_fraction <= 1, section, "min_seen_fraction",
+               "must be in [0, 1]");
     requireKey(!smooth_paths || map_along_path, section, "smooth_paths",
                "needs map_along_path = true");
     requireKey(huber >= 0, section, "huber", "must be >= 0");
@@ -56,7 +61,7 @@ void TeamPathSmoother::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase&
 {
     cfg.write(section, "map_along_path", map_along_path);
     cfg.write(section, "D0", D0);
-    cfg.write(section, "min_times_seen", min_times_seen);
+    cfg.write(section, "min_seen_fraction", min_seen_fraction);
     cfg.write(section, "smooth_paths", smooth_paths);
     cfg.write(section, "rounds", rounds);
     cfg.write(section, "huber", huber);
@@ -132,12 +137,21 @@ CVisualLandmarksMap TeamPathSmoother::mapAlong(const TTeamPath& path, TFrameIds*
             for (const auto& r : fused) ids->back().push_back(r.id);
         }
     }
-    map.removeLandmarksSeenLessThan(options.min_times_seen);
+    map.removeLandmarksSeenLessThan(minTimesSeen());
     if (ids)
         for (auto& frame : *ids)
             for (auto& id : frame)
                 if (!map.landmarks().find(*id)) id.reset();
     return map;
+}
+
+unsigned int TeamPathSmoother::minTimesSeen() const
+{
+    const auto frames = std::count_if(m_fusedFrames.begin(), m_fusedFrames.end(),
+                                      [](const TFusedFrame& f) { return !f.z.empty(); });
+    // a product within 1e-9 of a whole count is that count (0.07 × 100 is 7, not 8)
+    return static_cast<unsigned int>(
+        std::ceil(options.min_seen_fraction * static_cast<double>(frames) - 1e-9));
 }
 
 std::vector<TCorrespondence> TeamPathSmoother::correspondencesOf(const TFrameIds& ids) const

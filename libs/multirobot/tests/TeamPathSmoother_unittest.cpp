@@ -7,8 +7,10 @@
 #include <mrpt_vslam/multirobot/TeamPathSmoother.h>
 #include <mrpt_vslam/test/SyntheticTeamWorld.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 
 using namespace mrpt_vslam::multirobot;
@@ -59,7 +61,7 @@ TEST(TeamPathSmoother, MapAlongPathWithTheFiltersGateIsTheParticlesMap)
     const CVisualLandmarksMap rebuilt = smoother.mapAlongPath(p, &correspondences);
     ASSERT_GT(p.map.size(), 20u);
     ASSERT_EQ(rebuilt.size(), p.map.size());
-    size_t seen_thrice = 0;
+    std::vector<unsigned> times_seen;
     p.map.landmarks().forEach([&](uint32_t id, const TVisualLandmark& lm) {
         const TVisualLandmark* r = rebuilt.landmark(id);
         ASSERT_NE(r, nullptr) << id;
@@ -67,7 +69,7 @@ TEST(TeamPathSmoother, MapAlongPathWithTheFiltersGateIsTheParticlesMap)
         EXPECT_LT((r->cov - lm.cov).norm(), 1e-12) << id;
         EXPECT_EQ(r->times_seen, lm.times_seen) << id;
         EXPECT_EQ(r->seen_by, lm.seen_by) << id;
-        seen_thrice += lm.times_seen >= 3 ? 1 : 0;
+        times_seen.push_back(lm.times_seen);
     });
     const auto history = TLandmarkIdentityTally::historyOf(p);
     ASSERT_EQ(correspondences.size(), history.size());
@@ -76,16 +78,72 @@ TEST(TeamPathSmoother, MapAlongPathWithTheFiltersGateIsTheParticlesMap)
         EXPECT_EQ(correspondences[i].landmark, history[i].landmark) << i;
         EXPECT_EQ(correspondences[i].track_id, history[i].track_id) << i;
     }
-    ASSERT_GT(seen_thrice, 0u);
-    ASSERT_LT(seen_thrice, p.map.size());
-    smoother.options.min_times_seen = 3;
-    EXPECT_EQ(smoother.mapAlongPath(p, &correspondences).size(), seen_thrice);
-    for (const auto& c : correspondences) EXPECT_GE(p.map.landmark(c.landmark)->times_seen, 3u);
+    smoother.options.min_seen_fraction = 0.05;
+    const unsigned threshold = smoother.minTimesSeen();
+    const auto kept = static_cast<size_t>(std::count_if(
+        times_seen.begin(), times_seen.end(), [&](unsigned n) { return n >= threshold; }));
+    ASSERT_GT(kept, 0u);
+    ASSERT_LT(kept, p.map.size());
+    EXPECT_EQ(smoother.mapAlongPath(p, &correspondences).size(), kept);
+    for (const auto& c : correspondences)
+        EXPECT_GE(p.map.landmark(c.landmark)->times_seen, threshold);
 
     // a new run: what was recorded is forgotten, the old particle's path no longer fits
     const TTeamParticle before = p;
     filter.reset(world.startPoses(), world.time);
     EXPECT_THROW(smoother.mapAlongPath(before), std::logic_error);
+}
+
+// The count threshold is relative to the run: of 100 frames with landmark measurements (two
+// steps without any and one with a reading of a robot only do not count), landmarks read in
+// 100, 60, 7 and 1 of them; a fraction f keeps those read in at least ceil(100 f) frames.
+TEST(TeamPathSmoother, MinSeenFractionRemovesTheLandmarksReadInFewerFrames)
+{
+    TeamPathSmoother smoother(CVisualLandmarksMap{});
+    const std::vector<mrpt::math::TPose2D> start{{0, 0, 0}, {0, -5, 0}};
+    smoother.onReset(start, 0, 0);
+    const std::vector<Eigen::Vector3d> at{{2, 0, 0}, {0, 2, 0}, {-2, 0, 0}, {0, -2, 0}};
+    const std::vector<size_t> frames_read{100, 60, 7, 1};
+    auto measurement = [](const Eigen::Vector3d& z) {
+        TLandmarkMeasurement m;
+        m.z = z;
+        m.R = Eigen::Matrix3d::Identity() * 1e-4;
+        return m;
+    };
+    TTeamParticle p;
+    p.path = std::make_shared<const TTeamPathNode>(0, TTeamStep{start, {}}, nullptr);
+    const size_t frames = 100, steps = frames + 3;
+    for (size_t step = 1; step <= steps; step++) {
+        std::vector<TLandmarkMeasurement> z;
+        std::vector<CMultiRobotVisualSLAM::TRobotReading> readings;
+        if (step <= frames) {
+            for (size_t l = 0; l < at.size(); l++)
+                if (step <= frames_read[l]) z.push_back(measurement(at[l]));
+        } else if (step == frames + 1) {
+            readings.push_back({1, measurement({0, -5, 0})});
+        }
+        smoother.onRobotStep(step, 0, mrpt_vslam::core::TOdometryGaussian(), z, readings);
+        smoother.onRobotStep(step, 1, mrpt_vslam::core::TOdometryGaussian(), {}, {});
+        p.path = std::make_shared<const TTeamPathNode>(static_cast<double>(step),
+                                                       TTeamStep{start, {}}, p.path);
+    }
+    auto keptCounts = [&](double fraction) {
+        smoother.options.min_seen_fraction = fraction;
+        std::multiset<unsigned> counts;
+        smoother.mapAlongPath(p).landmarks().forEach(
+            [&](uint32_t, const TVisualLandmark& lm) { counts.insert(lm.times_seen); });
+        return counts;
+    };
+    using Counts = std::multiset<unsigned>;
+    EXPECT_EQ(keptCounts(0), (Counts{1, 7, 60, 100}));
+    EXPECT_EQ(smoother.minTimesSeen(), 0u);
+    EXPECT_EQ(keptCounts(0.07), (Counts{7, 60, 100}));  // 0.07 × 100 rounds to 7.000000000000001
+    EXPECT_EQ(smoother.minTimesSeen(), 7u);
+    EXPECT_EQ(keptCounts(0.071), (Counts{60, 100}));
+    EXPECT_EQ(smoother.minTimesSeen(), 8u);
+    EXPECT_EQ(keptCounts(0.6), (Counts{60, 100}));
+    EXPECT_EQ(keptCounts(0.601), (Counts{100}));
+    EXPECT_EQ(keptCounts(1), (Counts{100}));
 }
 
 // reanchorAfterGaps() through smoothPaths(), from particles whose paths are the true ones: R2
@@ -101,7 +159,7 @@ TEST(TeamPathSmoother, SmoothingReanchorsAPartDisplacedAfterAGap)
     CMultiRobotVisualSLAM filter(CVisualLandmarksMap(), 1, 5);
     TeamPathSmoother smoother(CVisualLandmarksMap{});  // records frames and odometry
     smoother.options.map_along_path = true;
-    smoother.options.min_times_seen = 3;
+    smoother.options.min_seen_fraction = 0.025;
     smoother.options.smooth_paths = true;
     filter.setStepObserver(&smoother);
     filter.reset(world.startPoses(), world.time);
@@ -157,7 +215,7 @@ TEST(TeamPathSmoother, OptionsLoadFromTheirSectionAndRejectImpossibleValues)
     mrpt::config::CConfigFileMemory ini(R"([TeamPathSmoother]
 map_along_path = true
 D0 = 20
-min_times_seen = 5
+min_seen_fraction = 0.05
 smooth_paths = true
 rounds = 3
 huber = 2
@@ -170,7 +228,7 @@ reanchor_gain = 0.2
     o.loadFromConfigFile(ini, "TeamPathSmoother");
     EXPECT_TRUE(o.map_along_path);
     EXPECT_EQ(o.D0, 20);
-    EXPECT_EQ(o.min_times_seen, 5u);
+    EXPECT_EQ(o.min_seen_fraction, 0.05);
     EXPECT_TRUE(o.smooth_paths);
     EXPECT_EQ(o.rounds, 3u);
     EXPECT_EQ(o.huber, 2);
@@ -183,14 +241,19 @@ reanchor_gain = 0.2
     o.saveToConfigFile(saved, "TeamPathSmoother");
     TeamPathSmoother::TOptions back;
     back.loadFromConfigFile(saved, "TeamPathSmoother");
-    EXPECT_EQ(back.min_times_seen, 5u);
+    EXPECT_EQ(back.min_seen_fraction, 0.05);
     EXPECT_EQ(back.rounds, 3u);
     EXPECT_EQ(back.reanchor_gain, 0.2);
     EXPECT_TRUE(back.smooth_paths);
 
     EXPECT_EQ(errorOf(""), "") << "the defaults are valid";
     EXPECT_NE(errorOf("D0 = 0").find("[TeamPathSmoother] D0: must be > 0"), std::string::npos);
-    EXPECT_NE(errorOf("min_times_seen = 0").find("min_times_seen: must be >= 1"),
+    EXPECT_NE(errorOf("min_seen_fraction = -0.1").find("min_seen_fraction: must be in [0, 1]"),
+              std::string::npos);
+    EXPECT_NE(errorOf("min_seen_fraction = 1.5").find("min_seen_fraction: must be in [0, 1]"),
+              std::string::npos);
+    EXPECT_NE(errorOf("min_times_seen = 150")
+                  .find("[TeamPathSmoother] min_times_seen: replaced by min_seen_fraction"),
               std::string::npos);
     EXPECT_NE(errorOf("smooth_paths = true").find("smooth_paths: needs map_along_path = true"),
               std::string::npos);

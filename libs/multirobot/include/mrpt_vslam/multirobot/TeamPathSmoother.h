@@ -31,9 +31,10 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
         /// app then records the run for this smoother.
         bool map_along_path = false;
         /// Mapping along a path: D0 of its gate, and the fewest measurements a landmark of it
-        /// needs.
+        /// needs as a fraction of the recorded frames with landmark measurements, in [0, 1]
+        /// (a landmark takes at most one measurement per frame; minTimesSeen()).
         double D0 = 30;
-        unsigned int min_times_seen = 1;
+        double min_seen_fraction = 0;
         /// smoothPaths() as the result (needs map_along_path): rounds of mapping along the
         /// path and least squares, and the Huber threshold [σ] of its readings (0: none).
         bool smooth_paths = false;
@@ -75,12 +76,15 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
      *  robot's measurements at that particle's pose of the step, fused by
      *  CVisualLandmarksMap::fuseFrame() (distinct landmarks per frame) with the filter's
      *  insertion options but D0 = options.D0; then the landmarks seen fewer than
-     *  options.min_times_seen times are removed. The poses do not move, so a wrong
+     *  minTimesSeen() times are removed. The poses do not move, so a wrong
      *  association here costs the map only, not the paths, and the gate can be wider than
      *  the filter's. `correspondences` (if given) gets those of the map's landmarks, in the
      *  order of the run. \pre registered with the filter before its reset() */
     CVisualLandmarksMap mapAlongPath(const TTeamParticle& p,
                                      std::vector<TCorrespondence>* correspondences = nullptr) const;
+    /// The fewest measurements a landmark of a map along a path keeps: options.min_seen_fraction
+    /// of the frames with landmark measurements recorded since reset(), rounded up.
+    unsigned int minTimesSeen() const;
 
     /// The team's paths and map after smoothPaths().
     struct TSmoothedTeam {

@@ -83,7 +83,7 @@ class COmniViewSLAM {
                   const OmniViewObserver::TOptions& observer,
                   const ViewInitializationPolicy::TOptions& policy, uint32_t seed);
 
-    /** The filter of an `.ini` (doc/view-slam.md §6): [ViewSLAM] (TOptions), [Camera]
+    /** The filter of an `.ini` (doc/view-slam.md, "Parameters"): [ViewSLAM] (TOptions), [Camera]
      *  (core::UnifiedSphereCamera), [CameraOnRobot] (yaw_deg, pitch_deg, roll_deg: when any is
      *  given, the camera's orientation for every image; else each image's own, see
      *  useCameraPoseOf()), [Features], [ViewObserver] and [ViewInitialization].
