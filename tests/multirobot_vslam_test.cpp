@@ -193,7 +193,8 @@ TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
          "[MultiRobotVSLAM] map_along_path_min_times_seen: moved to [TeamPathSmoother] "
          "min_seen_fraction"},
         {"TeamPathSmoother.smooth_paths=true", "smooth_paths: needs map_along_path = true"},
-        {"TeamPathSmoother.rounds=0", "rounds: must be >= 1"},
+        {"TeamPathSmoother.rounds=0", "rounds: must be 1 to 100"},
+        {"TeamPathSmoother.rounds=1000000000", "rounds: must be 1 to 100"},
         {"TeamPathSmoother.reanchor_gap=-1", "reanchor_gap: must be >= 0"},
         {"TeamPathSmoother.reanchor_gain=1", "reanchor_gain: must be in (0, 1)"},
         {"MultiRobotVSLAM.smooth_paths_rounds=2",

@@ -17,14 +17,6 @@ void requireKey(bool ok, const std::string& section, const char* key, const char
     if (!ok) throw std::invalid_argument("[" + section + "] " + key + ": " + what);
 }
 
-/// A count key (>= 1).
-unsigned int readCount(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
-                       const char* key, unsigned int value)
-{
-    const int n = cfg.read_int(section, key, static_cast<int>(value));
-    requireKey(n >= 1, section, key, "must be >= 1");
-    return static_cast<unsigned int>(n);
-}
 }  // namespace
 
 void TeamPathSmoother::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
@@ -34,7 +26,10 @@ void TeamPathSmoother::TOptions::loadFromConfigFile(const mrpt::config::CConfigF
     MRPT_LOAD_CONFIG_VAR(D0, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(min_seen_fraction, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(smooth_paths, bool, cfg, section);
-    rounds = readCount(cfg, section, "rounds", rounds);
+    const int roundCount = cfg.read_int(section, "rounds", static_cast<int>(rounds));
+    // each round maps and solves the whole run again; a few converge
+    requireKey(roundCount >= 1 && roundCount <= 100, section, "rounds", "must be 1 to 100");
+    rounds = static_cast<unsigned int>(roundCount);
     MRPT_LOAD_CONFIG_VAR(huber, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(odometry_scale_std, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(motion_cov_factor, double, cfg, section);

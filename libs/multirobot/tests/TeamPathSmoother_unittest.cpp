@@ -257,7 +257,8 @@ reanchor_gain = 0.2
               std::string::npos);
     EXPECT_NE(errorOf("smooth_paths = true").find("smooth_paths: needs map_along_path = true"),
               std::string::npos);
-    EXPECT_NE(errorOf("rounds = 0").find("rounds: must be >= 1"), std::string::npos);
+    EXPECT_NE(errorOf("rounds = 0").find("rounds: must be 1 to 100"), std::string::npos);
+    EXPECT_NE(errorOf("rounds = 1000000").find("rounds: must be 1 to 100"), std::string::npos);
     EXPECT_NE(errorOf("huber = -1").find("huber: must be >= 0"), std::string::npos);
     EXPECT_NE(errorOf("odometry_scale_std = -0.1").find("odometry_scale_std: must be >= 0"),
               std::string::npos);
