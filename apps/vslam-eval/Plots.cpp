@@ -108,8 +108,7 @@ void plotPaths(const core::TEvalResult& result, bool aligned, const std::string&
     const int heightPx = static_cast<int>(std::clamp(plotHeightPx, 480.0, 800.0));
     PngFigure fig(file, 1200, heightPx);
     fig.axes(0.1, 0.64, bottomPx / heightPx, 1 - topPx / heightPx, b.x0, b.x1, b.y0, b.y1, "x [m]",
-             "y [m]",
-             aligned ? "Paths (estimate SE(2)-aligned to ground truth)" : "Paths", true);
+             "y [m]", aligned ? "Paths (estimate SE(2)-aligned to ground truth)" : "Paths", true);
     if (result.landmarks)  // thin links from each true landmark to its matched estimate
         for (const auto& m : result.landmarks->matches)
             if (m.matched())

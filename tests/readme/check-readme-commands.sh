@@ -56,7 +56,7 @@ PY
 done
 
 # Every path the README names in backquotes or links (repository files, build outputs) exists.
-{ tr '\n' ' ' < "$readme" | grep -o '`[^`]*`' | tr -d '`'; grep -o '](\([^)]*\))' "$readme" | sed 's/^](\(.*\))$/\1/'; } |
+{ tr '\n' ' ' < "$readme" | grep -o '`[^`]*`' | tr -d '`'; grep -o '](\([^)]*\))' "$readme" | sed -e 's/^](\(.*\))$/\1/' -e 's/#.*//'; } |
   tr ' ' '\n' |
   grep -E '^(build/(bin|lib)|datasets|share|doc|scripts)/' | sort -u | while read -r p; do
     case "$p" in

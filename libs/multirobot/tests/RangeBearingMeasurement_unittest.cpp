@@ -67,9 +67,8 @@ TEST(RangeBearingMeasurement, PointAndCovarianceMatchTheClosedForm)
 TEST(RangeBearingMeasurement, BadMeasurementsNameTheLabel)
 {
     const TRangeBearingNoise noise{0.1, 0.05, 0.01, {}};
-    for (const auto& obs :
-         {observation({{std::nan(""), 0.1, -1}}), observation({{1, std::nan(""), -1}}),
-          observation({{2e5, 0.1, -1}})}) {
+    for (const auto& obs : {observation({{std::nan(""), 0.1, -1}}),
+                            observation({{1, std::nan(""), -1}}), observation({{2e5, 0.1, -1}})}) {
         try {
             measurementsFromBearingRange(obs, noise);
             FAIL() << "accepted a bad measurement";

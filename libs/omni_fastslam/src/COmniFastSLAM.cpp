@@ -47,8 +47,8 @@ void COmniFastSLAM::TOptions::loadFromConfigFile(const mrpt::config::CConfigFile
         cfg.read_double(section, "prediction_margin_deg", mrpt::RAD2DEG(prediction_margin)));
     if (!(prediction_margin >= 0))
         throw std::invalid_argument("[" + section + "] prediction_margin_deg must be >= 0");
-    const int maxBearings = cfg.read_int(section, "max_bearings_per_frame",
-                                         static_cast<int>(max_bearings_per_frame));
+    const int maxBearings =
+        cfg.read_int(section, "max_bearings_per_frame", static_cast<int>(max_bearings_per_frame));
     if (maxBearings < 1)
         throw std::invalid_argument("[" + section + "] max_bearings_per_frame must be >= 1");
     max_bearings_per_frame = static_cast<unsigned int>(maxBearings);
