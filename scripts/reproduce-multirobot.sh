@@ -17,8 +17,8 @@
 # RESULTS.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-COMMAND="$(for v in OUT SEEDS SWEEP_SEEDS RESULTS; do
-  [ -z "${!v+x}" ] || printf '%s=%q ' "$v" "${!v}"; done)scripts/reproduce-multirobot.sh"
+source "$REPO_DIR/scripts/results-header.sh"
+COMMAND="$(results_command scripts/reproduce-multirobot.sh OUT SEEDS SWEEP_SEEDS RESULTS)"
 source "$REPO_DIR/scripts/setup.sh"
 
 OUT="${OUT:-$REPO_DIR/out/reproduce-multirobot}"
@@ -80,11 +80,7 @@ team_table() {
   done
 }
 {
-echo "# Multi-robot visual SLAM on the shipped office-team datasets"
-echo
-echo "Made $(date -u '+%Y-%m-%d %H:%M UTC') on $(sed -n 's/^model name[[:space:]]*: *//p' /proc/cpuinfo | head -1)," \
-  "$(nproc) cores, MRPT $(dpkg-query -W -f='${Version}' libmrpt-dev 2>/dev/null || echo '?'), by" \
-  "\`$COMMAND\`. Position RMSE: vslam-eval's ATE of each robot, unaligned; step: the mean time" \
+echo "Position RMSE: vslam-eval's ATE of each robot, unaligned; step: the mean time" \
   "of a filter step (run.json), one core. Merged / shared: of the true landmarks seen by several" \
   "robots, how many are one landmark of the final map."
 echo "## 1. The shipped configurations (Fig. 3 and Fig. 6)" >&2
@@ -238,6 +234,11 @@ team3_variant "resample_per_robot = false" team3-no-rpr "$DATA/team3.rawlog" \
 team3_variant "pfOptimalProposal" team3-optimal "$DATA/team3.rawlog" \
   --set ParticleFilter.PF_algorithm=pfOptimalProposal
 team3_variant "paper sigma 1/10/10" team3-paper-sigma "$OUT/paper-sigma/team3.rawlog"
+} > "$RESULTS.body"
+{
+  results_header "Multi-robot visual SLAM on the shipped office-team datasets" "$COMMAND"
+  cat "$RESULTS.body"
 } > "$RESULTS.tmp"
+rm "$RESULTS.body"
 mv "$RESULTS.tmp" "$RESULTS"
 echo "wrote $RESULTS and its plots in $PLOTS; run folders and series in $OUT"

@@ -22,9 +22,8 @@
 # NOISE_LEVELS (default "low medium high"), TOOLS (default "kf-slam multirobot-vslam"), RESULTS.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-# the command line for the table, with the variables given to it
-COMMAND="$(for v in OUT SIM_SEEDS SEEDS NOISE_LEVELS TOOLS RESULTS; do
-  [ -z "${!v+x}" ] || printf '%s=%q ' "$v" "${!v}"; done)scripts/reproduce-range-bearing.sh"
+source "$REPO_DIR/scripts/results-header.sh"
+COMMAND="$(results_command scripts/reproduce-range-bearing.sh OUT SIM_SEEDS SEEDS NOISE_LEVELS TOOLS RESULTS)"
 source "$REPO_DIR/scripts/setup.sh"
 
 OUT="${OUT:-$REPO_DIR/out/reproduce-range-bearing}"
@@ -244,12 +243,9 @@ done
 
 mkdir -p "$(dirname "$RESULTS")"
 {
-  echo "# Range-bearing peer comparison: stock kf-slam and multirobot-vslam"
-  echo
-  echo "Made $(date -u '+%Y-%m-%d %H:%M UTC') on $(sed -n 's/^model name[[:space:]]*: *//p' /proc/cpuinfo | head -1)," \
-    "$(nproc) cores (load average $(cut -d' ' -f1-3 /proc/loadavg) at the end), MRPT" \
-    "$(dpkg-query -W -f='${Version}' mrpt-apps 2>/dev/null || echo '?'), by \`$COMMAND\`" \
-    "(tools run: $TOOLS; multirobot-vslam seeds: $SEEDS)."
+  results_header "Range-bearing peer comparison: stock kf-slam and multirobot-vslam" "$COMMAND"
+  echo "Tools run: $TOOLS (stock kf-slam of mrpt-apps" \
+    "$(dpkg-query -W -f='${Version}' mrpt-apps 2>/dev/null || echo '?')); multirobot-vslam seeds: $SEEDS."
   echo
   first="$PEER/simul-landmarks-noise-${NOISE_LEVELS%% *}.ini"
   echo "Data: stock simul-landmarks (share/mrpt-vslam/config/peer-comparison/), one robot," \

@@ -20,9 +20,8 @@
 # Environment: SEEDS (default 1 2 3 4 5), FRAMES (default: the scenario's 500), OUT, RESULTS.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-# the command line for the results file, with the variables given to it
-COMMAND="$(for v in SEEDS FRAMES OUT RESULTS; do
-  [ -z "${!v+x}" ] || printf '%s=%q ' "$v" "${!v}"; done)scripts/reproduce-view-slam.sh"
+source "$REPO_DIR/scripts/results-header.sh"
+COMMAND="$(results_command scripts/reproduce-view-slam.sh SEEDS FRAMES OUT RESULTS)"
 # builds only what it runs (BUILD_TARGETS="" builds everything)
 BUILD_TARGETS="${BUILD_TARGETS-view-slam vslam-sim vslam-eval vslam-plot}"
 source "$REPO_DIR/scripts/setup.sh"
@@ -41,8 +40,6 @@ mkdir -p "$PLOTS"
 # the two-sided 95 % bounds of chi-square with 3 dof (libs/apps/src/ViewSLAMApp.cpp)
 NEES_LOW=0.2158
 NEES_HIGH=9.3484
-T_START=$EPOCHREALTIME
-LOAD_START="$(cut -d' ' -f1-3 /proc/loadavg)"
 
 # jget FILE KEY.KEY...: the value at that path of a JSON file pretty-printed with two spaces per
 # level (run.json, metrics.json), "-" when absent or null
@@ -124,17 +121,10 @@ for policy in $POLICIES; do
 done
 
 # --- results file --------------------------------------------------------------------------------
-T_END=$EPOCHREALTIME
 rel() { realpath --relative-to="$(dirname "$RESULTS")" "$1"; }
 {
-  echo "# view-slam: traditional vs information-based view initialization"
-  echo
-  echo "Made $(date -u '+%Y-%m-%d %H:%M UTC') on $(sed -n 's/^model name[[:space:]]*: *//p' /proc/cpuinfo | head -1)," \
-    "$(nproc) cores (load average $LOAD_START at the start, $(cut -d' ' -f1-3 /proc/loadavg) at the end), MRPT" \
-    "$(jget "$OUT/information-seed$first/run.json" mrpt_version | tr -d '"')" \
-    "($(dpkg-query -W -f='${Version}' libmrpt-dev 2>/dev/null || echo '?')), by \`$COMMAND\`" \
-    "(seeds: $SEEDS; $(awk -v a="$T_START" -v b="$T_END" 'BEGIN { printf "%.1f", (b - a) / 60 }') min" \
-    "for the runs and plots, one run at a time)."
+  results_header "view-slam: traditional vs information-based view initialization" "$COMMAND"
+  echo "Seeds: $SEEDS; the runs one at a time."
   echo
   echo "Data: \`vslam-sim omni-views --seed S$([ -n "$FRAMES" ] && echo " --frames $FRAMES")\` for each" \
     "seed S (the same rooms and path, each seed its own odometry and pixel noise):" \

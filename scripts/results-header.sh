@@ -1,0 +1,30 @@
+# Sourced by the reproduce and bench scripts: how a results file under doc/results/ says where
+# its figures come from. Source it before the script's environment variables are changed.
+
+RESULTS_LOAD_START="$(cut -d' ' -f1-3 /proc/loadavg)"
+RESULTS_T_START=$EPOCHREALTIME
+
+# results_command SCRIPT VAR...: the command line that made the file, with those of the
+# variables that were given to it (e.g. "SEEDS=1\ 2 scripts/reproduce-x.sh")
+results_command() {
+  local script="$1" v
+  shift
+  for v in "$@"; do
+    [ -z "${!v+x}" ] || printf '%s=%q ' "$v" "${!v}"
+  done
+  echo "$script"
+}
+
+# results_header TITLE COMMAND: the file's title, then when, on which machine (CPU, cores, load
+# at the start and at the end), with which MRPT, by which command and in how long it was made
+results_header() {
+  echo "# $1"
+  echo
+  echo "Made $(date -u '+%Y-%m-%d %H:%M UTC') on" \
+    "$(sed -n 's/^model name[[:space:]]*: *//p' /proc/cpuinfo | head -1), $(nproc) cores" \
+    "(load average $RESULTS_LOAD_START at the start, $(cut -d' ' -f1-3 /proc/loadavg) at the" \
+    "end), MRPT $(dpkg-query -W -f='${Version}' libmrpt-dev 2>/dev/null || echo '?'), by" \
+    "\`$2\` in $(awk -v a="$RESULTS_T_START" -v b="$EPOCHREALTIME" \
+      'BEGIN { printf "%.1f", (b - a) / 60 }') min."
+  echo
+}
