@@ -139,7 +139,8 @@ TEST_F(ViewSLAMApp, BadInputGivesOneLineErrors)
     const std::vector<std::pair<std::string, std::string>> impossible = {
         {"ViewObserver.max_iterations=2000000000", "max_iterations"},
         {"ViewObserver.max_iterations=1e9", "max_iterations = 1e9: not an integer"},
-        {"MotionModel.a1=inf", "[MotionModel] a1: must be finite and >= 0"},
+        {"MotionModel.a1=inf", "[MotionModel] a1 = inf: not a finite number"},
+        {"MotionModel.a1=-1", "[MotionModel] a1: must be finite and >= 0"},
         {"ViewSLAM.gate_probability=nan", "gate_probability"}};
     for (const auto& [setting, message] : impossible)
         expectError(kConfig + " " + kRawlog + " -q --out " + out("e6") + " --set " + setting, 2,

@@ -143,6 +143,8 @@ void MultiRobotVSLAMApp::initialize() { m_impl->initialize(); }
 
 void MultiRobotVSLAMApp::run() { m_impl->run(); }
 
+std::vector<core::TReadKey> MultiRobotVSLAMApp::configKeys() const { return m_impl->configKeys(); }
+
 void MultiRobotVSLAMApp::Impl::loadConfig()
 {
     input = readChoice<TInput>(

@@ -87,6 +87,8 @@ void OmniFastSLAMApp::initialize() { m_impl->initialize(); }
 
 void OmniFastSLAMApp::run() { m_impl->run(); }
 
+std::vector<core::TReadKey> OmniFastSLAMApp::configKeys() const { return m_impl->configKeys(); }
+
 void OmniFastSLAMApp::Impl::loadConfig()
 {
     input = readChoice<TInput>(

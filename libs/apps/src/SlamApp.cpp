@@ -42,7 +42,7 @@ void SlamApp::initialize()
     try {
         m_motionModel = core::ActionFrameSource::loadMotionModel(cfg, "MotionModel");
     } catch (const core::UsageError& e) {
-        throw usageError(e.what());
+        throw configError(e);
     }
     cfg.throwIfUnreadKeys();
     if (!mrpt::system::fileExists(rawlog))

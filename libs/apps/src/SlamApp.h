@@ -49,6 +49,8 @@ class SlamApp {
     void initialize();
     /// Processes the whole rawlog and writes the outputs.
     void run();
+    /// Every configuration key the app reads (after initialize(), or after it failed).
+    std::vector<core::TReadKey> configKeys() const { return cfg.readKeys(); }
 
   protected:
     /// \param name the app (messages, progress line, run.json); \param section its ini section

@@ -97,6 +97,8 @@ void ViewSLAMApp::initialize() { m_impl->initialize(); }
 
 void ViewSLAMApp::run() { m_impl->run(); }
 
+std::vector<core::TReadKey> ViewSLAMApp::configKeys() const { return m_impl->configKeys(); }
+
 void ViewSLAMApp::Impl::loadConfig()
 {
     imageLabel = cfg.read_string(kAppSection, "image_label", imageLabel);

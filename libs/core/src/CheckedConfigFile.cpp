@@ -4,6 +4,7 @@
 #include <mrpt_vslam/core/UsageError.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <regex>
@@ -52,11 +53,11 @@ std::map<std::pair<std::string, std::string>, int> keyLines(const std::string& t
     return lines;
 }
 
+using TValueKind = TReadKey::Kind;
+
 /** What MRPT's typed readers ask for, told by the default text they pass to readString():
  *  read_double "%.16e", read_float "%.10e", read_int "%i", read_uint64_t "%lu", read_bool "1"
  *  or "0"; anything else is read_string's own default. */
-enum class TValueKind { Real, Integer, IntegerOrBoolean, Text };
-
 TValueKind kindOfDefault(const std::string& d)
 {
     static const std::regex integer(R"([+-]?[0-9]+)");
@@ -73,11 +74,11 @@ std::string typeError(TValueKind kind, const std::string& value)
     static const std::regex integer(R"([+-]?([0-9]+|0[xX][0-9a-fA-F]+))");
     static const std::regex boolean(R"(true|false|yes|no)", std::regex::icase);
     char* end = nullptr;
-    std::strtod(value.c_str(), &end);
+    const double x = std::strtod(value.c_str(), &end);
     const bool number = !value.empty() && *end == '\0';
     switch (kind) {
         case TValueKind::Real:
-            return number ? "" : "not a number";
+            return !number ? "not a number" : std::isfinite(x) ? "" : "not a finite number";
         case TValueKind::Integer:
             return std::regex_match(value, integer) ? "" : "not an integer";
         case TValueKind::IntegerOrBoolean:
@@ -152,13 +153,15 @@ void CheckedConfigFile::loadText(const std::string& text, const std::string& nam
 std::string CheckedConfigFile::readString(const std::string& section, const std::string& name,
                                           const std::string& defaultStr, bool failIfNotFound) const
 {
+    const TValueKind kind = kindOfDefault(defaultStr);
     {
         std::lock_guard<std::mutex> lock(m_read_mutex);
-        m_read.insert(keyId(section, name));
+        m_read.emplace(keyId(section, name), TReadKey{section, name, kind});
     }
     const std::string value =
         CConfigFileMemory::readString(section, name, defaultStr, failIfNotFound);
-    const std::string why = typeError(kindOfDefault(defaultStr), mrpt::system::trim(value));
+    // the program's own default is not the user's to fix (it may be e.g. "inf")
+    const std::string why = value == defaultStr ? "" : typeError(kind, mrpt::system::trim(value));
     if (!why.empty()) {
         m_valueError =
             m_name + ": [" + section + "] " + name + " = " + mrpt::system::trim(value) + ": " + why;
@@ -171,6 +174,14 @@ bool CheckedConfigFile::wasRead(const std::string& section, const std::string& k
 {
     std::lock_guard<std::mutex> lock(m_read_mutex);
     return m_read.count(keyId(section, key)) != 0;
+}
+
+std::vector<TReadKey> CheckedConfigFile::readKeys() const
+{
+    std::lock_guard<std::mutex> lock(m_read_mutex);
+    std::vector<TReadKey> keys;
+    for (const auto& [id, read] : m_read) keys.push_back(read);
+    return keys;
 }
 
 std::vector<TUnreadKey> CheckedConfigFile::unreadKeys() const

@@ -6,8 +6,11 @@
 
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <vector>
 
 using mrpt_vslam::core::CheckedConfigFile;
 using mrpt_vslam::core::TConfigOverride;
@@ -208,6 +211,9 @@ TEST(CheckedConfigFile, ValuesThatDoNotFitTheirKeyAreErrors)
     EXPECT_EQ(read("x", "abc"), "t.ini: [S] x = abc: not a number");
     EXPECT_EQ(read("x", "0.5m"), "t.ini: [S] x = 0.5m: not a number");
     EXPECT_EQ(read("x", "-2.5e-3"), "");
+    EXPECT_EQ(read("x", "nan"), "t.ini: [S] x = nan: not a finite number");
+    EXPECT_EQ(read("x", "-inf"), "t.ini: [S] x = -inf: not a finite number");
+    EXPECT_EQ(read("x", "1e400"), "t.ini: [S] x = 1e400: not a finite number");
     EXPECT_EQ(read("name", "anything at all"), "");  // text: no type
 
     // MRPT's loaders replace the message; the file keeps it
@@ -218,6 +224,30 @@ TEST(CheckedConfigFile, ValuesThatDoNotFitTheirKeyAreErrors)
     EXPECT_EQ(cfg.valueError(), "t.ini: [S] n = 2.5: not an integer");
     cfg.loadText("[S]\nn = 2\n", "t.ini");
     EXPECT_EQ(cfg.valueError(), "");
+}
+
+TEST(CheckedConfigFile, ReadKeysListsEveryKeyAskedForWithItsKind)
+{
+    CheckedConfigFile cfg;
+    cfg.loadText("[S]\nx = 2\n", "t.ini");
+    cfg.read_double("S", "x", 0.5);
+    cfg.read_int("S", "absent", 3);
+    cfg.read_bool("T", "flag", true);
+    cfg.read_string("T", "name", "n");
+    cfg.read_double("s", "X", 0.5);  // the same key (case-insensitive): listed once
+    // a program default that is not finite is no error of the user's
+    EXPECT_NO_THROW(cfg.read_double("T", "limit", std::numeric_limits<double>::infinity()));
+    const auto keys = cfg.readKeys();
+    using K = mrpt_vslam::core::TReadKey::Kind;
+    const std::vector<std::tuple<std::string, std::string, K>> expected{
+        {"S", "absent", K::Integer},
+        {"S", "x", K::Real},
+        {"T", "flag", K::IntegerOrBoolean},
+        {"T", "limit", K::Real},
+        {"T", "name", K::Text}};
+    ASSERT_EQ(keys.size(), expected.size());
+    for (size_t i = 0; i < keys.size(); i++)
+        EXPECT_EQ(std::make_tuple(keys[i].section, keys[i].key, keys[i].kind), expected[i]) << i;
 }
 
 TEST(CheckedConfigFile, LinesThatAreNotKeysSectionsOrCommentsAreErrors)

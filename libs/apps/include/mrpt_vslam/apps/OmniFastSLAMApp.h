@@ -2,6 +2,7 @@
 
 #include <mrpt/math/TPose2D.h>
 #include <mrpt_vslam/core/AppArguments.h>
+#include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/TumTrajectory.h>
 
 #include <memory>
@@ -29,6 +30,9 @@ class OmniFastSLAMApp {
     void initialize();
     /// Processes the whole rawlog and writes the outputs.
     void run();
+    /** Every configuration key the app reads, with the kind of value it takes (after
+     *  initialize(), also when that failed): the options of the app. */
+    std::vector<core::TReadKey> configKeys() const;
 
     /// @name Results (valid after run())
     /// @{

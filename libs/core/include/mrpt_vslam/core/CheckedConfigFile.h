@@ -24,6 +24,20 @@ struct TConfigOverride {
     std::string asString() const;  ///< "SECTION.KEY=VALUE"
 };
 
+/** A key the program asked for, and what its reader wanted (told by the default text MRPT's
+ *  typed readers pass to readString(), see CheckedConfigFile). */
+struct TReadKey {
+    enum class Kind {
+        Real,              ///< read_double, read_float: a finite number
+        Integer,           ///< read_int, read_uint64_t
+        IntegerOrBoolean,  ///< read_bool (or an integer read with default 0 or 1)
+        Text               ///< read_string: not checked
+    };
+    std::string section;  ///< as the program asked for it
+    std::string key;
+    Kind kind = Kind::Text;
+};
+
 /** A key of the configuration that nothing read: probably a typo. */
 struct TUnreadKey {
     std::string section;
@@ -45,7 +59,7 @@ struct TUnreadKey {
  *  4. `cfg.writeEffectiveConfig(out.file("config.ini"));` and put effectiveText() in run.json.
  *
  *  Values are checked against the type asked for, which MRPT's readers tell by the default
- *  text they pass to readString(): a number for read_double / read_float, an integer for
+ *  text they pass to readString(): a finite number for read_double / read_float, an integer for
  *  read_int / read_uint64_t (`1e12` and `1.5` are errors, where MRPT would read 1), an integer
  *  or true / false / yes / no for read_bool; read_string's text is not checked unless its
  *  default looks like one of those. A line that is not `key = value`, a `[section]`, a comment
@@ -76,6 +90,9 @@ class CheckedConfigFile : public mrpt::config::CConfigFileMemory {
     void throwIfUnreadKeys() const;
     /** True if (section, key) was read (case-insensitive). */
     bool wasRead(const std::string& section, const std::string& key) const;
+    /** Every key read so far, present in the text or not, in (section, key) order: the options
+     *  the program has. */
+    std::vector<TReadKey> readKeys() const;
     /** @} */
 
     /** The last value that did not fit its key's type (e.g. "t.ini: [S] n = 1.5: not an
@@ -104,7 +121,7 @@ class CheckedConfigFile : public mrpt::config::CConfigFileMemory {
     std::vector<TConfigOverride> m_overrides;
     std::map<TKeyId, int> m_line_of_key;  ///< first line of each key in the file text
     std::set<TKeyId> m_overridden;
-    mutable std::set<TKeyId> m_read;
+    mutable std::map<TKeyId, TReadKey> m_read;
     mutable std::string m_valueError;
     mutable std::mutex m_read_mutex;
 };
