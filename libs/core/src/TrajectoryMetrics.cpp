@@ -1,3 +1,4 @@
+#include <mrpt/core/format.h>
 #include <mrpt/math/distributions.h>
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt_vslam/core/TrajectoryMetrics.h>
@@ -86,9 +87,13 @@ TTrajectoryMetrics evaluateTrajectory(const TumTrajectory& estimate,
                                       const TTrajectoryMetricsOptions& options)
 {
     const auto pairs = associateByTime(estimate, ground_truth, options.time_tolerance);
-    if (pairs.empty())
-        throw std::runtime_error("no estimated pose has a ground-truth pose within " +
-                                 std::to_string(options.time_tolerance) + " s");
+    if (pairs.empty() ||
+        static_cast<double>(pairs.size()) < options.min_matched_share * estimate.size())
+        throw std::runtime_error(mrpt::format(
+            "%zu of %zu estimated poses have a ground-truth pose within %g s (at least %.0f %% "
+            "must): the estimate and the ground truth hardly overlap in time",
+            pairs.size(), estimate.size(), options.time_tolerance,
+            100 * options.min_matched_share));
     TTrajectoryMetrics m;
     m.estimate_poses = estimate.size();
     m.ground_truth_poses = ground_truth.size();

@@ -163,6 +163,28 @@ TEST(TrajectoryMetrics, AssociatesByNearestTimeWithinTolerance)
     EXPECT_THROW(evaluateTrajectory(far, gt), std::runtime_error);
 }
 
+TEST(TrajectoryMetrics, RefusesAnEstimateThatHardlyOverlapsTheGroundTruth)
+{
+    // Another run's ground truth sharing one timestamp with a 10-pose estimate: 1 of 10 matched.
+    TumTrajectory gt, est;
+    for (int i = 0; i < 10; i++) est.push_back(i, {});
+    for (int i = 9; i < 20; i++) gt.push_back(i, {});
+    try {
+        evaluateTrajectory(est, gt);
+        FAIL() << "scored an estimate with 1 of 10 poses matched";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("1 of 10 estimated poses"), std::string::npos)
+            << e.what();
+    }
+    // Half of the poses matched is enough (the default share), and the share is an option.
+    TumTrajectory half;
+    for (int i = 4; i < 14; i++) half.push_back(i, {});
+    EXPECT_EQ(evaluateTrajectory(half, gt).matchedPoses(), 5u) << "5 of 10 must be scored";
+    TTrajectoryMetricsOptions strict;
+    strict.min_matched_share = 0.6;
+    EXPECT_THROW(evaluateTrajectory(half, gt, strict), std::runtime_error);
+}
+
 TEST(TrajectoryMetrics, NeesOfKnownErrorAndCovariance)
 {
     // e = (1, 2), P = diag(4, 1): NEES = 1/4 + 4/1.

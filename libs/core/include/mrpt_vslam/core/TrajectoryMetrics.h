@@ -17,6 +17,9 @@ struct TTrajectoryMetricsOptions {
     double time_tolerance = 0.05;                   ///< [s] max |t_est - t_gt| of a matched pair
     double heading_threshold = mrpt::DEG2RAD(5.0);  ///< [rad] for heading_share_under_threshold
     bool align_se2 = false;  ///< first align the estimate to the ground truth (alignSE2())
+    /** Fewer matched estimate poses than this share of the estimate's is an error: the estimate
+     *  and the ground truth hardly overlap in time (e.g. another dataset's ground truth). */
+    double min_matched_share = 0.5;
 };
 
 /** Errors of an estimated trajectory against ground truth, over the matched frames. */
@@ -59,7 +62,8 @@ mrpt::math::TPose2D alignSE2(const std::vector<mrpt::math::TPoint2D>& a,
 mrpt::math::TPose3D applySE2(const mrpt::math::TPose2D& transform, const mrpt::math::TPose3D& p);
 
 /** ATE and heading errors of `estimate` against `ground_truth` (doc/data-formats.md). Throws
- *  std::runtime_error when no pose can be matched in time. */
+ *  std::runtime_error when fewer than `min_matched_share` of the estimate's poses can be matched
+ *  in time. */
 TTrajectoryMetrics evaluateTrajectory(const TumTrajectory& estimate,
                                       const TumTrajectory& ground_truth,
                                       const TTrajectoryMetricsOptions& options = {});
