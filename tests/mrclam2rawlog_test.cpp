@@ -17,6 +17,7 @@
 #include <mrpt_vslam/test/RunCommand.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -474,11 +475,42 @@ TEST_F(TinyDataset, FailsOnBadInputWithOneLineAndNoOutput)
     std::ifstream in(bad / "malformed" / "Robot1_Odometry.dat");
     const int malformed_line = lineCount(std::string(std::istreambuf_iterator<char>(in), {}));
     std::ofstream(bad / "a_file") << "not a folder\n";
+    // implausible content: a copy of the dataset with one line appended to one file (the line
+    // number the error must name), or with a file holding its header only
+    const auto implausible = [&](const std::string& name, const std::string& file,
+                                 const std::string& line) {
+        fs::copy(data(), bad / name, fs::copy_options::recursive);
+        if (line.empty()) {
+            std::ofstream(bad / name / file) << "# Time [s]    Subject #    range [m]    bearing\n";
+            return "'" + (bad / name).string() + "' --robots 1,2";
+        }
+        std::ofstream(bad / name / file, std::ios::app) << line << "\n";
+        return "'" + (bad / name).string() + "' --robots 1,2";
+    };
+    const auto lineOf = [&](const std::string& name, const std::string& file) {
+        std::ifstream f(bad / name / file);
+        return file + ":" +
+               std::to_string(lineCount(std::string(std::istreambuf_iterator<char>(f), {}))) + ":";
+    };
+    const std::string late = fmt("%.3f", kT0 + 11.5);
+    const std::vector<std::array<std::string, 4>> implausible_cases{
+        // name, file, line appended ("" = header only), what the message must say
+        {"huge range", "Robot1_Measurement.dat",
+         late + "\t" + fmt("%.0f", barcodeOf(6)) + "\t1e9\t0", "range"},
+        {"zero range", "Robot1_Measurement.dat", late + "\t" + fmt("%.0f", barcodeOf(6)) + "\t0\t0",
+         "range"},
+        {"negative barcode", "Robot2_Measurement.dat", late + "\t-5\t1.0\t0.0", "barcode"},
+        {"speed of kilometres per second", "Robot1_Odometry.dat", late + "\t1500\t0", "speed"},
+        {"turn rate", "Robot2_Odometry.dat", late + "\t0.1\t300", "turn rate"},
+        {"time far past the others", "Robot2_Measurement.dat",
+         fmt("%.3f", kT0 + 1e7) + "\t" + fmt("%.0f", barcodeOf(7)) + "\t1.0\t0.0", "time"},
+        {"empty measurement file", "Robot1_Measurement.dat", "", "no data lines"},
+    };
     const fs::path outdir = s_scratch->path() / "bad_out";
     fs::create_directories(outdir);
     const std::string o = " --out '" + (outdir / "x.rawlog").string() + "'";
 
-    const std::vector<TBadCase> cases{
+    std::vector<TBadCase> cases{
         {"missing folder", "'" + (bad / "nowhere").string() + "'" + o, "nowhere"},
         {"missing file", "'" + (bad / "missing").string() + "' --robots 1,2" + o,
          "Robot2_Measurement.dat"},
@@ -490,6 +522,12 @@ TEST_F(TinyDataset, FailsOnBadInputWithOneLineAndNoOutput)
         {"unwritable output",
          dataArgs() + " --out '" + (bad / "a_file" / "y.rawlog").string() + "'", "a_file"},
     };
+    for (const auto& [name, file, line, what] : implausible_cases) {
+        const std::string args = implausible(name, file, line) + o;
+        const std::string where =
+            line.empty() ? file + ": " + what : lineOf(name, file) + " " + what;
+        cases.push_back({name, args, where});
+    }
     for (const TBadCase& c : cases) {
         const TCommandResult r = runImporter(*s_scratch, c.args);
         EXPECT_NE(r.exit_code, 0) << c.name;
