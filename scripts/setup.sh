@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Shared set-up for run-demo.sh and run-tests.sh: installs the Debian packages the project needs
-# (only those missing), then configures and builds into build/. Idempotent.
+# (only those missing), then configures and builds into build/ (not with --packages-only).
+# Idempotent.
 # Environment: BUILD_DIR (default build), BUILD_TYPE (RelWithDebInfo), SANITIZE (OFF|ON), JOBS,
 # BUILD_TARGETS (default: everything; else the CMake targets to build, e.g. "view-slam vslam-eval").
 set -euo pipefail
@@ -52,4 +53,5 @@ configure_and_build() {
 }
 
 install_missing_packages
-configure_and_build
+# `source scripts/setup.sh --packages-only`: the packages, no build (scripts/fuzz.sh builds its own)
+[ "${1:-}" = --packages-only ] || configure_and_build

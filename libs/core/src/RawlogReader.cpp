@@ -19,6 +19,15 @@
 #include <new>
 #include <stdexcept>
 
+// AddressSanitizer reserves terabytes of address space: no memory bound under it (GCC and clang)
+#if defined(__SANITIZE_ADDRESS__)
+#define MRPT_VSLAM_ADDRESS_SANITIZER
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define MRPT_VSLAM_ADDRESS_SANITIZER
+#endif
+#endif
+
 namespace mrpt_vslam::core {
 
 using mrpt::obs::CActionCollection;
@@ -129,7 +138,7 @@ void RawlogReader::validate(const std::string& file)
     std::fflush(nullptr);  // the child must not write the parent's buffered output again
     const pid_t child = fork();
     if (child == 0) {
-#if !defined(__SANITIZE_ADDRESS__)
+#if !defined(MRPT_VSLAM_ADDRESS_SANITIZER)
         const rlimit memory_limit{4ull << 30, 4ull << 30};
         setrlimit(RLIMIT_AS, &memory_limit);
 #endif

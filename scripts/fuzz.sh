@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# Coverage-guided fuzzing of one target of tests/fuzz with libFuzzer: installs clang and its
+# fuzzer runtime if missing, builds the target with libFuzzer, AddressSanitizer and UBSan into
+# build-fuzz/, and runs it for SECONDS on a corpus in out/fuzz/TARGET/ (kept between runs, started
+# from the shipped data: rawlogs also gunzipped, configs, text files). Crashing inputs go to
+# out/fuzz/TARGET/crashes/. Prints libFuzzer's last status line (executions, coverage) and exits
+# non-zero if the target crashed.
+# Usage: scripts/fuzz.sh TARGET SECONDS     TARGET: rawlog, config, text_files or filter_step
+# Environment: BUILD_DIR (default build-fuzz), JOBS, OUT (default out/fuzz).
+set -euo pipefail
+REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+TARGET="${1:-}"
+SECONDS_TO_RUN="${2:-}"
+case "$TARGET" in
+  rawlog | config | text_files | filter_step) ;;
+  *) echo "usage: scripts/fuzz.sh rawlog|config|text_files|filter_step SECONDS" >&2; exit 2 ;;
+esac
+[[ "$SECONDS_TO_RUN" =~ ^[0-9]+$ ]] || { echo "fuzz.sh: SECONDS must be a whole number" >&2; exit 2; }
+
+BUILD_DIR="${BUILD_DIR:-$REPO_DIR/build-fuzz}"
+OUT="${OUT:-$REPO_DIR/out/fuzz}/$TARGET"
+JOBS="${JOBS:-$(nproc)}"
+
+# the project's own packages (scripts/setup.sh without building), then clang's fuzzer runtime
+source "$REPO_DIR/scripts/setup.sh" --packages-only
+missing=()
+for p in clang libclang-rt-14-dev; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+generator=()
+command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
+[ -f "$BUILD_DIR/CMakeCache.txt" ] ||
+  CC=clang CXX=clang++ cmake -S "$REPO_DIR" -B "$BUILD_DIR" "${generator[@]}" \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMRPT_VSLAM_FUZZ=ON -DMRPT_VSLAM_BUILD_BENCHMARKS=OFF
+cmake --build "$BUILD_DIR" -j "$JOBS" --target "fuzz_$TARGET"
+
+# the corpus: the shipped inputs the target reads, once
+mkdir -p "$OUT/corpus" "$OUT/crashes"
+if [ -z "$(ls -A "$OUT/corpus")" ]; then
+  case "$TARGET" in
+    rawlog)
+      for f in "$REPO_DIR"/datasets/*/*.rawlog; do
+        [ "$(stat -c %s "$f")" -le 200000 ] || continue
+        cp "$f" "$OUT/corpus/"
+        gzip -dc "$f" > "$OUT/corpus/$(basename "$f").plain" 2>/dev/null || true
+      done ;;
+    config) cp "$REPO_DIR"/share/mrpt-vslam/config/{omni-fastslam,multirobot-vslam,view-slam}/*.ini \
+      "$OUT/corpus/" ;;
+    *) cp "$REPO_DIR"/tests/fuzz/seeds/* "$OUT/corpus/" ;;
+  esac
+fi
+max_len=4096
+[ "$TARGET" = rawlog ] && max_len=300000
+[ "$TARGET" = config ] && max_len=20000
+cd "$OUT"
+set +e
+"$BUILD_DIR/fuzz/fuzz_$TARGET" "$OUT/corpus" -max_total_time="$SECONDS_TO_RUN" \
+  -max_len="$max_len" -timeout=60 -rss_limit_mb=6000 -artifact_prefix="$OUT/crashes/" \
+  -print_final_stats=1 2> "$OUT/fuzz.log"
+status=$?
+set -e
+grep -E "^#[0-9]+" "$OUT/fuzz.log" | tail -1
+grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$OUT/fuzz.log" || true
+[ "$status" = 0 ] || echo "fuzz_$TARGET failed (exit $status): see $OUT/fuzz.log and $OUT/crashes/" >&2
+exit "$status"
