@@ -104,9 +104,9 @@ std::unique_ptr<COmniViewSLAM> COmniViewSLAM::fromConfig(const mrpt::config::CCo
     const double yaw = deg("yaw_deg"), pitch = deg("pitch_deg"), roll = deg("roll_deg");
     const Eigen::Matrix3d cameraToRobot =
         mrpt::poses::CPose3D(0, 0, 0, yaw, pitch, roll).getRotationMatrix().asEigen();
-    OmniFeatureExtractor::TOptions features;
+    OmniFeatureExtractor::TOptions features = filterFeatureOptions();
     features.loadFromConfigFile(cfg, "Features");
-    OmniViewObserver::TOptions observer;
+    OmniViewObserver::TOptions observer = filterObserverOptions();
     observer.loadFromConfigFile(cfg, "ViewObserver");
     ViewInitializationPolicy::TOptions policy;
     policy.loadFromConfigFile(cfg, "ViewInitialization");
@@ -114,6 +114,23 @@ std::unique_ptr<COmniViewSLAM> COmniViewSLAM::fromConfig(const mrpt::config::CCo
         options, OmniFeatureExtractor(camera, cameraToRobot, features), observer, policy, seed);
     slam->m_camera_on_robot_configured = configured;
     return slam;
+}
+
+OmniFeatureExtractor::TOptions COmniViewSLAM::filterFeatureOptions()
+{
+    OmniFeatureExtractor::TOptions o;
+    o.detector.hessian_threshold = 30;
+    return o;
+}
+
+OmniViewObserver::TOptions COmniViewSLAM::filterObserverOptions()
+{
+    OmniViewObserver::TOptions o;
+    o.matching.max_descriptor_distance = 0.6;
+    o.ransac.min_inliers = 20;
+    o.min_sigma_phi = mrpt::DEG2RAD(1.5);
+    o.min_sigma_beta = mrpt::DEG2RAD(0.75);
+    return o;
 }
 
 void COmniViewSLAM::useCameraPoseOf(const mrpt::poses::CPose3D& camera_on_robot)

@@ -45,9 +45,11 @@ class COmniViewSLAM {
     struct TOptions : public mrpt::config::CLoadableOptions {
         double candidate_distance = 3.0;  ///< [m] views farther than this are not tried
         int max_candidates = 3;           ///< views tried per step, nearest first
-        double min_baseline = 0.15;       ///< [m] views nearer than this are not observed
-        double gate_probability = 0.99;   ///< χ²₂ gate of the EKF update
-        double initial_sigma_xy = 0.01;   ///< [m] P0 of the start pose
+        /// [m] views nearer than this are not observed (nearer ones gave several times larger
+        /// bearing errors, doc/view-slam.md)
+        double min_baseline = 0.3;
+        double gate_probability = 0.99;                   ///< χ²₂ gate of the EKF update
+        double initial_sigma_xy = 0.01;                   ///< [m] P0 of the start pose
         double initial_sigma_yaw = 0.008726646259971648;  ///< [rad] (initial_sigma_yaw_deg)
 
         /// Throws std::invalid_argument naming the key of a bad value.
@@ -86,10 +88,21 @@ class COmniViewSLAM {
     /** The filter of an `.ini` (doc/view-slam.md, "Parameters"): [ViewSLAM] (TOptions), [Camera]
      *  (core::UnifiedSphereCamera), [CameraOnRobot] (yaw_deg, pitch_deg, roll_deg: when any is
      *  given, the camera's orientation for every image; else each image's own, see
-     *  useCameraPoseOf()), [Features], [ViewObserver] and [ViewInitialization].
+     *  useCameraPoseOf()), [Features], [ViewObserver] and [ViewInitialization]; keys absent
+     *  from [Features] and [ViewObserver] take the filter's values (filterFeatureOptions(),
+     *  filterObserverOptions()).
      *  \throw std::invalid_argument naming the section and key of a bad value. */
     static std::unique_ptr<COmniViewSLAM> fromConfig(const mrpt::config::CConfigFileBase& cfg,
                                                      uint32_t seed);
+
+    /** The front-end options recommended inside the filter, where they differ from the
+     *  front-end classes' own defaults (measured one image pair at a time): inside the filter an
+     *  observation's errors repeat frame after frame, so the detector keeps fewer, stronger
+     *  points (det(H) ≥ 30), matches may be farther apart (descriptor distance 0.6), an
+     *  observation needs 20 inliers, and R is floored at 1.5° in φ and 0.75° in β for a
+     *  consistent NEES (doc/view-slam.md, "Parameters"). */
+    static OmniFeatureExtractor::TOptions filterFeatureOptions();
+    static OmniViewObserver::TOptions filterObserverOptions();
 
     /// Empties the map and puts the robot at `start` with P0 (clears everything).
     void reset(const mrpt::math::TPose2D& start);

@@ -72,14 +72,14 @@ class ViewInitializationPolicy {
 
     /// Parameters of both policies (one ini section; every key documented in the configs).
     struct TOptions : public mrpt::config::CLoadableOptions {
-        TKind policy = TKind::Information;          ///< ini `policy = traditional | information`
-        double min_view_spacing = 0.4;              ///< [m] both
-        int min_inliers = 20;                       ///< traditional: N_min
-        double max_view_distance = 1.5;             ///< [m] traditional: D_max
-        double information_deficit = 0.04;          ///< [nats] information: τ, a frame's deficit
-        int deficit_frames = 3;                     ///< information: K consecutive deficits
-        double min_sure_points = 20;                ///< information: n_min of the predicted n⁻
-        int trend_frames = 3;                       ///< information: frames the trend of n⁻ spans
+        TKind policy = TKind::Information;  ///< ini `policy = traditional | information`
+        double min_view_spacing = 0.4;      ///< [m] both
+        int min_inliers = 30;               ///< traditional: N_min (> the observation's 20 inliers)
+        double max_view_distance = 1.5;     ///< [m] traditional: D_max
+        double information_deficit = 0.04;  ///< [nats] information: τ, a frame's deficit
+        int deficit_frames = 3;             ///< information: K consecutive deficits
+        double min_sure_points = 20;        ///< information: n_min of the predicted n⁻
+        int trend_frames = 3;               ///< information: frames the trend of n⁻ spans
         FeatureExistenceModel::TOptions existence;  ///< information: the GP (same section)
 
         /// Throws std::invalid_argument naming the key of a bad value.
