@@ -1,25 +1,26 @@
 #!/usr/bin/env bash
-# Real data: UTIAS MRCLAM dataset 7 (doc/real-data.md), identities hidden from the filters
-# (but in 3c).
-#   1. import with mrclam2rawlog, commands delayed 0.2 s, the robots' readings of each other kept
-#      (robots 1-3, 1, 2, 3, 1-2 and 1-5; landmark ids hidden, and robots 1-3 once more with ids
-#      kept, to count wrong associations: the filter reads them only in 3c);
+# Real data: UTIAS MRCLAM dataset 7 (doc/real-data.md), landmark identities hidden from the
+# filters (but in section 5).
+#   1. import with mrclam2rawlog (commands delayed 0.2 s, the robots' readings of each other kept):
+#      robots 1-3, 1, 2, 3, 1-2 and 1-5 with ids hidden, robots 1-3 once more with ids kept (to
+#      count wrong associations; the filter reads them only in section 5); the importer's residuals
+#      against Vicon and the dead reckoning's error;
 #   2. multirobot-vslam (mrclam.ini), robots 1-3 jointly, several seeds: per-robot ATE of the
 #      smoothed paths and of the filter's vs odometry, the particle's map and the output map
 #      (landmarks matched within 0.5 m, extra landmarks), parts of paths reanchored, wrong
-#      associations, run time;
+#      associations, run time; the plots of the first seed;
 #   3. the filter alone (no smoothing, the particles' own maps) on each robot alone, on 2 and 5
 #      robots, on robots 1-3, and on robots 1-3 without the readings of robots;
-#   3b. robots 1-3 with known poses (the Vicon poses as odometry) and three gates D0: what the
+#   4. robots 1-3 with known poses (the Vicon poses as odometry) and three gates D0: what the
 #      association alone makes of the readings;
-#   3c. robots 1-3 with known correspondences (associate_by_identity): the filter's paths when
-#      the association is right;
+#   5. robots 1-3 with known correspondences (associate_by_identity): the filter's paths when
+#      the association is right.
 # (omni-fastslam's planar mode on robot 1: scripts/reproduce-omni-fastslam.sh.)
-# Writes run folders (paths.png, errors.png, metrics.json, run.json), tables and plots under
-# out/reproduce-mrclam/ (or $OUT) and prints markdown tables. Builds first (scripts/setup.sh).
-# Takes about 30 min on one core (M = 2000 as shipped).
+# Writes the tables to doc/results/real-data.md (or $RESULTS) and the plots of section 2 to
+# doc/results/real-data/; run folders under out/reproduce-mrclam/ (or $OUT). Builds first
+# (scripts/setup.sh). Takes about 40 min on one core (M = 2000 as shipped).
 # Environment: MRPT_VSLAM_MRCLAM_DIR (required: the folder of dataset 7's .dat files, see
-# doc/real-data.md), SEEDS (default 1 2 3 4 5), OUT.
+# doc/real-data.md), SEEDS (default 1 2 3 4 5), OUT, RESULTS.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 DATASET="${MRPT_VSLAM_MRCLAM_DIR:-}"
@@ -28,20 +29,25 @@ if [ ! -f "$DATASET/Barcodes.dat" ]; then
     "(its .dat files; doc/real-data.md says where to get it)" >&2
   exit 2
 fi
+source "$REPO_DIR/scripts/results-header.sh"
+COMMAND="$(results_command scripts/reproduce-mrclam.sh SEEDS OUT RESULTS)"
 source "$REPO_DIR/scripts/setup.sh"
 
 OUT="${OUT:-$REPO_DIR/out/reproduce-mrclam}"
 BIN="$BUILD_DIR/bin"
 CONFIGS="$REPO_DIR/share/mrpt-vslam/config"
 SEEDS="${SEEDS:-1 2 3 4 5}"
-mkdir -p "$OUT/data"
+RESULTS="${RESULTS:-$REPO_DIR/doc/results/real-data.md}"
+PLOTS="${RESULTS%.md}"
+FIRST_SEED="$(echo "$SEEDS" | awk '{print $1}')"
+mkdir -p "$OUT/data" "$PLOTS"
 
 # --- 1. import ----------------------------------------------------------------------------------
 import() {  # import NAME ROBOTS COMMAND_DELAY [options...]
   local name="$1" robots="$2" delay="$3"; shift 3
   [ -f "$OUT/data/$name.rawlog" ] ||
     "$BIN/mrclam2rawlog" "$DATASET" --robots "$robots" --command-delay "$delay" \
-      --out "$OUT/data/$name.rawlog" --quiet "$@"
+      --out "$OUT/data/$name.rawlog" "$@" > "$OUT/data/$name.import.txt"
 }
 import r123 1,2,3 0.2 --keep-robot-measurements
 import r123-ids 1,2,3 0.2 --keep-robot-measurements --keep-ids
@@ -78,6 +84,34 @@ run() {
       "$dir/summary.txt")"
 }
 
+{
+echo "## 1. Import"
+echo
+echo "\`mrclam2rawlog --robots 1,2,3,4,5 --command-delay 0.2 --keep-robot-measurements\`: what it"
+echo "kept and dropped, and the readings' residuals against Vicon (the reading minus the range and"
+echo "bearing from the robot's Vicon pose, interpolated at the reading's time, to the landmark's"
+echo "Vicon position; mean +- standard deviation, count), as the importer prints them:"
+echo
+echo '```'
+sed -e 's/\. /.\n/g' -e "s#$REPO_DIR/##" "$OUT/data/r12345.import.txt"
+echo '```'
+echo
+echo "Dead reckoning (the commands integrated from the Vicon pose at the start), whole dataset:"
+echo "\`vslam-eval --estimate OUT.odometry_R<n>.tum --ground-truth OUT.groundtruth_R<n>.tum\`."
+echo
+echo "| robot | position RMSE [m] | max [m] | heading RMSE [deg] | RMSE after SE(2) alignment [m] |"
+echo "|---|---|---|---|---|"
+for n in 1 2 3 4 5; do
+  "$BIN/vslam-eval" --estimate "$OUT/data/r12345.odometry_R$n.tum" \
+    --ground-truth "$OUT/data/r12345.groundtruth_R$n.tum" --out "$OUT/odometry-R$n" > "$OUT/odometry-R$n.txt"
+  # "estimate: ATE RMSE 3.982 m (max 7.679 m), heading RMSE 109.07 deg, ...", then "estimate
+  # aligned: ATE RMSE ..."
+  awk -v r="R$n" '/^estimate:/ {gsub(/[(),]/, ""); rmse = $4; max = $7; heading = $11}
+    /^estimate aligned:/ {aligned = $5}
+    END {printf "| %s | %s | %s | %.0f | %s |\n", r, rmse, max, heading, aligned}' "$OUT/odometry-R$n.txt"
+done
+echo
+
 # --- 2. robots 1-3 jointly ----------------------------------------------------------------------
 # filter_rmse DIR RAWLOG: the position RMSE of each filter_path_R<n>.tum (the best particle's
 # paths before smoothing)
@@ -89,16 +123,19 @@ filter_rmse() {
       --out "$dir/filter-$r" | awk '/ATE RMSE/ {printf "%s ", $4; exit}'
   done
 }
+echo "## 2. Robots 1-3 jointly (mrclam.ini), identities hidden"
 echo
-echo "### Robots 1-3 jointly (mrclam.ini), identities hidden"
+echo "The output paths (smoothed), the best particle's paths before smoothing (filter), dead"
+echo "reckoning, and the maps; each seed a whole run of the shipped configuration."
 echo
 echo "| seed | R1 smoothed [m] | R1 filter [m] | R1 odometry [m] | R2 smoothed [m] | R2 filter [m] | R2 odometry [m] | R3 smoothed [m] | R3 filter [m] | R3 odometry [m] | particle's map landmarks | output map landmarks | true landmarks matched one-to-one within 0.5 m (mean error) | extra | parts reanchored | fused readings | of another identity | run [s] |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 : > "$OUT/joint.txt"
 for seed in $SEEDS; do
+  echo "section 2, seed $seed" >&2
   res=$(run "$OUT/r123-seed$seed" "$OUT/data/r123-ids.rawlog" "R1 R2 R3" --seed "$seed")
   # the rawlog with ids gives the same estimate as the one without (ids are diagnostics only)
-  if [ "$seed" = "$(echo "$SEEDS" | awk '{print $1}')" ]; then
+  if [ "$seed" = "$FIRST_SEED" ]; then
     run "$OUT/r123-hidden-seed$seed" "$OUT/data/r123.rawlog" "R1 R2 R3" --seed "$seed" > /dev/null
     for r in R1 R2 R3; do
       cmp -s "$OUT/r123-seed$seed/estimated_path_$r.tum" "$OUT/r123-hidden-seed$seed/estimated_path_$r.tum" ||
@@ -118,14 +155,24 @@ done
 awk '{a += $1; b += $2; c += $3; d += $4; e += $5; f += $6; n++; m = $1; if ($2 > m) m = $2; if ($3 > m) m = $3; if (m <= 0.25) ok++}
   END {printf "mean over seeds, smoothed: R1 %.3f m, R2 %.3f m, R3 %.3f m (team mean %.3f m), every robot within 0.25 m on %d of %d seeds; filter: R1 %.3f m, R2 %.3f m, R3 %.3f m\n", a / n, b / n, c / n, (a + b + c) / (3 * n), ok, n, d / n, e / n, f / n}' "$OUT/joint.txt"
 
-# --- 3. each robot alone, 2 and 5 robots --------------------------------------------------------
 echo
-echo "### The same filter on other teams (mean over seeds $SEEDS)"
+cp "$OUT/r123-seed$FIRST_SEED/paths.png" "$PLOTS/r123-paths.png"
+cp "$OUT/r123-seed$FIRST_SEED/errors.png" "$PLOTS/r123-errors.png"
+echo "![Robots 1-3, seed $FIRST_SEED: smoothed paths and the output map](real-data/r123-paths.png)"
+echo "![Robots 1-3, seed $FIRST_SEED: errors of the smoothed paths over time](real-data/r123-errors.png)"
+echo
+
+# --- 3. each robot alone, 2 and 5 robots --------------------------------------------------------
+echo "## 3. The filter alone on other teams (mean over seeds $SEEDS)"
+echo
+echo "No map along the path and no smoothing, so that teams compare as filters; robots read each"
+echo "other where both are in the team."
 echo
 echo "| team | robot | RMSE [m] | odometry [m] | landmarks mapped once | extra | run [s] |"
 echo "|---|---|---|---|---|---|---|"
 team() {  # team NAME RAWLOG ROBOTS
   local name="$1" rawlog="$2" robots="$3"
+  echo "section 3, $name" >&2
   : > "$OUT/team.tmp"
   for seed in $SEEDS; do
     # the filter alone: the map along the path (and the smoothing, which needs it) was chosen
@@ -150,12 +197,14 @@ team "R1-R3" "$OUT/data/r123.rawlog" "R1 R2 R3"
 team "R1-R5" "$OUT/data/r12345.rawlog" "R1 R2 R3 R4 R5"
 READINGS_OF_ROBOTS=no team "R1-R3, readings of robots unused" "$OUT/data/r123.rawlog" "R1 R2 R3"
 
-# --- 3b. the association policy alone: robots 1-3 with known poses -------------------------------
-# R<n>_ODOM = the Vicon poses, motion noise near zero, 100 particles: what the gate D0 makes of the
-# readings when the poses are right (doc/real-data.md, "Known poses")
-import r123-known 1,2,3 0.2 --keep-robot-measurements --keep-ids --odometry-from-ground-truth
 echo
-echo "### Robots 1-3 with known poses (odometry = Vicon), mean over seeds $SEEDS"
+# --- 4. the association policy alone: robots 1-3 with known poses -------------------------------
+# R<n>_ODOM = the Vicon poses, motion noise near zero, 100 particles
+import r123-known 1,2,3 0.2 --keep-robot-measurements --keep-ids --odometry-from-ground-truth
+echo "## 4. Robots 1-3 with known poses (odometry = Vicon), mean over seeds $SEEDS"
+echo
+echo "\`mrclam2rawlog --odometry-from-ground-truth\`, motion noise near zero, M = 100, no map along"
+echo "the path: what the gate D0 makes of the readings when the poses are right."
 echo
 echo "| D0 | R1 [m] | R2 [m] | R3 [m] | map landmarks | true landmarks matched one-to-one within 0.5 m |"
 echo "|---|---|---|---|---|---|"
@@ -175,11 +224,15 @@ for d0 in 11.34 30 50; do
     END {printf "| %s | %.3f | %.3f | %.3f | %.1f | %.1f |\n", d, a / n, b / n, c / n, lm / n, m / n}'
 done
 
-# --- 3c. the pose side alone: robots 1-3 with known correspondences -----------------------------
+echo
+# --- 5. the pose side alone: robots 1-3 with known correspondences -----------------------------
 # associate_by_identity: each reading goes to its post's landmark (the ids of r123-ids), the rest
 # as shipped: how well the filter localizes when the association is right (doc/real-data.md)
+echo "## 5. Robots 1-3 with known correspondences (associate_by_identity = true)"
 echo
-echo "### Robots 1-3 with known correspondences (associate_by_identity = true)"
+echo "Every reading goes to its own post's landmark (the ids of the import with ids kept), the"
+echo "rest as shipped, no map along the path: how well the filter localizes when the association"
+echo "is right."
 echo
 echo "| seed | R1 [m] | R2 [m] | R3 [m] | map landmarks | true landmarks matched one-to-one within 0.5 m | run [s] |"
 echo "|---|---|---|---|---|---|---|"
@@ -194,5 +247,11 @@ for seed in $SEEDS; do
     "$dir/summary.txt") | ${w[5]} |"
 done
 
-echo
-echo "Run folders (paths.png, errors.png, metrics.json, run.json) in $OUT"
+} > "$RESULTS.body"
+{
+  results_header "Real data: UTIAS MRCLAM dataset 7" "$COMMAND"
+  cat "$RESULTS.body"
+} > "$RESULTS.tmp"
+rm "$RESULTS.body"
+mv "$RESULTS.tmp" "$RESULTS"
+echo "wrote $RESULTS and its plots in $PLOTS; run folders in $OUT"
