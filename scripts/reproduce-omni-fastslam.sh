@@ -15,8 +15,8 @@
 # Environment: OUT, SEEDS (default 1..10), MRCLAM_SEEDS (default 1..8), RESULTS, RESULTS_MRCLAM.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-COMMAND="$(for v in OUT SEEDS MRCLAM_SEEDS RESULTS RESULTS_MRCLAM; do
-  [ -z "${!v+x}" ] || printf '%s=%q ' "$v" "${!v}"; done)scripts/reproduce-omni-fastslam.sh"
+source "$REPO_DIR/scripts/results-header.sh"
+COMMAND="$(results_command scripts/reproduce-omni-fastslam.sh OUT SEEDS MRCLAM_SEEDS RESULTS RESULTS_MRCLAM)"
 source "$REPO_DIR/scripts/setup.sh"
 
 OUT="${OUT:-$REPO_DIR/out/reproduce-omni-fastslam}"
@@ -46,12 +46,9 @@ hall() {
 
 # header TITLE: the results file's first lines (what, when, where, how)
 header() {
-  echo "# $1"
-  echo
-  echo "Made $(date -u '+%Y-%m-%d %H:%M UTC') on $(sed -n 's/^model name[[:space:]]*: *//p' /proc/cpuinfo | head -1)," \
-    "$(nproc) cores (load average $(cut -d' ' -f1-3 /proc/loadavg) at the end), MRPT $(dpkg-query -W -f='${Version}' libmrpt-dev 2>/dev/null || echo '?'), by" \
-    "\`$COMMAND\`. Run times: the app's whole run (run.json \`timing.total_s\`: reading, filtering," \
-    "writing), one core."
+  results_header "$1" "$COMMAND"
+  echo "Run times: the app's whole run (run.json \`timing.total_s\`: reading, filtering, writing)," \
+    "one core."
   echo
 }
 
@@ -229,6 +226,12 @@ print(f"| mean | {statistics.mean(r[0] for r in rows):.2f} | {statistics.mean(r[
 print(f"| dead reckoning | {odo['ate_rmse_m']:.2f} | {odo['aligned_se2']['ate_rmse_m']:.2f} |"
       f" {odo['heading_rmse_deg']:.0f} | | | | | |")
 PY
+  first="${MRCLAM_SEEDS%% *}"
+  plots="${RESULTS_MRCLAM%.md}"
+  mkdir -p "$plots"
+  cp "$MRCLAM/seed$first/paths.png" "$plots/paths.png"
+  echo
+  echo "![Robot 1, seed $first: estimated, odometry and true paths, and the map]($(basename "$plots")/paths.png)"
 } > "$RESULTS_MRCLAM.tmp"
 mv "$RESULTS_MRCLAM.tmp" "$RESULTS_MRCLAM"
 echo "wrote $RESULTS_MRCLAM"
