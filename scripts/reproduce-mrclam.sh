@@ -29,9 +29,10 @@ if [ ! -f "$DATASET/Barcodes.dat" ]; then
     "(its .dat files; doc/real-data.md says where to get it)" >&2
   exit 2
 fi
+source "$REPO_DIR/scripts/setup.sh"
+# after the build: the results header times the runs only
 source "$REPO_DIR/scripts/results-header.sh"
 COMMAND="$(results_command scripts/reproduce-mrclam.sh SEEDS OUT RESULTS)"
-source "$REPO_DIR/scripts/setup.sh"
 
 OUT="${OUT:-$REPO_DIR/out/reproduce-mrclam}"
 BIN="$BUILD_DIR/bin"

@@ -15,9 +15,10 @@
 # Environment: OUT, SEEDS (default 1..10), MRCLAM_SEEDS (default 1..8), RESULTS, RESULTS_MRCLAM.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$REPO_DIR/scripts/setup.sh"
+# after the build: the results header times the runs only
 source "$REPO_DIR/scripts/results-header.sh"
 COMMAND="$(results_command scripts/reproduce-omni-fastslam.sh OUT SEEDS MRCLAM_SEEDS RESULTS RESULTS_MRCLAM)"
-source "$REPO_DIR/scripts/setup.sh"
 
 OUT="${OUT:-$REPO_DIR/out/reproduce-omni-fastslam}"
 BIN="$BUILD_DIR/bin"

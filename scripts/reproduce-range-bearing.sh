@@ -22,9 +22,10 @@
 # NOISE_LEVELS (default "low medium high"), TOOLS (default "kf-slam multirobot-vslam"), RESULTS.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$REPO_DIR/scripts/setup.sh"
+# after the build: the results header times the runs only
 source "$REPO_DIR/scripts/results-header.sh"
 COMMAND="$(results_command scripts/reproduce-range-bearing.sh OUT SIM_SEEDS SEEDS NOISE_LEVELS TOOLS RESULTS)"
-source "$REPO_DIR/scripts/setup.sh"
 
 OUT="${OUT:-$REPO_DIR/out/reproduce-range-bearing}"
 BIN="$BUILD_DIR/bin"

@@ -20,11 +20,12 @@
 # Environment: SEEDS (default 1 2 3 4 5), FRAMES (default: the scenario's 500), OUT, RESULTS.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-source "$REPO_DIR/scripts/results-header.sh"
-COMMAND="$(results_command scripts/reproduce-view-slam.sh SEEDS FRAMES OUT RESULTS)"
 # builds only what it runs (BUILD_TARGETS="" builds everything)
 BUILD_TARGETS="${BUILD_TARGETS-view-slam vslam-sim vslam-eval vslam-plot}"
 source "$REPO_DIR/scripts/setup.sh"
+# after the build: the results header times the runs only
+source "$REPO_DIR/scripts/results-header.sh"
+COMMAND="$(results_command scripts/reproduce-view-slam.sh SEEDS FRAMES OUT RESULTS)"
 
 OUT="${OUT:-$REPO_DIR/out/reproduce-view-slam}"
 BIN="$BUILD_DIR/bin"

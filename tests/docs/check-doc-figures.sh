@@ -7,17 +7,7 @@
 set -euo pipefail
 src="$(cd "$1" && pwd)"
 cd "$src"
-pages=(
-  README.md
-  doc/README.md
-  doc/app-conventions.md
-  doc/architecture.md
-  doc/multirobot.md
-  doc/omni-fastslam.md
-  doc/references.md
-  doc/view-slam.md
-  doc/your-own-data.md
-)
+pages=(README.md doc/*.md)
 # numbers NAME...: the numbers with two or more decimals in the files, one per line
 numbers() { grep -ohE '(^|[^0-9.])[0-9]+\.[0-9]{2,}' "$@" | grep -oE '[0-9]+\.[0-9]+' || true; }
 known="$(mktemp)"
@@ -28,15 +18,24 @@ trap 'rm -f "$known"' EXIT
 } | sort -u > "$known"
 status=0
 for page in "${pages[@]}"; do
-  # the page without its fenced code blocks, with line numbers
+  # the page without its fenced code blocks and code spans, with line numbers
   while IFS=: read -r line n; do
     grep -qxF "$n" "$known" || { echo "$page:$line: $n is in no results file under doc/results/"; status=1; }
-  done < <(awk '/^```/ { code = !code; next } !code { print NR ":" $0 }' "$page" |
+  done < <(awk '/^```/ { code = !code; next } !code { gsub(/`[^`]*`/, ""); print NR ":" $0 }' "$page" |
            while IFS=: read -r line text; do
              for n in $(grep -oE '(^|[^0-9.])[0-9]+\.[0-9]{2,}' <<< "$text" | grep -oE '[0-9]+\.[0-9]+'); do
                echo "$line:$n"
              done
            done)
 done
-[ "$status" = 0 ] && echo "doc figures: every figure on ${#pages[@]} pages is in a results file or the code"
+# every link to a file of the repository (the pages, doc/results/ and its plots) leads to one
+for page in "${pages[@]}" doc/results/*.md; do
+  while read -r target; do
+    [ -e "$(dirname "$page")/${target%%#*}" ] ||
+      { echo "$page: links to $target, which is not in the repository"; status=1; }
+  done < <(grep -oE '\]\([^)#][^) ]*\)' "$page" | sed -E 's/^\]\((.*)\)$/\1/' |
+           grep -vE '^[a-z]+:' || true)
+done
+[ "$status" = 0 ] && echo "doc figures: every figure on ${#pages[@]} pages is in a results file or" \
+  "the code, and every link leads to a file"
 exit "$status"
