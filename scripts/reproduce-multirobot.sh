@@ -17,9 +17,10 @@
 # RESULTS.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$REPO_DIR/scripts/setup.sh"
+# after the build: the results header times the runs only
 source "$REPO_DIR/scripts/results-header.sh"
 COMMAND="$(results_command scripts/reproduce-multirobot.sh OUT SEEDS SWEEP_SEEDS RESULTS)"
-source "$REPO_DIR/scripts/setup.sh"
 
 OUT="${OUT:-$REPO_DIR/out/reproduce-multirobot}"
 BIN="$BUILD_DIR/bin"
