@@ -33,18 +33,23 @@ class ParticleFilterApp : public SlamApp {
     template <class MAP>
     MAP particleMapTemplate(const std::string& countKey) const
     {
-        // Every particle's map comes from the .ini through MRPT's map registry.
+        // Every particle's map comes from the .ini through MRPT's map registry. MRPT 2.5 leaks a
+        // map definition whose loader throws, so ours is first loaded into one we own.
+        const std::string exactlyOne =
+            std::string("[") + kMapSection + "] must define exactly one map: " + countKey + " = 1";
+        if (cfg.read_uint64_t(kMapSection, countKey, 0) != 1) throw usageError(exactlyOne);
         mrpt::maps::TSetOfMetricMapInitializers inits;
         try {
+            const std::string name = countKey.substr(0, countKey.rfind("_count"));
+            typename MAP::TMapDefinition own;
+            own.loadFromConfigFile(cfg, std::string(kMapSection) + "_" + name + "_00");
             inits.loadFromConfigFile(cfg, kMapSection);
         } catch (const std::exception& e) {
             throw configError(e);
         }
         mrpt::maps::CMultiMetricMap maps(inits);
         const auto map = maps.mapByClass<MAP>();
-        if (!map || maps.maps.size() != 1)
-            throw usageError(std::string("[") + kMapSection +
-                             "] must define exactly one map: " + countKey + " = 1");
+        if (!map || maps.maps.size() != 1) throw usageError(exactlyOne);
         return *map;
     }
 
