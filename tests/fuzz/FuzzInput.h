@@ -18,8 +18,15 @@ class FuzzInput {
 
     uint8_t byte() { return m_pos < m_size ? m_data[m_pos++] : 0; }
 
+    /// Two bytes, high first (drawn in this order: the operands of | are unsequenced).
+    unsigned word()
+    {
+        const unsigned high = byte();
+        return high << 8 | byte();
+    }
+
     /// An integer in [0, n) (n > 0).
-    size_t index(size_t n) { return (static_cast<size_t>(byte()) << 8 | byte()) % n; }
+    size_t index(size_t n) { return word() % n; }
 
     double number()
     {
@@ -59,7 +66,7 @@ class FuzzInput {
     /// A finite number in [low, high] (the odometry, which the readers have already checked).
     double finite(double low, double high)
     {
-        return low + (high - low) * (static_cast<double>(byte() << 8 | byte()) / 65535.0);
+        return low + (high - low) * (static_cast<double>(word()) / 65535.0);
     }
 
     /// The bytes not drawn yet, as text.
