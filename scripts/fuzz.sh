@@ -50,8 +50,10 @@ if [ -z "$(ls -A "$OUT/corpus")" ]; then
         cp "$f" "$OUT/corpus/"
         gzip -dc "$f" > "$OUT/corpus/$(basename "$f").plain" 2>/dev/null || true
       done ;;
-    config) cp "$REPO_DIR"/share/mrpt-vslam/config/{omni-fastslam,multirobot-vslam,view-slam}/*.ini \
-      "$OUT/corpus/" ;;
+    config)  # several apps ship a template.ini: the app's name in front
+      for f in "$REPO_DIR"/share/mrpt-vslam/config/*/*.ini; do
+        cp "$f" "$OUT/corpus/$(basename "$(dirname "$f")")-$(basename "$f")"
+      done ;;
     *) cp "$REPO_DIR"/tests/fuzz/seeds/* "$OUT/corpus/" ;;
   esac
 fi

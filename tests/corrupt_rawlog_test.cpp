@@ -8,6 +8,8 @@
 #include <mrpt_vslam/test/RunFiles.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <stdexcept>
@@ -87,4 +89,51 @@ TEST(CorruptRawlog, VariantsOfEveryShippedRawlogEndCleanlyOrInOneLine)
     }
     // these variants include objects that crash MRPT's own deserialization when read in-process
     EXPECT_GE(all.crashes, 1);
+}
+
+// Rawlogs whose images are stored beside them (<NAME>_Images): a missing image file and one
+// that is not an image end the run with one line naming the image, for each app that reads
+// images (omni-fastslam in images mode, view-slam).
+TEST(CorruptRawlog, MissingOrUnreadableExternalImagesGiveOneLine)
+{
+    namespace fs = std::filesystem;
+    mrpt_vslam::test::ScratchFolder scratch("external_images_test");
+    struct TCase {
+        const char* app;
+        const char* config;
+        const char* dataset;  ///< under datasets/, without .rawlog
+        const char* extra;
+    };
+    for (const TCase& c :
+         {TCase{"omni-fastslam", "omni-fastslam/sports-hall.ini", "sports-hall/hall",
+                " --set OmniFastSLAM.input=images"},
+          TCase{"view-slam", "view-slam/omni-views.ini", "omni-views/rooms", ""}}) {
+        const std::string name = fs::path(c.dataset).filename().string();
+        const fs::path rawlog = scratch.path() / (name + ".rawlog");
+        const fs::path images = scratch.path() / (name + "_Images");
+        fs::copy_file(kData + c.dataset + ".rawlog", rawlog, fs::copy_options::overwrite_existing);
+        for (const char* damage : {"missing", "garbage"}) {
+            fs::remove_all(images);
+            fs::copy(kData + c.dataset + "_Images", images);
+            const fs::path victim = images / "OMNICAM_000003.png";
+            ASSERT_TRUE(fs::exists(victim)) << victim;
+            if (std::string(damage) == "missing")
+                fs::remove(victim);
+            else
+                write(victim.string(), "not a PNG file");
+            const auto r = mrpt_vslam::test::runCommand(
+                std::string(MRPT_VSLAM_BIN_DIR "/") + c.app + " " + kConfigs + c.config + " " +
+                    rawlog.string() + c.extra + " -q --out " + scratch.file("run"),
+                scratch.path() / "command.log");
+            EXPECT_NE(r.exit_code, 0) << c.app << ", " << damage << ": " << r.out;
+            EXPECT_NE(r.out.find("OMNICAM_000003.png"), std::string::npos)
+                << c.app << ", " << damage << ": " << r.out;
+            EXPECT_LE(std::count(r.out.begin(), r.out.end(), '\n'), 1)
+                << c.app << ", " << damage << ": " << r.out;
+            EXPECT_FALSE(fs::exists(scratch.file("run/run.json")) &&
+                         mrpt_vslam::test::readJson(scratch.file("run/run.json"))["completed"] ==
+                             true)
+                << c.app << ", " << damage;
+        }
+    }
 }

@@ -58,6 +58,7 @@ class ParticleFilterApp : public SlamApp {
     std::unique_ptr<FILTER> makeFilter(const MAP& mapTemplate) const
     {
         auto filter = std::make_unique<FILTER>(mapTemplate, pf.m_options.sampleSize, seed);
+        filter->setThreadCount(args.threads);
         // CParticleFilter's resampling draws from MRPT's global generator.
         mrpt::random::getRandomGenerator().randomize(seed);
         return filter;

@@ -2,6 +2,7 @@
 #include <mrpt/system/filesystem.h>
 #include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/AppArguments.h>
+#include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/core/TclapParse.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/core/Version.h>
@@ -12,6 +13,8 @@
 namespace mrpt_vslam::core {
 namespace {
 
+constexpr unsigned long kMaxThreads = 256;
+
 uint32_t parseSeed(const std::string& text)
 {
     const bool digits_only =
@@ -21,6 +24,16 @@ uint32_t parseSeed(const std::string& text)
         if (v <= std::numeric_limits<uint32_t>::max()) return static_cast<uint32_t>(v);
     }
     throw UsageError("--seed " + text + ": expected an integer from 0 to 4294967295");
+}
+
+unsigned parseThreads(const std::string& text)
+{
+    const bool digits_only =
+        !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+    if (digits_only && text.size() <= 4 && std::stoul(text) <= kMaxThreads)
+        return static_cast<unsigned>(std::stoul(text));
+    throw UsageError("--threads " + text + ": expected an integer from 0 (every core) to " +
+                     std::to_string(kMaxThreads));
 }
 
 }  // namespace
@@ -43,6 +56,11 @@ AppArguments AppArguments::parse(int argc, const char* const* argv, const std::s
     TCLAP::ValueArg<std::string> seed(
         "", "seed", "Random seed; 0 (default) takes the config's random_seed, else 1.", false, "0",
         "N", cmd);
+    TCLAP::ValueArg<std::string> threads(
+        "", "threads",
+        "Threads for the filter's updates; 0 (default): every core. The results do not depend "
+        "on it.",
+        false, "0", "N", cmd);
     TCLAP::MultiArg<std::string> set("", "set", "Overrides (or adds) a config key; repeatable.",
                                      false, "SECTION.KEY=VALUE", cmd);
     TCLAP::ValueArg<std::string> ground_truth(
@@ -78,6 +96,7 @@ AppArguments AppArguments::parse(int argc, const char* const* argv, const std::s
         a.rawlogFile = rawlog.getValue();
         a.outDir = out.isSet() ? out.getValue() : defaultOutDir(appName, a.configFile);
         a.seed = parseSeed(seed.getValue());
+        a.threads = parseThreads(threads.getValue());
         for (const auto& s : set.getValue()) a.overrides.push_back(TConfigOverride::parse(s));
     } catch (const UsageError& e) {
         throw usage_error(e.what());
@@ -129,6 +148,7 @@ void AppArguments::describeInputs(RunReport& report, const std::string& effectiv
     report.setConfig(configFile, effective_config);
     report.setRawlog(rawlog);
     report.setSeed(seed_used);
+    report.setThreads(resolveThreadCount(threads));
 }
 
 }  // namespace mrpt_vslam::core

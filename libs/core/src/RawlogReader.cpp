@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <deque>
@@ -126,7 +127,8 @@ RawlogReader::~RawlogReader() = default;
 
 void RawlogReader::validate(const std::string& file)
 {
-    constexpr int kReadError = 3;  ///< the child's status when reading threw
+    constexpr int kReadError = 3;          ///< the child's status when reading threw
+    constexpr unsigned kMaxSeconds = 600;  ///< the longest a rawlog may take to read
     struct TShared {
         uint64_t objects = 0;
         char message[2048] = {};
@@ -142,8 +144,9 @@ void RawlogReader::validate(const std::string& file)
         const rlimit memory_limit{4ull << 30, 4ull << 30};
         setrlimit(RLIMIT_AS, &memory_limit);
 #endif
-        const rlimit cpu_limit{600, 600};
+        const rlimit cpu_limit{kMaxSeconds, kMaxSeconds};
         setrlimit(RLIMIT_CPU, &cpu_limit);
+        alarm(kMaxSeconds);  // wall clock too: a read that waits (a FIFO, a stalled disk)
         int status = 0;
         try {
             RawlogReader reader(file, TUnchecked());
@@ -171,6 +174,10 @@ void RawlogReader::validate(const std::string& file)
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
     if (WIFEXITED(status) && WEXITSTATUS(status) == kReadError && result.message[0] != '\0')
         throw std::runtime_error(result.message);
+    if (WIFSIGNALED(status) && (WTERMSIG(status) == SIGALRM || WTERMSIG(status) == SIGXCPU))
+        throw std::runtime_error(file + ": reading the rawlog took more than " +
+                                 std::to_string(kMaxSeconds / 60) + " min (stopped at entry " +
+                                 std::to_string(result.objects + 1) + ")");
     // a signal, or a sanitizer's report of one (it exits instead)
     const std::string how = WIFSIGNALED(status)
                                 ? strsignal(WTERMSIG(status))

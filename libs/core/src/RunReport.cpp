@@ -39,7 +39,8 @@ RunReport::RunReport(const std::string& app_name) : m_impl(std::make_unique<Impl
     d["completed"] = false;
     d["error"] = nullptr;
     d["counts"] = Json::object();
-    d["timing"] = {{"total_s", nullptr},
+    d["timing"] = {{"threads", 1},
+                   {"total_s", nullptr},
                    {"steps", 0},
                    {"per_step_ms",
                     {{"mean", nullptr}, {"median", nullptr}, {"p95", nullptr}, {"max", nullptr}}}};
@@ -63,6 +64,7 @@ void RunReport::setConfig(const std::string& file, const std::string& effective_
 void RunReport::setRawlog(const std::string& file) { m_impl->doc["rawlog"] = file; }
 void RunReport::setGroundTruth(const std::string& name) { m_impl->doc["ground_truth"] = name; }
 void RunReport::setSeed(uint32_t seed) { m_impl->doc["seed"] = seed; }
+void RunReport::setThreads(unsigned threads) { m_impl->doc["timing"]["threads"] = threads; }
 void RunReport::setOpenCvVersion(const std::string& v) { m_impl->doc["opencv_version"] = v; }
 
 void RunReport::setStartTime(std::chrono::system_clock::time_point t)

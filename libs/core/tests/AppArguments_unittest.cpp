@@ -37,6 +37,7 @@ TEST(AppArguments, MinimalCommandLineGetsDefaults)
     EXPECT_EQ(a.rawlogFile, "");
     EXPECT_EQ(a.outDir, "out/omni-fastslam-omni_sim");
     EXPECT_EQ(a.seed, 0u);
+    EXPECT_EQ(a.threads, 0u);
     EXPECT_TRUE(a.overrides.empty());
     EXPECT_EQ(a.groundTruth, "");
     EXPECT_FALSE(a.quiet);
@@ -48,12 +49,13 @@ TEST(AppArguments, AllOptionsAreParsed)
 {
     const auto a =
         parseArgs({"omni-fastslam", "a.ini", "data/run.rawlog", "--out", "res/x", "--seed", "42",
-                   "--set", "Filter.sampleSize=200", "--set", "Map.opts.sigma=0.1",
-                   "--ground-truth", "gt.tum", "--quiet", "--gui"});
+                   "--threads", "3", "--set", "Filter.sampleSize=200", "--set",
+                   "Map.opts.sigma=0.1", "--ground-truth", "gt.tum", "--quiet", "--gui"});
     EXPECT_EQ(a.configFile, "a.ini");
     EXPECT_EQ(a.rawlogFile, "data/run.rawlog");
     EXPECT_EQ(a.outDir, "res/x");
     EXPECT_EQ(a.seed, 42u);
+    EXPECT_EQ(a.threads, 3u);
     ASSERT_EQ(a.overrides.size(), 2u);
     EXPECT_EQ(a.overrides[0].section, "Filter");
     EXPECT_EQ(a.overrides[0].key, "sampleSize");
@@ -111,6 +113,17 @@ TEST(AppArguments, MalformedSeedAndSetAreRejected)
     EXPECT_NE(usageErrorOf({"x", "a.ini", "--set", "noDot=1"}).find("--set noDot=1"),
               std::string::npos);
     EXPECT_NE(usageErrorOf({"x", "a.ini", "--set", "A.b"}).find("missing '='"), std::string::npos);
+}
+
+TEST(AppArguments, MalformedThreadCountsAreRejected)
+{
+    for (const char* bad : {"-1", "2.5", "x", "", "257", "99999"})
+        EXPECT_NE(
+            usageErrorOf({"x", "a.ini", "--threads", bad}).find(std::string("--threads ") + bad),
+            std::string::npos)
+            << bad;
+    EXPECT_EQ(parseArgs({"x", "a.ini", "--threads", "256"}).threads, 256u);
+    EXPECT_EQ(parseArgs({"x", "a.ini", "--threads", "0"}).threads, 0u);
 }
 
 TEST(AppArguments, SeedResolutionPrefersCommandLineThenConfigThenOne)

@@ -8,6 +8,7 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
+#include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
 #include <mrpt_vslam/multirobot/Cholesky3.h>
 
@@ -264,7 +265,9 @@ std::vector<CMultiRobotVisualSLAM::TRobotReading> CMultiRobotVisualSLAM::robotRe
 
 void CMultiRobotVisualSLAM::weighRobotReadings(size_t k, const std::vector<TRobotReading>& readings)
 {
-    for (auto& p : m_particles) {
+    if (readings.empty()) return;
+    core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
+        auto& p = m_particles[i];
         const TPlanarTransform pose(p.d->poses[k]);
         for (const auto& r : readings) {
             const TMapMeasurement w = toMapFrame(r.m, pose);
@@ -273,16 +276,18 @@ void CMultiRobotVisualSLAM::weighRobotReadings(size_t k, const std::vector<TRobo
                 robotReadingLogLikelihood(w.z - Eigen::Vector3d(other.x, other.y, 0), w.R);
             addLogWeight(p, log_w);
         }
-    }
+    });
 }
 
 void CMultiRobotVisualSLAM::sampleMotion(size_t k, const core::TOdometryGaussian& motion)
 {
-    for (auto& p : m_particles) {  // Alg. 1 line 18, p(x_t | x_{t-1}, u_t) per robot
-        const Eigen::Vector3d dx = core::drawGaussian(m_rng, motion.L);
-        p.d->poses[k] = p.d->poses[k] + TPose2D(motion.mean.x + dx[0], motion.mean.y + dx[1],
-                                                motion.mean.phi + dx[2]);
-    }
+    const auto noise = core::drawStandardNormals(m_rng, m_particles.size());
+    core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
+        auto& pose = m_particles[i].d->poses[k];  // Alg. 1 line 18, p(x_t | x_{t-1}, u_t)
+        const Eigen::Vector3d dx = motion.L * noise[i];
+        pose =
+            pose + TPose2D(motion.mean.x + dx[0], motion.mean.y + dx[1], motion.mean.phi + dx[2]);
+    });
 }
 
 std::vector<TMeasurementCandidates> CMultiRobotVisualSLAM::searchCandidates(
@@ -331,20 +336,53 @@ std::vector<TPose2D> CMultiRobotVisualSLAM::posesOf(size_t k) const
 void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandmarkMeasurement>& z)
 {
     auto candidates = searchCandidates(posesOf(k), 0, 0, z);
-    std::vector<TMapMeasurement> in_map(z.size());
+    const size_t n = z.size();
+    // A landmark new to the pool gets a provisional id while the particles fuse in parallel,
+    // base + j for measurement j, above every pool id; then the pool hands out the real ids in
+    // particle order, as a serial loop would. Known correspondences look ids up in the pool
+    // as they go, so they run serially.
+    const bool provisional = !m_template.insertionOptions.associate_by_identity;
+    const auto base = static_cast<uint32_t>(m_template.descriptorPool().size());
+    if (provisional)
+        for (size_t j = 0; j < n; j++) candidates[j].new_id = base + static_cast<uint32_t>(j);
+    std::vector<TFusionResult> fused(m_particles.size() * n);
     // Alg. 1 lines 18-46, particle by particle so that its landmarks stay in the cache
-    for (auto& p : m_particles) {
+    core::parallelFor(m_particles.size(), provisional ? m_threads : 1, [&](size_t i) {
+        auto& p = m_particles[i];
         const TPlanarTransform pose(p.d->poses[k]);
-        for (size_t j = 0; j < z.size(); j++) in_map[j] = toMapFrame(z[j], pose);
-        const auto fused =
-            p.d->map.fuseFrame(z, in_map, candidates, static_cast<unsigned>(k), false);
-        for (size_t j = 0; j < z.size(); j++) {
-            const TFusionResult& r = fused[j];
-            addLogWeight(p, r.log_w);  // line 44 and line 11: the product over the team
-            (r.created ? lastStepStats.created : lastStepStats.associated)++;
-            p.d->correspondences.push_back({static_cast<uint32_t>(k), r.id, z[j].track_id});
+        std::vector<TMapMeasurement> in_map(n);
+        for (size_t j = 0; j < n; j++) in_map[j] = toMapFrame(z[j], pose);
+        const auto r = p.d->map.fuseFrame(z, in_map, candidates, static_cast<unsigned>(k), false);
+        std::copy(r.begin(), r.end(), fused.begin() + static_cast<std::ptrdiff_t>(i * n));
+        // line 44 and line 11: the product over the team
+        for (size_t j = 0; j < n; j++) addLogWeight(p, r[j].log_w);
+    });
+    if (provisional) {
+        std::vector<std::optional<uint32_t>> final_id(n);
+        for (size_t i = 0; i < m_particles.size(); i++) {
+            std::vector<std::pair<uint32_t, uint32_t>> renumbered;
+            for (size_t j = 0; j < n; j++) {
+                TFusionResult& r = fused[i * n + j];
+                if (!r.created) continue;
+                if (!final_id[j]) {
+                    candidates[j].new_id.reset();
+                    const TPlanarTransform pose(m_particles[i].d->poses[k]);
+                    final_id[j] = m_particles[i].d->map.reserveNewId(z[j], toMapFrame(z[j], pose),
+                                                                     candidates[j]);
+                }
+                renumbered.emplace_back(r.id, *final_id[j]);
+                r.id = *final_id[j];
+            }
+            if (!renumbered.empty()) m_particles[i].d->map.renumberLandmarks(renumbered);
         }
     }
+    for (size_t i = 0; i < m_particles.size(); i++)
+        for (size_t j = 0; j < n; j++) {
+            const TFusionResult& r = fused[i * n + j];
+            (r.created ? lastStepStats.created : lastStepStats.associated)++;
+            m_particles[i].d->correspondences.push_back(
+                {static_cast<uint32_t>(k), r.id, z[j].track_id});
+        }
 }
 
 void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussian& motion,
@@ -358,12 +396,15 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussi
         searchCandidates(predicted, 3 * std::sqrt(motion.cov(0, 0) + motion.cov(1, 1)),
                          3 * std::sqrt(motion.cov(2, 2)), z);
 
-    std::vector<std::optional<CVisualLandmarksMap::TAssociation>> assoc(z.size());
-    std::vector<TMapMeasurement> gated(z.size());
-    std::vector<uint32_t> taken;
+    // Per particle (in parallel): the proposal, its associations and weight, the sampled pose
+    const size_t n = z.size();
+    std::vector<std::optional<CVisualLandmarksMap::TAssociation>> assoc(m_particles.size() * n);
+    std::vector<double> log_w(m_particles.size(), 0);
+    const auto noise = core::drawStandardNormals(m_rng, m_particles.size());
     const bool joint = m_template.insertionOptions.joint_association;
-    for (size_t i = 0; i < m_particles.size(); i++) {
+    core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
         auto& p = *m_particles[i].d;
+        const auto assoc_i = assoc.begin() + static_cast<std::ptrdiff_t>(i * n);
         // prior N(x̂, J C Jᵀ), J the rotation of the increment into the map frame
         const double c = std::cos(p.poses[k].phi), s = std::sin(p.poses[k].phi);
         Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
@@ -395,52 +436,66 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussi
             const Eigen::Matrix3d updated = Sigma - K * HS;
             Sigma = 0.5 * (updated + updated.transpose());
         };
-        double log_w = 0;
-        taken.clear();
+        std::vector<TMapMeasurement> gated(n);
+        std::vector<uint32_t> taken;
         if (joint) {  // every point against the prior, then the updates one by one
-            for (size_t j = 0; j < z.size(); j++) gated[j] = linearize(z[j]);
-            assoc = p.map.associateJointly(gated, candidates);
+            for (size_t j = 0; j < n; j++) gated[j] = linearize(z[j]);
+            std::copy_n(p.map.associateJointly(gated, candidates).begin(), n, assoc_i);
         }
-        for (size_t j = 0; j < z.size(); j++) {
+        for (size_t j = 0; j < n; j++) {
+            auto& a = assoc_i[static_cast<std::ptrdiff_t>(j)];
             gated[j] = linearize(z[j]);
             if (!joint) {
-                assoc[j] = p.map.associate(gated[j], candidates[j], &taken, z[j].identity);
-                if (assoc[j]) taken.push_back(assoc[j]->id);
-            } else if (assoc[j]) {  // p(z_j | z_1..z_{j-1}) for the weight
-                assoc[j] = p.map.evaluate(gated[j], assoc[j]->id);
+                a = p.map.associate(gated[j], candidates[j], &taken, z[j].identity);
+                if (a) taken.push_back(a->id);
+            } else if (a) {  // p(z_j | z_1..z_{j-1}) for the weight
+                a = p.map.evaluate(gated[j], a->id);
             }
-            if (!assoc[j]) {
-                log_w += std::log(p.map.insertionOptions.p0);  // line 36
+            if (!a) {
+                log_w[i] += std::log(p.map.insertionOptions.p0);  // line 36
                 continue;
             }
-            log_w += assoc[j]->log_likelihood;
-            const TVisualLandmark& lm = *p.map.landmark(assoc[j]->id);
+            log_w[i] += a->log_likelihood;
+            const TVisualLandmark& lm = *p.map.landmark(a->id);
             correct(gated[j].z - lm.mean, lm.cov + gated[j].R);
         }
         for (const auto& r : readings) {  // the seen robot's pose is exact in this particle
             const TMapMeasurement w = linearize(r.m);
             const Eigen::Vector3d v =
                 w.z - Eigen::Vector3d(p.poses[r.robot].x, p.poses[r.robot].y, 0);
-            log_w += robotReadingLogLikelihood(v, w.R);
+            log_w[i] += robotReadingLogLikelihood(v, w.R);
             correct(v, w.R);
         }
         const Cholesky3 L(Sigma);
         if (!L.ok)
             throw std::runtime_error(options.robots[k] +
                                      ": proposal covariance is not positive definite");
-        const Eigen::Vector3d x = mu + core::drawGaussian(m_rng, L.factor());
+        const Eigen::Vector3d x = mu + L.factor() * noise[i];
         p.poses[k] = TPose2D(x[0], x[1], mrpt::math::wrapToPi(x[2]));
+    });
 
-        // the landmarks updated from the sampled pose, with the associations made above
+    // The ids of new landmarks, in particle order (the pool is shared: one thread)
+    for (size_t i = 0; i < m_particles.size(); i++) {
+        auto& p = *m_particles[i].d;
+        for (size_t j = 0; j < n; j++)
+            if (!assoc[i * n + j] && !candidates[j].new_id)
+                p.map.reserveNewId(z[j], toMapFrame(z[j], TPlanarTransform(p.poses[k])),
+                                   candidates[j]);
+        for (size_t j = 0; j < n; j++)
+            (assoc[i * n + j] ? lastStepStats.associated : lastStepStats.created)++;
+    }
+
+    // The landmarks updated from the sampled pose, with the associations made above
+    core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
+        auto& p = *m_particles[i].d;
         const TPlanarTransform pose(p.poses[k]);
-        for (size_t j = 0; j < z.size(); j++) {
+        for (size_t j = 0; j < n; j++) {
             const TFusionResult r = p.map.fuseAs(z[j], toMapFrame(z[j], pose), candidates[j],
-                                                 static_cast<unsigned>(k), assoc[j]);
-            (r.created ? lastStepStats.created : lastStepStats.associated)++;
+                                                 static_cast<unsigned>(k), assoc[i * n + j]);
             p.correspondences.push_back({static_cast<uint32_t>(k), r.id, z[j].track_id});
         }
-        addLogWeight(m_particles[i], log_w);  // line 11: the product over the team
-    }
+        addLogWeight(m_particles[i], log_w[i]);  // line 11: the product over the team
+    });
 }
 
 void CMultiRobotVisualSLAM::runStep(

@@ -79,15 +79,29 @@ TMeasurementCandidates CVisualLandmarksMap::findCandidates(const TLandmarkMeasur
     return c;
 }
 
+namespace {
+/// The factor of the innovation covariance Z of landmark `id` (Eq. 6-8).
+Cholesky3 innovationFactor(const Eigen::Matrix3d& Z, uint32_t id)
+{
+    const Cholesky3 L(Z);
+    if (!L.ok)
+        throw std::invalid_argument("landmark " + std::to_string(id) +
+                                    ": innovation covariance not positive definite");
+    return L;
+}
+/// D = vᵀ Z⁻¹ v (Eq. 15) of innovation v with covariance Z, of landmark `id`.
+double mahalanobis2(const Eigen::Vector3d& v, const Eigen::Matrix3d& Z, uint32_t id)
+{
+    return innovationFactor(Z, id).whiten(v).squaredNorm();
+}
+}  // namespace
+
 CVisualLandmarksMap::TAssociation CVisualLandmarksMap::evaluate(const TMapMeasurement& m,
                                                                 uint32_t id) const
 {
     const TVisualLandmark* lm = m_store.find(id);
     if (!lm) throw std::invalid_argument("landmark " + std::to_string(id) + " is not in the map");
-    const Cholesky3 L(lm->cov + m.R);  // Eq. 6-8
-    if (!L.ok)
-        throw std::invalid_argument("landmark " + std::to_string(id) +
-                                    ": innovation covariance not positive definite");
+    const Cholesky3 L = innovationFactor(lm->cov + m.R, id);
     const double D = L.whiten(m.z - lm->mean).squaredNorm();  // Eq. 15
     return TAssociation{id, D, L.logGaussian(D)};             // Eq. 13
 }
@@ -104,19 +118,30 @@ std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     // Alg. 1 lines 19-29: the smallest E among the landmarks with D ≤ D0. The candidates
     // (E ≤ E0 already) come in increasing E, so the first one inside the gate is it; among
     // equal E (no descriptors, as in range-bearing data: all E = 0) the smallest D.
-    std::optional<TAssociation> best;
+    // D = vᵀ Z⁻¹ v ≥ |v|² / tr(Z): a candidate that bound puts outside the gate, or behind the
+    // best so far, is passed over before its factorization; log N only for the chosen one.
+    constexpr double kRounding = 1 + 1e-9;
+    std::optional<uint32_t> best;
+    double best_D = 0;
     float best_E = 0;
     for (const auto& c : candidates.candidates) {
         if (best && c.E > best_E) break;
-        if (!m_store.find(c.id) ||
+        const TVisualLandmark* lm = m_store.find(c.id);
+        if (!lm ||
             (excluded && std::find(excluded->begin(), excluded->end(), c.id) != excluded->end()))
             continue;
-        const TAssociation a = evaluate(m, c.id);
-        if (!(a.D <= insertionOptions.D0) || (best && a.D >= best->D)) continue;  // line 28
-        best = a;
+        const Eigen::Matrix3d Z = lm->cov + m.R;
+        const Eigen::Vector3d v = m.z - lm->mean;
+        const double limit = best ? std::min(best_D, insertionOptions.D0) : insertionOptions.D0;
+        if (v.squaredNorm() > kRounding * limit * Z.trace()) continue;
+        const double D = mahalanobis2(v, Z, c.id);
+        if (!(D <= insertionOptions.D0) || (best && D >= best_D)) continue;  // line 28
+        best = c.id;
+        best_D = D;
         best_E = c.E;
     }
-    return best;
+    if (!best) return std::nullopt;
+    return evaluate(m, *best);
 }
 
 std::vector<std::optional<CVisualLandmarksMap::TAssociation>> CVisualLandmarksMap::associateJointly(
@@ -164,6 +189,18 @@ TFusionResult CVisualLandmarksMap::fuse(const TLandmarkMeasurement& m,
     return fuseAs(m, in_map, candidates, robot, associate(in_map, candidates, nullptr, m.identity));
 }
 
+uint32_t CVisualLandmarksMap::reserveNewId(const TLandmarkMeasurement& m,
+                                           const TMapMeasurement& in_map,
+                                           TMeasurementCandidates& candidates)
+{
+    if (candidates.new_id) return *candidates.new_id;
+    const bool known = insertionOptions.associate_by_identity && m.identity >= 0;
+    if (known) candidates.new_id = m_pool->landmarkOfIdentity(m.identity);
+    if (!candidates.new_id) candidates.new_id = m_pool->add(m.d, in_map.z);
+    if (known) m_pool->setLandmarkOfIdentity(m.identity, *candidates.new_id);
+    return *candidates.new_id;
+}
+
 TFusionResult CVisualLandmarksMap::fuseAs(const TLandmarkMeasurement& m,
                                           const TMapMeasurement& in_map,
                                           TMeasurementCandidates& candidates, unsigned robot,
@@ -171,17 +208,14 @@ TFusionResult CVisualLandmarksMap::fuseAs(const TLandmarkMeasurement& m,
 {
     TFusionResult r;
     if (!a) {  // Alg. 1 lines 33-36
-        const bool known = insertionOptions.associate_by_identity && m.identity >= 0;
-        if (known && !candidates.new_id) candidates.new_id = m_pool->landmarkOfIdentity(m.identity);
-        if (!candidates.new_id) candidates.new_id = m_pool->add(m.d, in_map.z);
-        if (known) m_pool->setLandmarkOfIdentity(m.identity, *candidates.new_id);
+        const uint32_t id = reserveNewId(m, in_map, candidates);
         TVisualLandmark lm;
         lm.mean = in_map.z;
         lm.cov = in_map.R;
         lm.times_seen = 1;
         lm.seen_by = 1u << robot;
-        m_store.insert(*candidates.new_id, lm);
-        r.id = *candidates.new_id;
+        m_store.insert(id, lm);
+        r.id = id;
         r.created = true;
         r.log_w = std::log(insertionOptions.p0);
         return r;

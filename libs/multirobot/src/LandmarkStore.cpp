@@ -1,5 +1,6 @@
 #include <mrpt_vslam/multirobot/LandmarkStore.h>
 
+#include <atomic>
 #include <cassert>
 
 namespace mrpt_vslam::multirobot {
@@ -12,6 +13,8 @@ LandmarkStore::Block& LandmarkStore::writableBlock(size_t b)
         block = std::make_shared<Block>();
     else if (block.use_count() > 1)
         block = std::make_shared<Block>(*block);  // copy on write
+    else  // sole owner; a particle updated on another thread may have just let go of it
+        std::atomic_thread_fence(std::memory_order_acquire);
     return *block;
 }
 
@@ -41,6 +44,18 @@ void LandmarkStore::clear()
 {
     m_blocks.clear();
     m_count = 0;
+}
+
+void LandmarkStore::renumber(const std::vector<std::pair<uint32_t, uint32_t>>& from_to)
+{
+    std::vector<TVisualLandmark> moved;
+    moved.reserve(from_to.size());
+    for (const auto& [from, to] : from_to) {
+        assert(find(from));
+        moved.push_back(*find(from));
+    }
+    for (const auto& [from, to] : from_to) erase(from);
+    for (size_t i = 0; i < from_to.size(); i++) insert(from_to[i].second, moved[i]);
 }
 
 size_t LandmarkStore::unsharedBlocks() const

@@ -7,6 +7,7 @@
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose2D.h>
+#include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/omni_fastslam/COmniFastSLAM.h>
 
 #include <Eigen/Cholesky>
@@ -145,16 +146,18 @@ std::vector<TBearingMeasurement> COmniFastSLAM::measurementsFromFrame(
     return {};
 }
 
-TPose2D COmniFastSLAM::sampleMotion(const TPose2D& from, const core::TOdometryGaussian& motion)
+TPose2D COmniFastSLAM::sampleMotion(const TPose2D& from, const core::TOdometryGaussian& motion,
+                                    const Eigen::Vector3d& noise)
 {
-    return from + plus(motion.mean, core::drawGaussian(m_rng, motion.L));
+    return from + plus(motion.mean, motion.L * noise);
 }
 
 TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
                                                const std::vector<TBearingMeasurement>& z,
                                                const core::TOdometryGaussian& motion,
                                                const Eigen::Matrix3d& R,
-                                               std::vector<int>& landmark_of_measurement)
+                                               const Eigen::Vector3d& noise,
+                                               std::vector<int>& landmark_of_measurement) const
 {
     const auto& map = p.map;
     const auto& lms = map.landmarks();
@@ -195,7 +198,7 @@ TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
         const int j = landmark_of_measurement[l];
         if (j >= 0 && lms[j].type == TLandmarkType::TypeI) order.push_back(l);
     }
-    if (order.empty()) return sampleMotion(p.robot_in_map, motion);  // line 2
+    if (order.empty()) return sampleMotion(p.robot_in_map, motion, noise);  // line 2
     std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
         const double ta = lms[landmark_of_measurement[a]].cov.trace();
         const double tb = lms[landmark_of_measurement[b]].cov.trace();
@@ -216,7 +219,8 @@ TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
                           BearingMeasurementModel::innovation(z[l].z, pred.z));  // line 9
     }
     // line 14: x_t ~ N(μ_xt, Σ_xt)
-    return plus(mu, core::drawGaussian(m_rng, Sigma.llt().matrixL()));
+    const Eigen::Matrix3d L = Sigma.llt().matrixL();
+    return plus(mu, L * noise);
 }
 
 double COmniFastSLAM::updateParticle(TOmniFastSLAMParticle& p, const TPose2D& x_t, double timestamp,
@@ -248,11 +252,14 @@ void COmniFastSLAM::runStep(const mrpt::obs::CActionCollection* action,
     const core::TOdometryGaussian motion = core::TOdometryGaussian::from(
         action ? action->getBestMovementEstimation().get() : nullptr, options.motion_noise_floor);
     lastStepStats = {};
-    for (auto& part : m_particles) {
+    const auto noise = core::drawStandardNormals(m_rng, m_particles.size());
+    std::vector<size_t> measured(m_particles.size()), associated(m_particles.size());
+    core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
+        auto& part = m_particles[i];
         auto& p = *part.d;
         double timestamp = p.path ? p.path->timestamp : 0;
         const auto z = measurementsFromFrame(sf, p.map, timestamp);
-        lastStepStats.measurements = z.size();
+        measured[i] = z.size();
 
         std::vector<int> assoc;
         TPose2D x_t;
@@ -261,20 +268,23 @@ void COmniFastSLAM::runStep(const mrpt::obs::CActionCollection* action,
             // R_t: the odometry covariance in the map frame
             const Eigen::Matrix3d Jd = composeJacobianWrtIncrement(p.robot_in_map.phi);
             R_t = Jd * motion.cov * Jd.transpose();
-            x_t = sampleFastSLAM2Proposal(p, z, motion, R_t, assoc);
+            x_t = sampleFastSLAM2Proposal(p, z, motion, R_t, noise[i], assoc);
         } else {
-            x_t = sampleMotion(p.robot_in_map, motion);
+            x_t = sampleMotion(p.robot_in_map, motion, noise[i]);
             Eigen::VectorXd log_p_new(z.size());
             for (size_t l = 0; l < z.size(); l++) log_p_new(l) = p.map.logPNew(z[l]);
             assoc =
                 CCeilingLightsMap::solveAssociation(p.map.landmarkLogLikelihoods(z, x_t), log_p_new,
                                                     p.map.insertionOptions.association_method);
         }
-        const auto n_assoc = static_cast<size_t>(
+        associated[i] = static_cast<size_t>(
             std::count_if(assoc.begin(), assoc.end(), [](int j) { return j >= 0; }));
-        lastStepStats.associated_to_landmarks += n_assoc;
-        if (n_assoc == 0) lastStepStats.motion_only_samples++;
         addLogWeight(part, updateParticle(p, x_t, timestamp, z, assoc, R_t));
+    });
+    lastStepStats.measurements = measured.back();
+    for (const size_t n : associated) {
+        lastStepStats.associated_to_landmarks += n;
+        if (n == 0) lastStepStats.motion_only_samples++;
     }
 }
 

@@ -10,7 +10,7 @@
 namespace mrpt_vslam::core {
 
 /** The command line shared by the driver apps (doc/app-conventions.md):
- *  `APP CONFIG.ini [RAWLOG] [--out DIR] [--seed N] [--set SECTION.KEY=VALUE]...
+ *  `APP CONFIG.ini [RAWLOG] [--out DIR] [--seed N] [--threads N] [--set SECTION.KEY=VALUE]...
  *   [--ground-truth NAME] [--quiet] [--gui] [--help] [--version]`.
  *
  *  Usage in main():
@@ -32,6 +32,7 @@ class AppArguments {
     std::string rawlogFile;                  ///< positional RAWLOG; empty: config's `rawlog_file`
     std::string outDir;                      ///< `--out`, else defaultOutDir()
     uint32_t seed = 0;                       ///< `--seed`; 0: not given (see resolveSeed())
+    unsigned threads = 0;                    ///< `--threads`; 0: every core
     std::vector<TConfigOverride> overrides;  ///< every `--set`, in order
     std::string groundTruth;                 ///< `--ground-truth`; empty: look beside the rawlog
     bool quiet = false;                      ///< `--quiet`: no progress line, no chatter
@@ -39,7 +40,8 @@ class AppArguments {
     std::vector<std::string> commandLine;    ///< argv as given, for run.json
 
     /** Parses argv. Throws UsageError with a one-line reason ending in "(see APP --help)" for
-     *  unknown options, a missing CONFIG, extra positionals, or a malformed `--seed`/`--set`. */
+     *  unknown options, a missing CONFIG, extra positionals, or a malformed `--seed`,
+     *  `--threads` or `--set`. */
     static AppArguments parse(int argc, const char* const* argv, const std::string& appName,
                               const std::string& description);
 
@@ -59,7 +61,7 @@ class AppArguments {
     std::string groundTruthPrefix(const std::string& rawlog) const;
 
     /** Records this run's inputs in its report: the command line, the configuration (file and
-     *  effective text, `--set` included), the rawlog read and the seed used. */
+     *  effective text, `--set` included), the rawlog read, the seed and the threads used. */
     void describeInputs(RunReport& report, const std::string& effective_config,
                         const std::string& rawlog, uint32_t seed_used) const;
 };

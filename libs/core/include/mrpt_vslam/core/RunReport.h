@@ -36,6 +36,8 @@ class RunReport {
     /** Ground truth the run was compared with (`NAME` prefix or file); vslam-eval reads it. */
     void setGroundTruth(const std::string& name);
     void setSeed(uint32_t seed);
+    /// Threads the run used (timing.threads; the results do not depend on it).
+    void setThreads(unsigned threads);
     void setOpenCvVersion(const std::string& version);
     void setStartTime(std::chrono::system_clock::time_point t);
     /** The run went to its end: every output of the folder is written. */

@@ -7,6 +7,7 @@
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/core/OdometryGaussian.h>
+#include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/core/ParticleFilterDataImpl.h>
 #include <mrpt_vslam/multirobot/TeamParticle.h>
 
@@ -161,6 +162,9 @@ class CMultiRobotVisualSLAM
     /// `observer` (nullptr: none) is told of every reset() and step from now on; it must
     /// outlive its use by the filter.
     void setStepObserver(TStepObserver* observer) { m_observer = observer; }
+    /// Threads the particles are updated on (0, the default: every core). The results do not
+    /// depend on it: the same seed gives the same particles bit for bit.
+    void setThreadCount(unsigned threads) { m_threads = core::resolveThreadCount(threads); }
 
   protected:
     void prediction_and_update_pfStandardProposal(
@@ -202,8 +206,9 @@ class CMultiRobotVisualSLAM
                         const std::vector<TLandmarkMeasurement>& z,
                         const std::vector<TRobotReading>& readings);
 
-    size_t m_steps = 0;                   ///< since reset()
-    TStepObserver* m_observer = nullptr;  ///< setStepObserver()
+    size_t m_steps = 0;                                ///< since reset()
+    TStepObserver* m_observer = nullptr;               ///< setStepObserver()
+    unsigned m_threads = core::resolveThreadCount(0);  ///< setThreadCount()
 
     CVisualLandmarksMap m_template;  ///< empty; shares the particles' descriptor pool
     mrpt::random::CRandomGenerator m_rng;

@@ -144,9 +144,16 @@ class CVisualLandmarksMap : public mrpt::maps::CMetricMap {
      *  \param robot index of the robot that measured it (seen_by bit, < 32) */
     TFusionResult fuse(const TLandmarkMeasurement& m, const TMapMeasurement& in_map,
                        TMeasurementCandidates& candidates, unsigned robot);
+    /** The id a landmark created from `m` gets (Alg. 1 lines 33-36), kept in
+     *  candidates.new_id so that every particle creating it uses the same: the one already
+     *  there, else the landmark of m's identity (known correspondences), else a new pool id
+     *  created at in_map.z. Changes the shared pool: call it from one thread at a time. */
+    uint32_t reserveNewId(const TLandmarkMeasurement& m, const TMapMeasurement& in_map,
+                          TMeasurementCandidates& candidates);
     /** Step 4 with the association already made (`a`, or nullopt for a new landmark): the
-     *  EKF update of landmark a->id, or its creation; the result's log_w is a->log_likelihood
-     *  or log p0. */
+     *  EKF update of landmark a->id, or its creation (reserveNewId()); the result's log_w is
+     *  a->log_likelihood or log p0. With candidates.new_id set for every `a` = nullopt,
+     *  particles (maps sharing one pool) may call it on parallel threads. */
     TFusionResult fuseAs(const TLandmarkMeasurement& m, const TMapMeasurement& in_map,
                          TMeasurementCandidates& candidates, unsigned robot,
                          const std::optional<TAssociation>& a);
@@ -160,6 +167,11 @@ class CVisualLandmarksMap : public mrpt::maps::CMetricMap {
                                          const std::vector<TMapMeasurement>& in_map,
                                          std::vector<TMeasurementCandidates>& candidates,
                                          unsigned robot, bool distinct);
+    /// Moves landmarks to other ids, (from, to) each (see LandmarkStore::renumber()).
+    void renumberLandmarks(const std::vector<std::pair<uint32_t, uint32_t>>& from_to)
+    {
+        m_store.renumber(from_to);
+    }
     /// Removes the landmarks fused from fewer than `min_times_seen` measurements; returns how
     /// many it removed.
     size_t removeLandmarksSeenLessThan(unsigned min_times_seen);

@@ -7,6 +7,7 @@
 #include <mrpt/math/TPose2D.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/core/OdometryGaussian.h>
+#include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/core/ParticleFilterDataImpl.h>
 #include <mrpt_vslam/core/PathNode.h>
 #include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
@@ -109,6 +110,10 @@ class COmniFastSLAM
     /// All particles at `robot_in_map`, equal weights, maps = the template.
     void reset(const mrpt::math::TPose2D& robot_in_map, double timestamp);
 
+    /// Threads the particles are updated on (0, the default: every core). The results do not
+    /// depend on it: the same seed gives the same particles bit for bit.
+    void setThreadCount(unsigned threads) { m_threads = core::resolveThreadCount(threads); }
+
     /// A particle's path, oldest first: (timestamp, pose).
     static std::vector<std::pair<double, mrpt::math::TPose2D>> pathOf(
         const TOmniFastSLAMParticle& p);
@@ -127,15 +132,18 @@ class COmniFastSLAM
     std::vector<TBearingMeasurement> measurementsFromFrame(const mrpt::obs::CSensoryFrame* sf,
                                                            const CCeilingLightsMap& map,
                                                            double& timestamp) const;
-    mrpt::math::TPose2D sampleMotion(const mrpt::math::TPose2D& from,
-                                     const core::TOdometryGaussian& motion);
-    /// Steps 2-4 for one particle, with R_t of step 1: returns the sampled pose and the
-    /// level-1 association.
+    /// A sample of the motion model from `from`, with `noise` ~ N(0, I₃) drawn before.
+    static mrpt::math::TPose2D sampleMotion(const mrpt::math::TPose2D& from,
+                                            const core::TOdometryGaussian& motion,
+                                            const Eigen::Vector3d& noise);
+    /// Steps 2-4 for one particle, with R_t of step 1 and `noise` ~ N(0, I₃) drawn before:
+    /// returns the sampled pose and the level-1 association.
     mrpt::math::TPose2D sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
                                                 const std::vector<TBearingMeasurement>& z,
                                                 const core::TOdometryGaussian& motion,
                                                 const Eigen::Matrix3d& R,
-                                                std::vector<int>& landmark_of_measurement);
+                                                const Eigen::Vector3d& noise,
+                                                std::vector<int>& landmark_of_measurement) const;
     /// Step 5 and the path bookkeeping, shared by both proposals: returns the log-weight.
     double updateParticle(TOmniFastSLAMParticle& p, const mrpt::math::TPose2D& x_t,
                           double timestamp, const std::vector<TBearingMeasurement>& z,
@@ -145,6 +153,7 @@ class COmniFastSLAM
                  bool fastslam2);
 
     mrpt::random::CRandomGenerator m_rng;
+    unsigned m_threads = core::resolveThreadCount(0);  ///< setThreadCount()
 };
 
 }  // namespace mrpt_vslam::omni_fastslam

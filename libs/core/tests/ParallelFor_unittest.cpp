@@ -1,0 +1,43 @@
+#include <gtest/gtest.h>
+#include <mrpt_vslam/core/ParallelFor.h>
+
+#include <algorithm>
+#include <atomic>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+using mrpt_vslam::core::parallelFor;
+using mrpt_vslam::core::resolveThreadCount;
+
+TEST(ParallelFor, EveryIndexRunsOnceWhateverTheThreadCount)
+{
+    for (const unsigned threads : {0u, 1u, 2u, 3u, 7u})
+        for (const size_t n : {size_t{0}, size_t{1}, size_t{5}, size_t{1000}}) {
+            std::vector<std::atomic<int>> calls(n);
+            parallelFor(n, threads, [&](size_t i) { calls[i]++; });
+            for (size_t i = 0; i < n; i++)
+                ASSERT_EQ(calls[i].load(), 1) << "index " << i << ", " << threads << " threads";
+        }
+}
+
+TEST(ParallelFor, ThrowsTheErrorOfTheLowestFailingIndex)
+{
+    for (const unsigned threads : {1u, 2u, 4u}) {
+        try {
+            parallelFor(100, threads, [&](size_t i) {
+                if (i == 37 || i == 80 || i == 95) throw std::runtime_error(std::to_string(i));
+            });
+            ADD_FAILURE() << "no exception, " << threads << " threads";
+        } catch (const std::runtime_error& e) {
+            EXPECT_STREQ(e.what(), "37") << threads << " threads";
+        }
+    }
+}
+
+TEST(ParallelFor, ThreadCountZeroMeansEveryCore)
+{
+    EXPECT_EQ(resolveThreadCount(3), 3u);
+    EXPECT_EQ(resolveThreadCount(0), std::max(1u, std::thread::hardware_concurrency()));
+}
