@@ -2,12 +2,15 @@
 
 #include <mrpt/bayes/CParticleFilter.h>
 #include <mrpt/bayes/CParticleFilterCapable.h>
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/maps/TMetricMapInitializer.h>
 #include <mrpt/random/RandomGenerators.h>
+#include <mrpt/system/string_utils.h>
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "SlamApp.h"
 
@@ -38,6 +41,21 @@ class ParticleFilterApp : public SlamApp {
         const std::string exactlyOne =
             std::string("[") + kMapSection + "] must define exactly one map: " + countKey + " = 1";
         if (cfg.read_uint64_t(kMapSection, countKey, 0) != 1) throw usageError(exactlyOne);
+        // other kinds of map, which MRPT would load unchecked (read from a copy, so that a
+        // misspelt key is still reported as unknown)
+        const mrpt::config::CConfigFileMemory text(cfg.effectiveText());
+        std::vector<std::string> keys;
+        text.getAllKeys(kMapSection, keys);
+        for (const auto& key : keys) {
+            const std::string k = mrpt::system::lowerCase(key);
+            const bool count = k.size() > 6 && k.compare(k.size() - 6, 6, "_count") == 0;
+            const std::string n = mrpt::system::trim(text.read_string(kMapSection, key, "0"));
+            const bool positive = n.find_first_not_of("0123456789") == std::string::npos &&
+                                  n.find_first_not_of('0') != std::string::npos;
+            // (a count that is no number is left to the checked reader, which names the key)
+            if (count && positive && !mrpt::system::strCmpI(key, countKey))
+                throw usageError(exactlyOne);
+        }
         mrpt::maps::TSetOfMetricMapInitializers inits;
         try {
             const std::string name = countKey.substr(0, countKey.rfind("_count"));

@@ -1,12 +1,120 @@
 #include <mrpt_vslam/core/ParallelFor.h>
 
 #include <algorithm>
+#include <atomic>
+#include <condition_variable>
 #include <exception>
 #include <limits>
 #include <mutex>
 #include <thread>
+#include <vector>
 
 namespace mrpt_vslam::core {
+namespace {
+
+/** Worker threads that sleep between loops (a filter runs a few loops per step; spinning
+ *  workers would take the cores from other jobs and from each other when the machine is
+ *  busy). One loop at a time; a loop started inside a loop's body runs serially. */
+class WorkerPool {
+  public:
+    static WorkerPool& instance()
+    {
+        static WorkerPool pool;
+        return pool;
+    }
+    ~WorkerPool()
+    {
+        {
+            const std::lock_guard<std::mutex> lock(m_mutex);
+            m_stop = true;
+        }
+        m_wake.notify_all();
+        for (auto& t : m_workers) t.join();
+    }
+
+    void run(size_t n, unsigned threads, const std::function<void(size_t)>& body)
+    {
+        const std::lock_guard<std::mutex> one_loop(m_loop_mutex);
+        while (m_workers.size() + 1 < threads)
+            m_workers.emplace_back([this, id = m_workers.size()] { serve(id); });
+        {
+            const std::lock_guard<std::mutex> lock(m_mutex);
+            m_body = &body;
+            m_count = n;
+            // small chunks handed out as threads get free: a thread the system holds back
+            // delays the loop by one chunk, not by its share
+            m_chunk = std::max<size_t>(1, n / (8 * threads));
+            m_next = 0;
+            m_failed_index = std::numeric_limits<size_t>::max();
+            m_failure = nullptr;
+            m_participants = threads - 1;
+            m_active = threads - 1;
+            m_generation++;
+        }
+        m_wake.notify_all();
+        work();
+        std::unique_lock<std::mutex> lock(m_mutex);
+        m_done.wait(lock, [this] { return m_active == 0; });
+        if (m_failure) std::rethrow_exception(m_failure);
+    }
+
+  private:
+    void serve(size_t id)
+    {
+        uint64_t seen = 0;
+        std::unique_lock<std::mutex> lock(m_mutex);
+        for (;;) {
+            m_wake.wait(lock, [&] { return m_stop || m_generation != seen; });
+            if (m_stop) return;
+            seen = m_generation;
+            if (id >= m_participants) continue;
+            lock.unlock();
+            work();
+            lock.lock();
+            if (--m_active == 0) m_done.notify_all();
+        }
+    }
+
+    void work()
+    {
+        t_inside = true;
+        for (;;) {
+            const size_t start = m_next.fetch_add(m_chunk);
+            if (start >= m_count) break;
+            for (size_t i = start; i < std::min(start + m_chunk, m_count); i++) {
+                try {
+                    (*m_body)(i);
+                } catch (...) {
+                    const std::lock_guard<std::mutex> lock(m_mutex);
+                    if (i < m_failed_index) {
+                        m_failed_index = i;
+                        m_failure = std::current_exception();
+                    }
+                }
+            }
+        }
+        t_inside = false;
+    }
+
+  public:
+    static thread_local bool t_inside;  ///< this thread is running a loop's body
+
+  private:
+    std::mutex m_loop_mutex;  ///< one loop at a time
+    std::mutex m_mutex;
+    std::condition_variable m_wake, m_done;
+    std::vector<std::thread> m_workers;
+    bool m_stop = false;
+    uint64_t m_generation = 0;
+    const std::function<void(size_t)>* m_body = nullptr;
+    size_t m_count = 0, m_chunk = 1, m_participants = 0, m_active = 0;
+    std::atomic<size_t> m_next{0};
+    size_t m_failed_index = 0;
+    std::exception_ptr m_failure;
+};
+thread_local bool WorkerPool::t_inside = false;
+
+}  // namespace
 
 unsigned resolveThreadCount(unsigned requested)
 {
@@ -16,29 +124,11 @@ unsigned resolveThreadCount(unsigned requested)
 
 void parallelFor(size_t n, unsigned threads, const std::function<void(size_t)>& body)
 {
-    if (threads <= 1 || n <= 1) {
+    if (threads <= 1 || n <= 1 || WorkerPool::t_inside) {
         for (size_t i = 0; i < n; i++) body(i);
         return;
     }
-    std::mutex mutex;
-    size_t failed_index = std::numeric_limits<size_t>::max();
-    std::exception_ptr failure;
-    const auto count = static_cast<long long>(n);
-#ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads)
-#endif
-    for (long long i = 0; i < count; i++) {
-        try {
-            body(static_cast<size_t>(i));
-        } catch (...) {
-            const std::lock_guard<std::mutex> lock(mutex);
-            if (static_cast<size_t>(i) < failed_index) {
-                failed_index = static_cast<size_t>(i);
-                failure = std::current_exception();
-            }
-        }
-    }
-    if (failure) std::rethrow_exception(failure);
+    WorkerPool::instance().run(n, static_cast<unsigned>(std::min<size_t>(threads, n)), body);
 }
 
 }  // namespace mrpt_vslam::core

@@ -8,12 +8,13 @@ namespace mrpt_vslam::core {
 /** The number of threads `--threads N` asks for: N if N > 0, else every core of the machine. */
 unsigned resolveThreadCount(unsigned requested);
 
-/** Runs body(i) for every i in [0, n) on up to `threads` threads (OpenMP, static schedule).
+/** Runs body(i) for every i in [0, n) on up to `threads` threads: the caller's and workers
+ *  that sleep between loops, taking chunks of indices as they get free.
  *
  *  The bodies must not write state that another index reads or writes; then the result does
- *  not depend on the thread count. With threads <= 1, or without OpenMP, it is a plain loop.
- *  If bodies throw, the exception of the lowest index is rethrown once all have finished, so
- *  which error is reported does not depend on the thread count either. */
+ *  not depend on the thread count. With threads <= 1, n <= 1, or inside another loop's body,
+ *  it is a plain loop. If bodies throw, the exception of the lowest index is rethrown once the
+ *  loop has finished, so which error is reported does not depend on the thread count either. */
 void parallelFor(size_t n, unsigned threads, const std::function<void(size_t)>& body);
 
 }  // namespace mrpt_vslam::core
