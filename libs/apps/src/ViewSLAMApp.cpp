@@ -106,6 +106,7 @@ void ViewSLAMApp::Impl::loadConfig()
 
     try {
         slam = COmniViewSLAM::fromConfig(cfg, seed);
+        slam->setThreadCount(args.threads);
     } catch (const std::exception& e) {
         throw configError(e);
     }

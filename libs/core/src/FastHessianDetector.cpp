@@ -1,6 +1,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/format.h>
 #include <mrpt_vslam/core/FastHessianDetector.h>
+#include <mrpt_vslam/core/ParallelFor.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -62,7 +63,7 @@ struct TResponseLayer {
     std::vector<int8_t> laplacian_positive;  ///< 1 where Dxx + Dyy > 0
 };
 
-TResponseLayer computeLayer(const IntegralImage& ii, int filter_size, int step)
+TResponseLayer computeLayer(const IntegralImage& ii, int filter_size, int step, unsigned threads)
 {
     TResponseLayer layer;
     layer.filter_size = filter_size;
@@ -75,14 +76,16 @@ TResponseLayer computeLayer(const IntegralImage& ii, int filter_size, int step)
     // First and last grid index whose filter lies inside the image.
     const int c0 = (filter.half + step - 1) / step, c1 = (ii.width() - 1 - filter.half) / step;
     const int r0 = (filter.half + step - 1) / step, r1 = (ii.height() - 1 - filter.half) / step;
-    for (int r = r0; r <= r1; r++) {
+    if (r1 < r0) return layer;
+    parallelFor(size_t(r1 - r0 + 1), threads, [&](size_t i) {
+        const int r = r0 + int(i);
         for (int c = c0; c <= c1; c++) {
             const auto h = boxResponses(ii, c * step, r * step, filter);
             const size_t k = size_t(r) * layer.cols + c;
             layer.det[k] = static_cast<float>(h.determinant());
             layer.laplacian_positive[k] = h.trace() > 0;
         }
-    }
+    });
     return layer;
 }
 
@@ -210,8 +213,8 @@ FastHessianDetector::THessian FastHessianDetector::boxHessian(const IntegralImag
     return boxResponses(ii, col, row, TBoxFilter(filter_size));
 }
 
-std::vector<FastHessianDetector::TKeypoint> FastHessianDetector::detect(
-    const IntegralImage& ii) const
+std::vector<FastHessianDetector::TKeypoint> FastHessianDetector::detect(const IntegralImage& ii,
+                                                                        unsigned threads) const
 {
     const int width = ii.width(), height = ii.height();
     // Response maps by filter size; a size shared with a finer octave keeps its finer grid.
@@ -226,7 +229,8 @@ std::vector<FastHessianDetector::TKeypoint> FastHessianDetector::detect(
         for (int i = 0; i < kLayersPerOctave; i++) {
             const int size = filterSize(octave, i);
             auto it = layers.find(size);
-            if (it == layers.end()) it = layers.emplace(size, computeLayer(ii, size, step)).first;
+            if (it == layers.end())
+                it = layers.emplace(size, computeLayer(ii, size, step, threads)).first;
             views.emplace_back(it->second, step);
         }
         // The two middle layers of the octave (Sec. 3.4).

@@ -1,6 +1,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/format.h>
 #include <mrpt/img/CImage.h>
+#include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/viewmap/OmniFeatureExtractor.h>
 
 #include <Eigen/Dense>
@@ -162,6 +163,29 @@ OmniFeatureExtractor::TIntegralTable::TIntegralTable(const core::IntegralImage& 
     }
 }
 
+std::optional<OmniFeatureExtractor::TDescribed> OmniFeatureExtractor::describe(
+    const core::FastHessianDetector::TKeypoint& kp, const TIntegralTable& table) const
+{
+    const auto ray = m_camera.unproject(Eigen::Vector2d(kp.x, kp.y));
+    if (!ray) return std::nullopt;
+    // Image direction of the robot's −z at the point: the descriptor's "down" axis.
+    const Eigen::Vector3d zenith_in_camera = m_camera_to_robot.transpose().col(2);
+    const Eigen::Vector3d to_zenith = zenith_in_camera - zenith_in_camera.dot(*ray) * *ray;
+    const Eigen::Vector2d up = m_camera.projectJacobian(*ray) * to_zenith;
+    if (!(up.norm() > 1e-9)) return std::nullopt;  // the zenith itself: no orientation
+    const Eigen::Vector2d down = -up.normalized();
+    // The window's corners (shrunk by window_margin) inside the image circle.
+    const double half = m_options.window_margin * kWindowHalfSide * kp.scale;
+    const Eigen::Vector2d u_axis(down.y(), -down.x());
+    for (const double a : {-half, half})
+        for (const double b : {-half, half})
+            if (!m_camera.unproject(Eigen::Vector2d(kp.x, kp.y) + a * u_axis + b * down))
+                return std::nullopt;
+    const auto descriptor = orientedDescriptor(table, kp.x, kp.y, kp.scale, down);
+    if (!descriptor) return std::nullopt;
+    return TDescribed{*ray, *descriptor};
+}
+
 TViewFeatures OmniFeatureExtractor::extract(const mrpt::img::CImage& image) const
 {
     if (image.getWidth() != size_t(m_camera.width) ||
@@ -171,7 +195,8 @@ TViewFeatures OmniFeatureExtractor::extract(const mrpt::img::CImage& image) cons
                          image.getWidth(), image.getHeight(), m_camera.width, m_camera.height));
     }
     const core::IntegralImage integral(image);  // grayscale, 8-bit check
-    std::vector<core::FastHessianDetector::TKeypoint> keypoints = m_detector.detect(integral);
+    std::vector<core::FastHessianDetector::TKeypoint> keypoints =
+        m_detector.detect(integral, m_threads);
     const TIntegralTable table(integral);
     std::sort(keypoints.begin(), keypoints.end(), [](const auto& a, const auto& b) {
         return std::make_tuple(-a.response, a.y, a.x, a.scale) <
@@ -185,33 +210,23 @@ TViewFeatures OmniFeatureExtractor::extract(const mrpt::img::CImage& image) cons
     f.scales.reserve(capacity);
     f.laplacian_signs.reserve(capacity);
     f.descriptors.reserve(capacity);
-    const Eigen::Vector3d zenith_in_camera = m_camera_to_robot.transpose().col(2);
-    for (const auto& kp : keypoints) {
-        if (f.size() == capacity) break;
-        const auto ray = m_camera.unproject(Eigen::Vector2d(kp.x, kp.y));
-        if (!ray) continue;
-        // Image direction of the robot's −z at the point: the descriptor's "down" axis.
-        const Eigen::Vector3d to_zenith = zenith_in_camera - zenith_in_camera.dot(*ray) * *ray;
-        const Eigen::Vector2d up = m_camera.projectJacobian(*ray) * to_zenith;
-        if (!(up.norm() > 1e-9)) continue;  // the zenith itself: no orientation
-        const Eigen::Vector2d down = -up.normalized();
-        // The window's corners (shrunk by window_margin) inside the image circle.
-        const double half = m_options.window_margin * kWindowHalfSide * kp.scale;
-        const Eigen::Vector2d u_axis(down.y(), -down.x());
-        bool window_inside = true;
-        for (const double a : {-half, half})
-            for (const double b : {-half, half})
-                window_inside = window_inside && m_camera.unproject(Eigen::Vector2d(kp.x, kp.y) +
-                                                                    a * u_axis + b * down);
-        if (!window_inside) continue;
-        const auto descriptor = orientedDescriptor(table, kp.x, kp.y, kp.scale, down);
-        if (!descriptor) continue;
-        const auto k = Eigen::Index(f.size());
-        f.pixels.col(k) << float(kp.x), float(kp.y);
-        f.rays.col(k) = m_camera_to_robot * *ray;
-        f.scales.push_back(float(kp.scale));
-        f.laplacian_signs.push_back(int8_t(kp.laplacian_sign));
-        f.descriptors.push_back(*descriptor);
+    // the strongest keypoints that have a feature, described a batch at a time in parallel
+    std::vector<std::optional<TDescribed>> batch;
+    for (size_t next = 0; next < keypoints.size() && f.size() < capacity;) {
+        batch.assign(std::min(keypoints.size() - next, capacity - f.size()), std::nullopt);
+        core::parallelFor(batch.size(), m_threads,
+                          [&](size_t i) { batch[i] = describe(keypoints[next + i], table); });
+        for (size_t i = 0; i < batch.size(); i++) {
+            if (!batch[i]) continue;
+            const auto& kp = keypoints[next + i];
+            const auto k = Eigen::Index(f.size());
+            f.pixels.col(k) << float(kp.x), float(kp.y);
+            f.rays.col(k) = m_camera_to_robot * batch[i]->ray;
+            f.scales.push_back(float(kp.scale));
+            f.laplacian_signs.push_back(int8_t(kp.laplacian_sign));
+            f.descriptors.push_back(batch[i]->descriptor);
+        }
+        next += batch.size();
     }
     f.pixels.conservativeResize(2, Eigen::Index(f.size()));
     f.rays.conservativeResize(3, Eigen::Index(f.size()));

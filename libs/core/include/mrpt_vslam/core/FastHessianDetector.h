@@ -83,8 +83,9 @@ class FastHessianDetector {
     /// \throw std::invalid_argument if the options are invalid (TOptions::validate()).
     explicit FastHessianDetector(const TOptions& options);
 
-    /// Keypoints of the image, in no particular order.
-    std::vector<TKeypoint> detect(const IntegralImage& integral) const;
+    /// Keypoints of the image, in no particular order; the response maps are computed on up
+    /// to `threads` threads (rows in parallel; the same keypoints whatever the count).
+    std::vector<TKeypoint> detect(const IntegralImage& integral, unsigned threads = 1) const;
 
     /** Box responses of filter size L (odd multiple of 3, ≥ 9) centred on pixel (col, row). The
      *  filter must lie inside the image: (L − 1)/2 ≤ col ≤ width − 1 − (L − 1)/2, same for rows

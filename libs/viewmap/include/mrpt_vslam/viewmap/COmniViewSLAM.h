@@ -122,6 +122,9 @@ class COmniViewSLAM {
     /// Whether the config's [CameraOnRobot] sets the camera's orientation.
     bool cameraOnRobotConfigured() const { return m_camera_on_robot_configured; }
     const OmniFeatureExtractor& extractor() const { return m_extractor; }
+    /// Threads the feature extraction runs on (0: every core; default 1); the results do not
+    /// depend on it.
+    void setThreadCount(unsigned threads) { m_extractor.setThreadCount(threads); }
 
     const ViewMapEKF& ekf() const { return m_ekf; }
     /// The view map with the EKF's current estimates.

@@ -3,6 +3,7 @@
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt_vslam/core/FastHessianDetector.h>
 #include <mrpt_vslam/core/IntegralImage.h>
+#include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/core/USurfDescriptor.h>
 #include <mrpt_vslam/core/UnifiedSphereCamera.h>
 #include <mrpt_vslam/viewmap/ViewFeatures.h>
@@ -121,12 +122,23 @@ class OmniFeatureExtractor {
     const Eigen::Matrix3d& cameraToRobot() const { return m_camera_to_robot; }
     /// \throw std::invalid_argument if `camera_to_robot` is not a rotation matrix.
     void setCameraToRobot(const Eigen::Matrix3d& camera_to_robot);
+    /// Threads extract() runs on (0: every core; default 1); the features do not depend on it.
+    void setThreadCount(unsigned threads) { m_threads = core::resolveThreadCount(threads); }
 
   private:
+    /// A keypoint's feature: its ray in the camera frame and descriptor, if it has one.
+    struct TDescribed {
+        Eigen::Vector3d ray;
+        core::USurfDescriptor::TDescriptor descriptor;
+    };
+    std::optional<TDescribed> describe(const core::FastHessianDetector::TKeypoint& kp,
+                                       const TIntegralTable& table) const;
+
     core::UnifiedSphereCamera m_camera;
     Eigen::Matrix3d m_camera_to_robot;
     TOptions m_options;
     core::FastHessianDetector m_detector;
+    unsigned m_threads = 1;
 };
 
 }  // namespace mrpt_vslam::viewmap
