@@ -3,7 +3,7 @@
 # whole-run timings of the shipped configurations on their shipped datasets (run.json: wall
 # clock of the run and time per filter step, median of RUNS runs). Writes doc/results/speed.md
 # (or $RESULTS) with the machine's CPU, core count and load; the documentation quotes only that
-# file. Builds first (scripts/setup.sh). Takes about 15 min on this project's 2-core machines.
+# file. Builds first (scripts/setup.sh). Takes about 20 min on this project's 2-core machines.
 # Run it on an otherwise idle machine: the header records the load average at the start and end.
 # Environment: RESULTS, OUT (run folders, default out/bench), RUNS (default 3), MIN_TIME (Google
 # Benchmark's minimum time per benchmark in seconds, default 0.5), BENCH_FILTER (a regular
@@ -27,21 +27,28 @@ DATA="$REPO_DIR/datasets"
 mkdir -p "$OUT" "$(dirname "$RESULTS")"
 
 # --- whole runs -----------------------------------------------------------------------------
-# whole NAME APP CONFIG RAWLOG (under datasets/ or $OUT): RUNS runs with seeds 1..RUNS; one table
-# row with the medians of run.json's total_s and per-step mean, and the data's duration (the span
-# of its ground truth) over the run's
+# whole NAME APP CONFIG RAWLOG (under datasets/ or $OUT): RUNS runs with seeds 1..RUNS on one
+# thread and on every core; per thread count one table row with the medians of run.json's
+# total_s and per-step mean, and the data's duration (the span of its ground truth) over the run's
 whole() {
-  local name="$1" app="$2" config="$3" rawlog="$4" seed
-  echo "whole run: $name" >&2
+  local name="$1" app="$2" config="$3" rawlog="$4" seed threads
   local data="$DATA"
   [ -f "$data/$rawlog" ] || data="$OUT"
-  for seed in $(seq 1 "$RUNS"); do
-    "$BIN/$app" "$CONFIGS/$config" "$data/$rawlog" --out "$OUT/$name-seed$seed" --seed "$seed" \
-      --quiet
+  for threads in $( (echo 1; nproc) | uniq); do
+    echo "whole run: $name, $threads thread(s)" >&2
+    for seed in $(seq 1 "$RUNS"); do
+      "$BIN/$app" "$CONFIGS/$config" "$data/$rawlog" --out "$OUT/$name-t$threads-seed$seed" \
+        --seed "$seed" --threads "$threads" --quiet
+    done
+    whole_row "$name-t$threads" "$threads" "$config" "$rawlog" "$data"
   done
-  python3 - "$name" "$config" "$rawlog" "$data" "$OUT" "$RUNS" <<'EOF_PY'
+}
+
+# whole_row NAME THREADS CONFIG RAWLOG DATA_DIR: the table row of the runs NAME-seed*
+whole_row() {
+  python3 - "$@" "$OUT" "$RUNS" <<'EOF_PY'
 import glob, json, statistics, sys
-name, config, rawlog, data, out, runs = sys.argv[1:7]
+name, threads, config, rawlog, data, out, runs = sys.argv[1:8]
 times = [float(line.split()[0]) for f in glob.glob(f"{data}/{rawlog[:-len('.rawlog')]}.groundtruth*.tum")
          for line in open(f) if line.strip() and not line.startswith("#")]
 data_s = max(times) - min(times)
@@ -50,7 +57,7 @@ total = statistics.median(d["timing"]["total_s"] for d in docs)
 step = statistics.median(d["timing"]["per_step_ms"]["mean"] for d in docs)
 steps = docs[0]["timing"]["steps"]
 rt = f"{data_s / total:.0f}×"
-print(f"| {name} | `{config}` | `{rawlog}` | {steps} | {total:.2f} | {step:.2f} | {rt} |")
+print(f"| `{config}` | `{rawlog}` | {threads} | {steps} | {total:.2f} | {step:.2f} | {rt} |")
 EOF_PY
 }
 
@@ -61,7 +68,7 @@ EOF_PY
   echo "the mean time per filter step, each the median of $RUNS run(s) with seeds 1 to $RUNS; real"
   echo "time: the data's duration (its ground truth's time span; simulated data too) over the run's."
   echo
-  echo "| run | config | rawlog | steps | run [s] | per step [ms] | real time |"
+  echo "| config | rawlog | threads | steps | run [s] | per step [ms] | real time |"
   echo "|---|---|---|---|---|---|---|"
   whole omni-fastslam omni-fastslam omni-fastslam/sports-hall.ini sports-hall/hall.rawlog
   whole multirobot-2 multirobot-vslam multirobot-vslam/office-team-2.ini office-team/team2.rawlog
@@ -81,9 +88,10 @@ EOF_PY
   # --- benchmarks ---------------------------------------------------------------------------
   echo "## Benchmarks (Google Benchmark, tests/bench)"
   echo
-  echo "CPU time per iteration, one thread, at least $MIN_TIME s per benchmark."
+  echo "Wall-clock time per iteration (on T threads where the benchmark says T: 0 = every core;"
+  echo "otherwise one), at least $MIN_TIME s per benchmark."
   echo
-  echo "| program | benchmark | CPU time | iterations |"
+  echo "| program | benchmark | time | iterations |"
   echo "|---|---|---|---|"
   for bench in "$BUILD_DIR"/bench/bench_*; do
     [ -x "$bench" ] || continue
@@ -99,7 +107,7 @@ scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
 for b in json.load(open(file))["benchmarks"]:
     if b.get("run_type", "iteration") != "iteration":
         continue
-    ms = b["cpu_time"] * scale[b["time_unit"]]
+    ms = b["real_time"] * scale[b["time_unit"]]
     text = f"{ms * 1e3:.2f} µs" if ms < 1 else f"{ms:.2f} ms" if ms < 1e3 else f"{ms / 1e3:.2f} s"
     print(f"| {name} | `{b['name']}` | {text} | {b['iterations']} |")
 EOF_PY

@@ -1,7 +1,8 @@
 // One step of the multi-robot visual SLAM filter (Gil et al. 2010, Alg. 1 lines 5-15) on the
 // synthetic team world, for the (M, B, K) of doc/multirobot.md: (500, 8, 2), (1500, 20, 2),
 // (3000, 20, 3), the last also with resampling after each robot (R = 1, as office-team-3.ini);
-// O = 0 the paper's proposal (pfStandardProposal), O = 1 pfOptimalProposal (office-team-2.ini).
+// O = 0 the paper's proposal (pfStandardProposal), O = 1 pfOptimalProposal (office-team-2.ini);
+// T threads (0: every core). Wall-clock time.
 // The map is first built over 60 steps; the timed steps continue the run.
 #include <benchmark/benchmark.h>
 #include <mrpt/bayes/CParticleFilter.h>
@@ -27,6 +28,7 @@ void BM_MultiRobotStep(benchmark::State& state)
     for (size_t k = 0; k < K; k++) filter.options.robots.push_back("R" + std::to_string(k + 1));
     filter.options.max_observations_per_robot = B;
     filter.options.resample_per_robot = state.range(3) != 0;
+    filter.setThreadCount(static_cast<unsigned>(state.range(5)));
     filter.reset(world.startPoses(), world.time);
     mrpt::random::getRandomGenerator().randomize(1);
     mrpt::bayes::CParticleFilter pf;
@@ -52,14 +54,17 @@ void BM_MultiRobotStep(benchmark::State& state)
 }  // namespace
 
 BENCHMARK(BM_MultiRobotStep)
-    ->ArgNames({"M", "B", "K", "R", "O"})
-    ->Args({500, 8, 2, 0, 0})
-    ->Args({500, 8, 2, 0, 1})
-    ->Args({1500, 20, 2, 0, 0})
-    ->Args({1500, 20, 2, 0, 1})
-    ->Args({3000, 20, 3, 0, 0})
-    ->Args({3000, 20, 3, 1, 0})
-    ->Args({3000, 20, 3, 0, 1})
-    ->Args({3000, 20, 3, 1, 1})
+    ->ArgNames({"M", "B", "K", "R", "O", "T"})
+    ->Args({500, 8, 2, 0, 0, 1})
+    ->Args({500, 8, 2, 0, 1, 1})
+    ->Args({1500, 20, 2, 0, 0, 1})
+    ->Args({1500, 20, 2, 0, 1, 1})
+    ->Args({3000, 20, 3, 0, 0, 1})
+    ->Args({3000, 20, 3, 1, 0, 1})
+    ->Args({3000, 20, 3, 0, 1, 1})
+    ->Args({3000, 20, 3, 1, 1, 1})
+    ->Args({3000, 20, 3, 1, 0, 0})
+    ->Args({3000, 20, 3, 1, 1, 0})
     ->Iterations(kTimed)
+    ->UseRealTime()
     ->Unit(benchmark::kMillisecond);

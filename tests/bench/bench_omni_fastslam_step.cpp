@@ -56,11 +56,13 @@ void BM_OmniFastSLAMStep(benchmark::State& state)
     pf.m_options.resamplingMethod = mrpt::bayes::CParticleFilter::prSystematic;
     pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
     auto filter = newFilter(M);
+    filter->setThreadCount(static_cast<unsigned>(state.range(1)));
     size_t k = 0;
     for (auto _ : state) {
         if (k == data.pairs.size()) {
             state.PauseTiming();
             filter = newFilter(M);
+            filter->setThreadCount(static_cast<unsigned>(state.range(1)));
             k = 0;
             state.ResumeTiming();
         }
@@ -70,5 +72,13 @@ void BM_OmniFastSLAMStep(benchmark::State& state)
     state.counters["landmarks"] =
         static_cast<double>(filter->bestParticle().map.landmarks().size());
 }
-BENCHMARK(BM_OmniFastSLAMStep)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+// (M, threads): threads 0 = every core; wall-clock time
+BENCHMARK(BM_OmniFastSLAMStep)
+    ->ArgNames({"M", "T"})
+    ->Args({10, 1})
+    ->Args({100, 1})
+    ->Args({1000, 1})
+    ->Args({1000, 0})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 }  // namespace

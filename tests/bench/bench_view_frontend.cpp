@@ -73,19 +73,26 @@ OmniViewObserver observer(bool restrict_search_area)
     return OmniViewObserver(opt);
 }
 
-// Fast-Hessian, oriented SURF descriptors and rays of one image.
+// Fast-Hessian, oriented SURF descriptors and rays of one image, on T threads (0: every core).
 void BM_ExtractFeatures(benchmark::State& state)
 {
     TSetup& s = TSetup::get();
+    OmniFeatureExtractor extractor = s.extractor;
+    extractor.setThreadCount(static_cast<unsigned>(state.range(0)));
     size_t n = 0;
     for (auto _ : state) {
-        const TViewFeatures f = s.extractor.extract(s.current_image);
+        const TViewFeatures f = extractor.extract(s.current_image);
         n = f.size();
         benchmark::DoNotOptimize(f);
     }
     state.counters["features"] = double(n);
 }
-BENCHMARK(BM_ExtractFeatures)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ExtractFeatures)
+    ->ArgName("T")
+    ->Arg(1)
+    ->Arg(0)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 // Matching of the current image with view 0; argument 1: restricted to the predicted area.
 void BM_MatchView(benchmark::State& state)
