@@ -8,30 +8,35 @@
 #include <mrpt_vslam/core/Version.h>
 
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace mrpt_vslam::core {
 namespace {
 
-constexpr unsigned long kMaxThreads = 256;
+constexpr unsigned long long kMaxThreads = 256;
+
+/// `text` as a whole decimal number from 0 to `max` (digits only), or nullopt.
+std::optional<unsigned long long> parseDecimal(const std::string& text, unsigned long long max)
+{
+    // at most 19 digits: no overflow of unsigned long long
+    if (text.empty() || text.size() > 19 ||
+        text.find_first_not_of("0123456789") != std::string::npos)
+        return std::nullopt;
+    const unsigned long long v = std::stoull(text);
+    return v <= max ? std::optional(v) : std::nullopt;
+}
 
 uint32_t parseSeed(const std::string& text)
 {
-    const bool digits_only =
-        !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
-    if (digits_only && text.size() <= 10) {
-        const unsigned long long v = std::stoull(text);
-        if (v <= std::numeric_limits<uint32_t>::max()) return static_cast<uint32_t>(v);
-    }
+    if (const auto v = parseDecimal(text, std::numeric_limits<uint32_t>::max()))
+        return static_cast<uint32_t>(*v);
     throw UsageError("--seed " + text + ": expected an integer from 0 to 4294967295");
 }
 
 unsigned parseThreads(const std::string& text)
 {
-    const bool digits_only =
-        !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
-    if (digits_only && text.size() <= 4 && std::stoul(text) <= kMaxThreads)
-        return static_cast<unsigned>(std::stoul(text));
+    if (const auto v = parseDecimal(text, kMaxThreads)) return static_cast<unsigned>(*v);
     throw UsageError("--threads " + text + ": expected an integer from 0 (every core) to " +
                      std::to_string(kMaxThreads));
 }
