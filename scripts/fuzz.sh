@@ -3,10 +3,11 @@
 # fuzzer runtime if missing, builds the target with libFuzzer, AddressSanitizer and UBSan into
 # build-fuzz/, and runs it for SECONDS on a corpus in out/fuzz/TARGET/ (kept between runs, started
 # from the shipped data: rawlogs also gunzipped, configs, text files). Crashing inputs go to
-# out/fuzz/TARGET/crashes/. Prints libFuzzer's last status line (executions, coverage) and exits
-# non-zero if the target crashed.
+# out/fuzz/TARGET/crashes/. Prints libFuzzer's last status line (executions, coverage), writes
+# the run's figures as the target's row of doc/results/fuzz.md (or $RESULTS), and exits non-zero
+# if the target crashed.
 # Usage: scripts/fuzz.sh TARGET SECONDS     TARGET: rawlog, config, text_files or filter_step
-# Environment: BUILD_DIR (default build-fuzz), JOBS, OUT (default out/fuzz).
+# Environment: BUILD_DIR (default build-fuzz), JOBS, OUT (default out/fuzz), RESULTS.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 TARGET="${1:-}"
@@ -20,6 +21,7 @@ esac
 BUILD_DIR="${BUILD_DIR:-$REPO_DIR/build-fuzz}"
 OUT="${OUT:-$REPO_DIR/out/fuzz}/$TARGET"
 JOBS="${JOBS:-$(nproc)}"
+RESULTS="${RESULTS:-$REPO_DIR/doc/results/fuzz.md}"
 
 # the project's own packages (scripts/setup.sh without building), then clang's fuzzer runtime
 source "$REPO_DIR/scripts/setup.sh" --packages-only
@@ -67,7 +69,37 @@ set +e
   -print_final_stats=1 2> "$OUT/fuzz.log"
 status=$?
 set -e
-grep -E "^#[0-9]+" "$OUT/fuzz.log" | tail -1
+last="$(grep -E "^#[0-9]+" "$OUT/fuzz.log" | tail -1)"
+echo "$last"
 grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$OUT/fuzz.log" || true
+
+# the target's row of the results table (the other targets' rows kept)
+field() { sed -n "s/.* $1: *\([0-9]*\).*/\1/p" <<< "$last"; }
+executions="$(sed -n 's/^stat::number_of_executed_units: *//p' "$OUT/fuzz.log")"
+outcome="no crash, no hang, no sanitizer report"
+[ "$status" = 0 ] || outcome="**failed (exit $status)**: input in out/fuzz/$TARGET/crashes/"
+row="| $TARGET | $(date -u '+%Y-%m-%d %H:%M') | $(git -C "$REPO_DIR" rev-parse --short HEAD) |"
+row+=" $SECONDS_TO_RUN | ${executions:-?} | $(field exec/s) | $(field cov) | $(field ft) |"
+row+=" $(sed -n 's/.* corp: *\([0-9]*\).*/\1/p' <<< "$last") | $outcome |"
+if [ ! -f "$RESULTS" ]; then
+  {
+    echo "# Fuzzing: the long runs"
+    echo
+    echo "One row per fuzz target: its last run of \`scripts/fuzz.sh TARGET SECONDS\` (libFuzzer with"
+    echo "AddressSanitizer and UBSan, clang $(clang --version | sed -n 's/.*version \([0-9.]*\).*/\1/p' | head -1)),"
+    echo "on $(sed -n 's/^model name[[:space:]]*: *//p' /proc/cpuinfo | head -1), one core per run. The corpus"
+    echo "grows from run to run (out/fuzz/TARGET/corpus, started from the shipped data); executions and"
+    echo "coverage are those of the run the row names. Coverage: libFuzzer's instrumented edges reached"
+    echo "(cov) and features (ft) at the end of the run."
+    echo
+    echo "| target | run (UTC) | commit | seconds | executions | executions/s | cov | ft | corpus | outcome |"
+    echo "|---|---|---|---|---|---|---|---|---|---|"
+  } > "$RESULTS"
+fi
+awk -v t="$TARGET" -v row="$row" '
+  $0 ~ "^\\| " t " \\|" { if (!done) print row; done = 1; next }
+  { print }
+  END { if (!done) print row }' "$RESULTS" > "$RESULTS.tmp"
+mv "$RESULTS.tmp" "$RESULTS"
 [ "$status" = 0 ] || echo "fuzz_$TARGET failed (exit $status): see $OUT/fuzz.log and $OUT/crashes/" >&2
 exit "$status"

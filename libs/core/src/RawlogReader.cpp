@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -19,15 +20,6 @@
 #include <fstream>
 #include <new>
 #include <stdexcept>
-
-// AddressSanitizer reserves terabytes of address space: no memory bound under it (GCC and clang)
-#if defined(__SANITIZE_ADDRESS__)
-#define MRPT_VSLAM_ADDRESS_SANITIZER
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define MRPT_VSLAM_ADDRESS_SANITIZER
-#endif
-#endif
 
 namespace mrpt_vslam::core {
 
@@ -81,6 +73,32 @@ TGzipTrailer readGzipTrailer(const std::string& file)
     t.uncompressedSize = uint32_t(isize[0]) | uint32_t(isize[1]) << 8 | uint32_t(isize[2]) << 16 |
                          uint32_t(isize[3]) << 24;
     return t;
+}
+
+/** The most memory one entry of `file` may ask for: 512 MiB, or more for a rawlog that may be
+ *  stored as a single CRawlog object: four times its content (the gzip trailer's size, or 16
+ *  times the compressed size, whichever is larger). A corrupt length field beyond it fails at
+ *  once instead of filling gigabytes first. */
+uint64_t entryMemoryBound(const std::string& file)
+{
+    std::error_code ec;
+    const uint64_t on_disk = std::filesystem::file_size(file, ec);
+    const TGzipTrailer gz = readGzipTrailer(file);
+    const uint64_t content =
+        ec ? 0 : gz.isGzip ? std::max<uint64_t>(16 * on_disk, gz.uncompressedSize) : on_disk;
+    return (uint64_t{512} << 20) + 4 * content;
+}
+
+/** Bounds this process's address space to what it maps now plus `extra` bytes: relative to the
+ *  mapping, so that it holds under AddressSanitizer (which reserves terabytes) too. */
+void boundAddressSpace(uint64_t extra)
+{
+    uint64_t mapped_pages = 0;
+    std::ifstream("/proc/self/statm") >> mapped_pages;
+    const auto page = static_cast<uint64_t>(sysconf(_SC_PAGESIZE));
+    const rlim_t bound = mapped_pages * page + extra;
+    const rlimit limit{bound, bound};
+    setrlimit(RLIMIT_AS, &limit);
 }
 
 }  // namespace
@@ -137,13 +155,11 @@ void RawlogReader::validate(const std::string& file)
         mmap(nullptr, sizeof(TShared), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
     if (memory == MAP_FAILED) throw std::runtime_error(file + ": cannot validate the rawlog");
     auto* shared = new (memory) TShared();
+    const uint64_t memory_bound = entryMemoryBound(file);
     std::fflush(nullptr);  // the child must not write the parent's buffered output again
     const pid_t child = fork();
     if (child == 0) {
-#if !defined(MRPT_VSLAM_ADDRESS_SANITIZER)
-        const rlimit memory_limit{4ull << 30, 4ull << 30};
-        setrlimit(RLIMIT_AS, &memory_limit);
-#endif
+        boundAddressSpace(memory_bound);
         const rlimit cpu_limit{kMaxSeconds, kMaxSeconds};
         setrlimit(RLIMIT_CPU, &cpu_limit);
         alarm(kMaxSeconds);  // wall clock too: a read that waits (a FIFO, a stalled disk)
@@ -155,8 +171,10 @@ void RawlogReader::validate(const std::string& file)
             }
         } catch (const std::bad_alloc&) {
             std::snprintf(shared->message, sizeof(shared->message),
-                          "%s: corrupt rawlog: entry %llu asks for more memory than 4 GiB",
-                          file.c_str(), static_cast<unsigned long long>(shared->objects + 1));
+                          "%s: corrupt rawlog: entry %llu asks for more memory than a rawlog of "
+                          "this size can hold (%llu MiB)",
+                          file.c_str(), static_cast<unsigned long long>(shared->objects + 1),
+                          static_cast<unsigned long long>(memory_bound >> 20));
             status = kReadError;
         } catch (const std::exception& e) {
             std::snprintf(shared->message, sizeof(shared->message), "%s", e.what());
@@ -210,6 +228,9 @@ CSerializable::Ptr RawlogReader::readFromFile()
                  "', which is not registered (load the library that defines it)");
         const bool nothing_read = dynamic_cast<const mrpt::serialization::CExceptionEOF*>(&e) &&
                                   m_impl->in.getPosition() == start && m_impl->in.checkEOF();
+        // a corrupt length beyond validate()'s memory bound
+        if (reason.find("bad_alloc") != std::string::npos)
+            fail(after + "an object asks for more memory than a rawlog of this size can hold");
         if (!nothing_read) fail(after + reason);
         // End of the data: complete only if the gzip trailer agrees on the size.
         if (m_impl->trailer.isGzip &&

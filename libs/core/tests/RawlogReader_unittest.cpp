@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <mrpt/img/CImage.h>
 #include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/io/CFileOutputStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -212,6 +213,29 @@ TEST(RawlogReader, TruncatedFileIsAnError)
     EXPECT_EQ(
         readAllError(no_trailer),
         no_trailer + ": corrupt or truncated rawlog after entry 6: the compressed data ends early");
+}
+
+TEST(RawlogReader, CorruptLengthFailsBeforeAllocating)
+{
+    // An odometry reading whose label's length field says 1.5 GiB: refused by validate()'s
+    // memory bound, not allocated and filled before the read fails.
+    const std::string plain = (scratchDir() / "long_label.plain").string();
+    {
+        auto o = odometry(1.0);
+        o->sensorLabel = "LENGTH_FIELD_BEFORE_THIS";
+        mrpt::io::CFileOutputStream f(plain);
+        mrpt::serialization::archiveFrom(f) << *o;
+    }
+    std::string bytes = readBytes(plain);
+    const auto at = bytes.find("LENGTH_FIELD_BEFORE_THIS");
+    ASSERT_NE(at, std::string::npos);
+    ASSERT_GE(at, 4u);
+    ASSERT_EQ(bytes.substr(at - 4, 4), std::string("\x18\0\0\0", 4));  // uint32 24, LE
+    bytes.replace(at - 4, 4, std::string("\0\0\0\x60", 4));                  // 0x60000000
+    const std::string file = writeBytes("long_label.rawlog", bytes);
+    EXPECT_EQ(readAllError(file), file +
+                                      ": corrupt or truncated rawlog after entry 0: an object "
+                                      "asks for more memory than a rawlog of this size can hold");
 }
 
 TEST(RawlogReader, GarbageFileIsAnError)

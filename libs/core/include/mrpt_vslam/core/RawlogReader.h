@@ -103,9 +103,10 @@ class RawlogReader {
     /** Reads a whole rawlog and returns its summary. */
     static TRawlogSummary summarize(const std::string& file);
 
-    /** Reads every object of `file` in a child process (fork) with its address space and CPU
-     *  time bounded (4 GiB, 10 min; no bound on memory in sanitizer builds), and throws what
-     *  reading it there threw, or the crash, naming the entry. Returns if it reads cleanly. */
+    /** Reads every object of `file` in a child process (fork) with its memory and time bounded
+     *  (512 MiB more than the child maps at the start, or four times the rawlog's content for
+     *  large rawlogs; 10 min of CPU and of wall clock), and throws what reading it there threw,
+     *  or the crash, naming the entry. Returns if it reads cleanly. */
     static void validate(const std::string& file);
 
   private:
