@@ -188,7 +188,8 @@ TEST(VslamSim, BadArgumentsFailWithOneLineErrorAndCode2)
           "sports-hall --robots 2" + out, "office-team --robots 1" + out,
           "office-team --robots 4" + out, "office-team --robots 0" + out,
           "office-team --set World.texture_sed=3" + out,
-          "office-team --set Trajectory_R2.waypoints=-1.75,0,-1.75,3" + out}) {
+          "office-team --set Trajectory_R2.waypoints=-1.75,0,-1.75,3" + out,
+          "sports-hall --variant bogus" + out, "office-team --variant hard" + out}) {
         const TRun r = runSim(args);
         EXPECT_EQ(r.exit_code, 2) << args;  // usage error (doc/app-conventions.md)
         EXPECT_EQ(lineCount(r.out), 1) << args << "\n" << r.out;
@@ -196,6 +197,32 @@ TEST(VslamSim, BadArgumentsFailWithOneLineErrorAndCode2)
     }
     EXPECT_FALSE(fs::exists(kWorkDir / "bad" / "x.rawlog"));
     EXPECT_FALSE(fs::exists(kWorkDir / "bad" / "x.rawlog.tmp"));
+}
+
+TEST(VslamSim, HardHallVariantReplacesItsKeysOnly)
+{
+    const fs::path dir = kWorkDir / "hard";
+    fs::remove_all(dir);
+    const TRun r = runSim(
+        "sports-hall --variant hard --set Lights.height=4.5 --frames 3 "
+        "--no-images --quiet --out " +
+        (dir / "hall").string());
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    // the grid's 14 lights and the variant's two extra ones, at the --set height (--set last)
+    std::ifstream in(dir / "hall.landmarks.txt");
+    int n = 0;
+    bool at_height = true;
+    for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream is(line);
+        double id = 0, x = 0, y = 0, z = 0;
+        is >> id >> x >> y >> z;
+        at_height = at_height && z == 4.5;
+        n++;
+    }
+    EXPECT_EQ(n, 16);
+    EXPECT_TRUE(at_height);
+    EXPECT_EQ(dataLines(dir / "hall.groundtruth.tum"), 3);
 }
 
 TEST(VslamSim, UnknownScenarioListsTheKnownOnes)

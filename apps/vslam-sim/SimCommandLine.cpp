@@ -47,6 +47,11 @@ std::optional<TSimCommandLine> parseSimCommandLine(int argc, char** argv)
                                         "Scenario .ini (default: share/mrpt-vslam/config/"
                                         "vslam-sim/SCENARIO.ini)",
                                         false, "", "FILE.ini", cmd);
+    TCLAP::ValueArg<std::string> variant(
+        "", "variant",
+        "Named variant: the keys of vslam-sim/SCENARIO-NAME.ini (e.g. sports-hall-hard.ini) "
+        "over the scenario's config, before --set",
+        false, "", "NAME", cmd);
     TCLAP::MultiArg<std::string> sets("", "set", "Override one config key (repeatable)", false,
                                       "SECTION.KEY=VALUE", cmd);
     TCLAP::ValueArg<int> frames("n", "frames", "Simulate only the first N frames", false, -1, "N",
@@ -76,6 +81,7 @@ std::optional<TSimCommandLine> parseSimCommandLine(int argc, char** argv)
     c.scenario = scenario.getValue();
     c.out_prefix = out.getValue();
     c.config_file = config.getValue();
+    c.variant = variant.getValue();
     c.sets = sets.getValue();
     c.seed = static_cast<uint64_t>(seed.getValue());
     c.frames = frames.getValue();

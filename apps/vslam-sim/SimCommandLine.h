@@ -10,6 +10,7 @@ struct TSimCommandLine {
     std::string scenario;           ///< scenario name, e.g. sports-hall
     std::string out_prefix;         ///< --out DIR/NAME
     std::string config_file;        ///< --config FILE.ini; empty = the scenario's default
+    std::string variant;            ///< --variant NAME; empty = none
     std::vector<std::string> sets;  ///< --set SECTION.KEY=VALUE, in order
     uint64_t seed = 1;              ///< --seed
     int frames = -1;                ///< --frames; −1 = the scenario's full run

@@ -38,9 +38,11 @@ int main(int argc, char** argv)
 
         auto scenario = mrpt_vslam::sim::createScenario(cli->scenario);
         const std::string config_file =
-            cli->config_file.empty() ? defaultScenarioConfig(cli->scenario) : cli->config_file;
+            cli->config_file.empty() ? shippedSimConfig(cli->scenario) : cli->config_file;
+        const std::string variant_file =
+            cli->variant.empty() ? "" : shippedSimConfig(cli->scenario + "-" + cli->variant);
         mrpt_vslam::core::CheckedConfigFile cfg;
-        loadSimConfig(config_file, cli->sets, cfg);
+        loadSimConfig(config_file, variant_file, cli->sets, cfg);
         scenario->loadConfig(cfg);
         cfg.throwIfUnreadKeys();
 

@@ -16,6 +16,12 @@ std::vector<TCeilingLight> CeilingLights::lights() const
             out.push_back(light);
         }
     }
+    for (size_t i = 0; i + 1 < extra_lights.size(); i += 2) {
+        TCeilingLight light;
+        light.id = static_cast<int>(out.size()) + 1;
+        light.position = {extra_lights[i], extra_lights[i + 1], height};
+        out.push_back(light);
+    }
     return out;
 }
 
@@ -47,6 +53,7 @@ void CeilingLights::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
     const std::vector<double> rows =
         readNumberList(cfg, s, "column_rows", {column_rows.begin(), column_rows.end()});
     column_rows.assign(rows.begin(), rows.end());
+    extra_lights = readNumberList(cfg, s, "extra_lights", extra_lights);
     MRPT_LOAD_CONFIG_VAR(height, double, cfg, s);
     MRPT_LOAD_CONFIG_VAR(radius, double, cfg, s);
     MRPT_LOAD_CONFIG_VAR(washout_x_min, double, cfg, s);
@@ -61,6 +68,7 @@ void CeilingLights::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                        n == static_cast<int>(n);
                             }),
                 s, "column_rows", "integers in [0, number of rows]");
+    checkConfig(extra_lights.size() % 2 == 0, s, "extra_lights", "pairs x y");
     checkConfig(radius > 0, s, "radius", "> 0");
     checkConfig(washout_intervals.size() % 2 == 0, s, "washout_intervals", "pairs t0 t1");
     for (size_t i = 0; i < washout_intervals.size(); i += 2)

@@ -50,3 +50,23 @@ TEST(CeilingLights, RejectsRowCountsThatDoNotMatchTheColumns)
     CeilingLights layout;
     EXPECT_THROW(layout.loadFromConfigFile(cfg, "L"), mrpt_vslam::core::UsageError);
 }
+
+TEST(CeilingLights, ExtraLightsFollowTheGridAtItsHeight)
+{
+    mrpt::config::CConfigFileMemory cfg(
+        "[L]\ncolumn_x = 1 2\nrow_y = 0 5\ncolumn_rows = 2 1\nheight = 4\n"
+        "extra_lights = 1.5 0  2 6.2\n");
+    CeilingLights layout;
+    layout.loadFromConfigFile(cfg, "L");
+    const auto lights = layout.lights();
+    ASSERT_EQ(lights.size(), 5u);
+    EXPECT_EQ(lights[3].id, 4);
+    EXPECT_DOUBLE_EQ(lights[3].position.x, 1.5);
+    EXPECT_DOUBLE_EQ(lights[3].position.y, 0);
+    EXPECT_EQ(lights[4].id, 5);
+    EXPECT_DOUBLE_EQ(lights[4].position.y, 6.2);
+    EXPECT_DOUBLE_EQ(lights[4].position.z, 4);
+
+    mrpt::config::CConfigFileMemory odd("[L]\nextra_lights = 1 2 3\n");
+    EXPECT_THROW(layout.loadFromConfigFile(odd, "L"), mrpt_vslam::core::UsageError);
+}
