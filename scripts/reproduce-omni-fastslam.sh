@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Gamallo et al. 2013, Sec. IV on the shipped sports-hall dataset, written to
+# Gamallo et al. 2013, Sec. IV on the shipped sports-hall datasets, written to
 # doc/results/omni-fastslam.md (or $RESULTS) with its plots in doc/results/omni-fastslam/:
 #   1. the default run (sports-hall.ini, seed 1): accuracy, the per-light table (the paper's
 #      Table I) and the path / error plots (Fig. 6);
@@ -7,11 +7,13 @@
 #   3. bearings input against light detection in the images (input = images), seeds 1-3;
 #   4. the deviations from the paper, each against the paper's value over SEEDS: the initial
 #      landmark covariance Sigma0 and the refinement of a new landmark;
-#   5. with MRPT_VSLAM_MRCLAM_DIR (the folder of UTIAS MRCLAM dataset 7, doc/real-data.md):
+#   5. the harder hall (datasets/sports-hall-hard) over SEEDS: Hungarian, ML, and the paper's
+#      parameters (Sigma0, no refinement);
+#   6. with MRPT_VSLAM_MRCLAM_DIR (the folder of UTIAS MRCLAM dataset 7, doc/real-data.md):
 #      the planar bearing-only mode on robot 1 (mrclam-bearing-only.ini, MRCLAM_SEEDS), in
 #      doc/results/omni-fastslam-mrclam-r1.md (or $RESULTS_MRCLAM); skipped without it.
 # Run folders (metrics.json, run.json, plots) under out/reproduce-omni-fastslam/ (or $OUT).
-# Builds first (scripts/setup.sh). Takes about 1 min (2 more with the MRCLAM part).
+# Builds first (scripts/setup.sh). Takes about 2 min (2 more with the MRCLAM part).
 # Environment: OUT, SEEDS (default 1..10), MRCLAM_SEEDS (default 1..8), RESULTS, RESULTS_MRCLAM.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -71,13 +73,27 @@ for seed in $SEEDS; do
   done
   hall "no-refinement-seed$seed" --seed "$seed" --set "$INSERT.refine_initialization=false"
 done
+HARD="$REPO_DIR/datasets/sports-hall-hard/hall-hard"
+echo "5. the hard hall: Hungarian, ML and the paper's parameters, seeds $SEEDS"
+for seed in $SEEDS; do
+  for method in hungarian ml; do
+    run "hard-$method-seed$seed" "$CONFIGS/sports-hall.ini" "$HARD.rawlog" "$HARD" --seed "$seed" \
+      --set "$INSERT.association_method=$method"
+  done
+  run "hard-paper-seed$seed" "$CONFIGS/sports-hall.ini" "$HARD.rawlog" "$HARD" --seed "$seed" \
+    --set "$INSERT.sigma0_xx=0.0025" --set "$INSERT.sigma0_yy=0.0025" \
+    --set "$INSERT.sigma0_zz=0.0025" --set "$INSERT.refine_initialization=false"
+done
 for f in paths errors landmark_errors; do
   cp "$OUT/hungarian-seed1/$f.png" "$PLOTS/$f.png"
+done
+for f in paths errors; do
+  cp "$OUT/hard-hungarian-seed1/$f.png" "$PLOTS/hard-$f.png"
 done
 
 # The tables, from the run folders' metrics.json and run.json.
 {
-  header "Omnidirectional FastSLAM on the shipped sports hall"
+  header "Omnidirectional FastSLAM on the shipped sports halls"
   python3 - "$OUT" "$SEEDS" "$(basename "$PLOTS")" <<'PY'
 import json, statistics, sys
 out, seeds, plots = sys.argv[1], sys.argv[2].split(), sys.argv[3]
@@ -178,17 +194,29 @@ seed_table("## 4. Deviations from the paper\n\n"
            " false` (the paper: a new light at its best cross-point only).",
            [("shipped", "hungarian"), ("Σ0 = 0.0025", "sigma0-0.0025"),
             ("Σ0 = 0.01", "sigma0-0.01"), ("no refinement", "no-refinement")])
+seed_table("## 5. A harder hall: poor odometry, close lights, a lower ceiling\n\n"
+           "`datasets/sports-hall-hard` (`vslam-sim sports-hall --variant hard`: dead reckoning"
+           f" {row('hard-hungarian-seed1')['odometry']:.2f} m ATE RMSE, lights 15 and 16 about"
+           " 1.1 m from lights 2 and 7, the lights at 5.0 m, 530 frames) with `sports-hall.ini` as"
+           " shipped: hierarchical Hungarian association (shipped) or ml, and the paper's"
+           " parameters (Hungarian, Σ0 = 0.0025 m², no refinement of a new light).",
+           [("hungarian", "hard-hungarian"), ("ml", "hard-ml"),
+            ("paper's Σ0, no refinement", "hard-paper")])
+print(f"![estimated path, odometry, ground truth and lights on the hard hall, seed 1]"
+      f"({plots}/hard-paths.png)")
+print(f"![position and heading error over time on the hard hall, seed 1]({plots}/hard-errors.png)")
+print()
 PY
 } > "$RESULTS.tmp"
 mv "$RESULTS.tmp" "$RESULTS"
 echo "wrote $RESULTS"
 
-# --- 5. planar bearing-only mode on MRCLAM robot 1 ------------------------------------------------
+# --- 6. planar bearing-only mode on MRCLAM robot 1 ------------------------------------------------
 if [ -z "${MRPT_VSLAM_MRCLAM_DIR:-}" ]; then
-  echo "5. skipped: MRPT_VSLAM_MRCLAM_DIR is not set (the MRCLAM part needs dataset 7)"
+  echo "6. skipped: MRPT_VSLAM_MRCLAM_DIR is not set (the MRCLAM part needs dataset 7)"
   exit 0
 fi
-echo "5. MRCLAM robot 1, planar bearing-only, seeds $MRCLAM_SEEDS"
+echo "6. MRCLAM robot 1, planar bearing-only, seeds $MRCLAM_SEEDS"
 MRCLAM="$OUT/mrclam"
 mkdir -p "$MRCLAM"
 "$BIN/mrclam2rawlog" "$MRPT_VSLAM_MRCLAM_DIR" --out "$MRCLAM/dataset7_r1.rawlog" --robots 1 \
