@@ -21,6 +21,18 @@
 #include <new>
 #include <stdexcept>
 
+// A sanitizer's report ends the process through its death callback (a fuzzer's, say)
+#if defined(__SANITIZE_ADDRESS__)
+#define MRPT_VSLAM_SANITIZER
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(undefined_behavior_sanitizer)
+#define MRPT_VSLAM_SANITIZER
+#endif
+#endif
+#if defined(MRPT_VSLAM_SANITIZER)
+#include <sanitizer/common_interface_defs.h>
+#endif
+
 namespace mrpt_vslam::core {
 
 using mrpt::obs::CActionCollection;
@@ -84,8 +96,9 @@ uint64_t entryMemoryBound(const std::string& file)
     std::error_code ec;
     const uint64_t on_disk = std::filesystem::file_size(file, ec);
     const TGzipTrailer gz = readGzipTrailer(file);
-    const uint64_t content =
-        ec ? 0 : gz.isGzip ? std::max<uint64_t>(16 * on_disk, gz.uncompressedSize) : on_disk;
+    const uint64_t content = ec          ? 0
+                             : gz.isGzip ? std::max<uint64_t>(16 * on_disk, gz.uncompressedSize)
+                                         : on_disk;
     return (uint64_t{512} << 20) + 4 * content;
 }
 
@@ -159,6 +172,13 @@ void RawlogReader::validate(const std::string& file)
     std::fflush(nullptr);  // the child must not write the parent's buffered output again
     const pid_t child = fork();
     if (child == 0) {
+        // the default action for the signals of a crash or a limit, whatever handlers the
+        // program (or a sanitizer, or a fuzzer) installed: the child just ends, the parent reports
+        for (const int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGALRM, SIGXCPU})
+            std::signal(sig, SIG_DFL);
+#if defined(MRPT_VSLAM_SANITIZER)
+        __sanitizer_set_death_callback(nullptr);
+#endif
         boundAddressSpace(memory_bound);
         const rlimit cpu_limit{kMaxSeconds, kMaxSeconds};
         setrlimit(RLIMIT_CPU, &cpu_limit);

@@ -231,7 +231,7 @@ TEST(RawlogReader, CorruptLengthFailsBeforeAllocating)
     ASSERT_NE(at, std::string::npos);
     ASSERT_GE(at, 4u);
     ASSERT_EQ(bytes.substr(at - 4, 4), std::string("\x18\0\0\0", 4));  // uint32 24, LE
-    bytes.replace(at - 4, 4, std::string("\0\0\0\x60", 4));                  // 0x60000000
+    bytes.replace(at - 4, 4, std::string("\0\0\0\x60", 4));            // 0x60000000
     const std::string file = writeBytes("long_label.rawlog", bytes);
     EXPECT_EQ(readAllError(file), file +
                                       ": corrupt or truncated rawlog after entry 0: an object "
