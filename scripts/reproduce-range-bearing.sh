@@ -12,7 +12,8 @@
 #   3. multirobot-vslam (multirobot-vslam/range-bearing.ini) on each rawlog, per seed, timed;
 #   4. vslam-eval on every run folder, and the table of both to doc/results/range-bearing.md (or
 #      $RESULTS): position RMSE (unaligned and SE(2)-aligned), landmarks mapped vs true, landmark error mean (one-to-one
-#      matching within vslam-eval's 1.5 m), run time (wall clock of the process).
+#      matching within vslam-eval's 1.5 m), run time (wall clock of the process), and the turn of
+#      each path's best alignment to the truth.
 # Writes rawlogs, run folders (metrics.json, paths.png, ...) and logs under
 # out/reproduce-range-bearing/ (or $OUT). Builds first (scripts/setup.sh). Takes about 2 min
 # (30 rawlogs; each tool well under a second per rawlog at the default SEEDS).
@@ -298,8 +299,42 @@ mkdir -p "$(dirname "$RESULTS")"
                   ids, noise, kr / n, mr / n, wr, n, ka / n, ma / n, wa, n, ke / n, me / n, we, n }'
       done
     done
+    echo
+    echo "## The turn about the start"
+    echo
+    echo "The angle [deg] of the SE(2) alignment that fits each path best to the truth (vslam-eval's" \
+      '`aligned_se2.alignment.yaw_deg`; multirobot-vslam: the mean over its seeds). Both tools' \
+      "start at the true pose; what turns a whole path is the heading the data leave uncertain" \
+      "(the first readings are taken after odometry steps of $(ini_value "$first" odometryNoisePhi_std_deg)°" \
+      "std each); where the two tools turn the same way, by amounts of the same order, the turn is" \
+      "the data's, and it is most of the unaligned RMSE (compare the aligned RMSE)."
+    echo
+    turns="$(for entry in "${NAMES[@]}"; do
+      IFS=: read -r name noise ids sim <<< "$entry"
+      python3 - "$OUT/kf-slam/$name" $(mrv_dirs "$name") <<'PY'
+import json, os, sys
+def turn(d):  # one robot: kf-slam's estimate, or multirobot-vslam's R1
+    f = os.path.join(d, "metrics.json")
+    if not os.path.exists(f):
+        return None
+    m = json.load(open(f))
+    e = m["estimate"] if "estimate" in m else m["robots"]["R1"]["estimate"]
+    return e["aligned_se2"]["alignment"]["yaw_deg"]
+kf, mr = turn(sys.argv[1]), [turn(d) for d in sys.argv[2:]]
+mr = None if None in mr else sum(mr) / len(mr)
+cell = lambda v: "-" if v is None else f"{v:+.2f}"
+same = "-" if None in (kf, mr) else ("yes" if kf * mr > 0 else "no")
+print(f"| {os.path.basename(sys.argv[1])} | {cell(kf)} | {cell(mr)} | {same} |")
+PY
+    done)"
+    echo "The same sign on $(grep -c '| yes |$' <<< "$turns") of ${#NAMES[@]} rawlogs."
+    echo
+    echo "| rawlog | kf-slam turn [deg] | multirobot-vslam turn [deg] | same sign |"
+    echo "|---|---|---|---|"
+    echo "$turns"
   fi
-} > "$RESULTS"
+} > "$RESULTS.tmp"
+mv "$RESULTS.tmp" "$RESULTS"
 cat "$RESULTS"
 echo
 echo "Rawlogs and ground truth in $DATA; run folders in $OUT/kf-slam and $OUT/multirobot-vslam"
