@@ -42,6 +42,16 @@ using mrpt::serialization::CSerializable;
 
 namespace {
 
+/** What a corrupt length beyond RawlogReader::validate()'s memory bound is reported as. */
+constexpr const char* kObjectTooLarge =
+    "an object asks for more memory than a rawlog of this size can hold";
+
+/** The start of every message about corrupt data found after \a entries good entries. */
+std::string corruptAfter(size_t entries)
+{
+    return "corrupt or truncated rawlog after entry " + std::to_string(entries) + ": ";
+}
+
 std::string shortClassName(const CSerializable& obj)
 {
     std::string name = obj.GetRuntimeClass()->className;
@@ -190,10 +200,8 @@ void RawlogReader::validate(const std::string& file)
             for (TRawlogEntry e; reader.next(e);) {
             }
         } catch (const std::bad_alloc&) {
-            std::snprintf(shared->message, sizeof(shared->message),
-                          "%s: corrupt rawlog: entry %llu asks for more memory than a rawlog of "
-                          "this size can hold (%llu MiB)",
-                          file.c_str(), static_cast<unsigned long long>(shared->objects + 1),
+            std::snprintf(shared->message, sizeof(shared->message), "%s: %s%s (%llu MiB)",
+                          file.c_str(), corruptAfter(shared->objects).c_str(), kObjectTooLarge,
                           static_cast<unsigned long long>(memory_bound >> 20));
             status = kReadError;
         } catch (const std::exception& e) {
@@ -233,7 +241,7 @@ CSerializable::Ptr RawlogReader::readFromFile()
 {
     if (m_impl->ended) return nullptr;
     const size_t n = m_summary.objects;
-    const std::string after = "corrupt or truncated rawlog after entry " + std::to_string(n) + ": ";
+    const std::string after = corruptAfter(n);
     const uint64_t start = m_impl->in.getPosition();
     CSerializable::Ptr obj;
     try {
@@ -250,7 +258,7 @@ CSerializable::Ptr RawlogReader::readFromFile()
                                   m_impl->in.getPosition() == start && m_impl->in.checkEOF();
         // a corrupt length beyond validate()'s memory bound
         if (reason.find("bad_alloc") != std::string::npos)
-            fail(after + "an object asks for more memory than a rawlog of this size can hold");
+            fail(after + kObjectTooLarge);
         if (!nothing_read) fail(after + reason);
         // End of the data: complete only if the gzip trailer agrees on the size.
         if (m_impl->trailer.isGzip &&
