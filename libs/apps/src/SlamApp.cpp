@@ -3,6 +3,7 @@
 #include <mrpt/system/filesystem.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
+#include <mrpt_vslam/core/ProcessMemory.h>
 #include <mrpt_vslam/core/ProgressReporter.h>
 #include <mrpt_vslam/core/RunEvaluation.h>
 #include <mrpt_vslam/core/RunOutputs.h>
@@ -17,6 +18,7 @@ namespace mrpt_vslam::apps {
 SlamApp::SlamApp(core::AppArguments arguments, std::string appName, std::string section)
     : name(std::move(appName)), args(std::move(arguments)), m_section(std::move(section))
 {
+    core::retainFreedMemory();
 }
 
 SlamApp::~SlamApp() = default;
