@@ -19,6 +19,7 @@ Eigen::Matrix3d rotationZ(double yaw)
 /// Angle wrapped to (−π, π].
 double wrapAngle(double a)
 {
+    if (a > -M_PI && a <= M_PI) return a;  // what remainder() returns there, without its cost
     a = std::remainder(a, 2 * M_PI);
     return a <= -M_PI ? a + 2 * M_PI : a;
 }

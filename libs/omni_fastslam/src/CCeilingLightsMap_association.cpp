@@ -260,17 +260,24 @@ std::vector<int> CCeilingLightsMap::solveAssociation(const Eigen::MatrixXd& log_
         return out;
     }
 
-    // Sec. III-C: cost matrix Φ of size N_z × (N + N_z), −log φ_{l,j} then −log P_new
-    Eigen::MatrixXd cost(n_z, n + n_z);
+    // Sec. III-C: cost matrix Φ of size N_z × (N + N_z), −log φ_{l,j} then −log P_new; the
+    // landmarks no measurement can take (all φ zero: out of view, or skipped) left out
+    std::vector<int> landmark_of_column;
+    for (int j = 0; j < n; j++)
+        if (log_lik.col(j).array().isFinite().any()) landmark_of_column.push_back(j);
+    const int n_cols = static_cast<int>(landmark_of_column.size());
+    Eigen::MatrixXd cost(n_z, n_cols + n_z);
     for (int l = 0; l < n_z; l++) {
-        for (int j = 0; j < n; j++)
-            cost(l, j) = std::isfinite(log_lik(l, j)) ? -log_lik(l, j) : kInf;
+        for (int c = 0; c < n_cols; c++) {
+            const double v = log_lik(l, landmark_of_column[size_t(c)]);
+            cost(l, c) = std::isfinite(v) ? -v : kInf;
+        }
         cost.row(l).tail(n_z).setConstant(-log_p_new(l));
     }
     const auto assignment = core::solveHungarianAssignment(cost);
     for (int l = 0; l < n_z; l++) {
         const int col = assignment.row_to_col[l];
-        out[l] = (col >= 0 && col < n) ? col : -1;
+        out[l] = (col >= 0 && col < n_cols) ? landmark_of_column[size_t(col)] : -1;
     }
     return out;
 }

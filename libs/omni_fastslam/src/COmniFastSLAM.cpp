@@ -23,6 +23,8 @@ using mrpt::math::TPose2D;
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
+/// The factor on P_new's squared Mahalanobis distance beyond which Alg. 2 skips a pair.
+constexpr double kSkipFactor2 = 4;
 
 TPose2D plus(const TPose2D& x, const Eigen::Vector3d& dx)
 {
@@ -166,6 +168,7 @@ TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
     // x̂_t (R_t comes from the caller)
     const TPose2D x_hat = p.robot_in_map + motion.mean;
     const Eigen::Matrix3d R_inv = R.inverse();
+    const double p_new_mahalanobis2 = map.insertionOptions.p_new_mahalanobis2;
 
     // Alg. 2: φ_{l,j} for every measurement and landmark
     Eigen::MatrixXd log_phi = Eigen::MatrixXd::Constant(z.size(), lms.size(), -kInf);
@@ -173,8 +176,15 @@ TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
         const auto pred = model.predictWithJacobians(lms[j].mean, x_hat);  // lines 2-4
         if (!pred.valid || !map.couldBeObserved(pred.z, options.prediction_margin)) continue;
         const Eigen::Matrix2d HmSHm = pred.H_m * lms[j].cov * pred.H_m.transpose();
+        const Eigen::Matrix2d HxRHx = pred.H_x * R * pred.H_x.transpose();
         for (size_t l = 0; l < z.size(); l++) {
             const Eigen::Matrix2d Q_jl = z[l].Q + HmSHm;  // line 6
+            // A pair that cannot beat a new landmark is never assigned: skipped when the
+            // innovation left after the shift of line 8, Q S⁻¹ ν to first order (S = Q + H_x R
+            // H_xᵀ), is more than twice P_new's Mahalanobis distance away.
+            const Eigen::Vector2d S_inv_nu = (Q_jl + HxRHx).inverse() *
+                                             BearingMeasurementModel::innovation(z[l].z, pred.z);
+            if (S_inv_nu.dot(Q_jl * S_inv_nu) > kSkipFactor2 * p_new_mahalanobis2) continue;
             const Eigen::Matrix2d Q_inv = Q_jl.inverse();
             const Eigen::Matrix3d Sigma_x =
                 (pred.H_x.transpose() * Q_inv * pred.H_x + R_inv).inverse();  // line 7
