@@ -9,7 +9,9 @@
 #      landmark covariance Sigma0 and the refinement of a new landmark;
 #   5. the harder hall (datasets/sports-hall-hard) over SEEDS: Hungarian, ML, and the paper's
 #      parameters (Sigma0, no refinement);
-#   6. with MRPT_VSLAM_MRCLAM_DIR (the folder of UTIAS MRCLAM dataset 7, doc/real-data.md):
+#   6. an adaptive number of particles (adaptiveSampleSize = 1, KLD-sampling) against the
+#      shipped fixed M on both halls, SEEDS;
+#   7. with MRPT_VSLAM_MRCLAM_DIR (the folder of UTIAS MRCLAM dataset 7, doc/real-data.md):
 #      the planar bearing-only mode on robot 1 (mrclam-bearing-only.ini, MRCLAM_SEEDS), in
 #      doc/results/omni-fastslam-mrclam-r1.md (or $RESULTS_MRCLAM); skipped without it.
 # Run folders (metrics.json, run.json, plots) under out/reproduce-omni-fastslam/ (or $OUT).
@@ -83,6 +85,12 @@ for seed in $SEEDS; do
   run "hard-paper-seed$seed" "$CONFIGS/sports-hall.ini" "$HARD.rawlog" "$HARD" --seed "$seed" \
     --set "$INSERT.sigma0_xx=0.0025" --set "$INSERT.sigma0_yy=0.0025" \
     --set "$INSERT.sigma0_zz=0.0025" --set "$INSERT.refine_initialization=false"
+done
+echo "6. an adaptive number of particles (KLD-sampling) on both halls, seeds $SEEDS"
+for seed in $SEEDS; do
+  hall "kld-seed$seed" --seed "$seed" --set ParticleFilter.adaptiveSampleSize=1
+  run "hard-kld-seed$seed" "$CONFIGS/sports-hall.ini" "$HARD.rawlog" "$HARD" --seed "$seed" \
+    --set ParticleFilter.adaptiveSampleSize=1
 done
 for f in paths errors landmark_errors; do
   cp "$OUT/hungarian-seed1/$f.png" "$PLOTS/$f.png"
@@ -206,17 +214,24 @@ print(f"![estimated path, odometry, ground truth and lights on the hard hall, se
       f"({plots}/hard-paths.png)")
 print(f"![position and heading error over time on the hard hall, seed 1]({plots}/hard-errors.png)")
 print()
+seed_table("## 6. An adaptive number of particles\n\n"
+           "`sports-hall.ini` as shipped (M = 10 throughout) against `adaptiveSampleSize = 1`:"
+           " KLD-sampling (Fox 2003) at each resampling, from M = 10 at the start, with the"
+           " `[KLD_options]` defaults (bins of 0.1 m and 2°, ε = 0.05, δ = 0.01, 10 to 2000"
+           " particles), on the shipped hall and on the hard one.",
+           [("shipped hall, M = 10", "hungarian"), ("shipped hall, KLD", "kld"),
+            ("hard hall, M = 10", "hard-hungarian"), ("hard hall, KLD", "hard-kld")])
 PY
 } > "$RESULTS.tmp"
 mv "$RESULTS.tmp" "$RESULTS"
 echo "wrote $RESULTS"
 
-# --- 6. planar bearing-only mode on MRCLAM robot 1 ------------------------------------------------
+# --- 7. planar bearing-only mode on MRCLAM robot 1 ------------------------------------------------
 if [ -z "${MRPT_VSLAM_MRCLAM_DIR:-}" ]; then
-  echo "6. skipped: MRPT_VSLAM_MRCLAM_DIR is not set (the MRCLAM part needs dataset 7)"
+  echo "7. skipped: MRPT_VSLAM_MRCLAM_DIR is not set (the MRCLAM part needs dataset 7)"
   exit 0
 fi
-echo "6. MRCLAM robot 1, planar bearing-only, seeds $MRCLAM_SEEDS"
+echo "7. MRCLAM robot 1, planar bearing-only, seeds $MRCLAM_SEEDS"
 MRCLAM="$OUT/mrclam"
 mkdir -p "$MRCLAM"
 "$BIN/mrclam2rawlog" "$MRPT_VSLAM_MRCLAM_DIR" --out "$MRCLAM/dataset7_r1.rawlog" --robots 1 \

@@ -9,6 +9,7 @@
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt_vslam/apps/OmniFastSLAMApp.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
+#include <mrpt_vslam/core/KLDSampling.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/PajdlaBaksteinCamera.h>
 #include <mrpt_vslam/core/RunOutputs.h>
@@ -50,6 +51,7 @@ struct OmniFastSLAMApp::Impl : ParticleFilterApp {
 
     CCeilingLightsMap mapTemplate;
     COmniFastSLAM::TOptions filterOptions;
+    mrpt::slam::TKLDParams kld = COmniFastSLAM::defaultKLDParams();
     core::PajdlaBaksteinCamera camera;
     CeilingLightDetector::TOptions detectorOptions;
     std::unique_ptr<CeilingLightDetector> detector;
@@ -102,6 +104,12 @@ void OmniFastSLAMApp::Impl::loadConfig()
         filterOptions.loadFromConfigFile(cfg, kAppSection);
         if (!robot.empty()) filterOptions.bearings_label = robot + "_RB";
         pf.m_options.loadFromConfigFile(cfg, "ParticleFilter");
+        kld.loadFromConfigFile(cfg, "KLD_options");
+        try {
+            core::validateKLDParams(kld);
+        } catch (const std::invalid_argument& e) {
+            throw usageError(std::string("[KLD_options] ") + e.what());
+        }
         camera.loadFromConfigFile(cfg, "Camera");
         detectorOptions.loadFromConfigFile(cfg, "LightDetector");
     } catch (const core::UsageError&) {
@@ -110,7 +118,7 @@ void OmniFastSLAMApp::Impl::loadConfig()
         throw configError(e);
     }
     checkParticleFilterOptions(
-        "pfOptimalProposal (FastSLAM 2.0) or pfStandardProposal (FastSLAM 1.0)");
+        "pfOptimalProposal (FastSLAM 2.0) or pfStandardProposal (FastSLAM 1.0)", true);
     mapTemplate = particleMapTemplate<CCeilingLightsMap>("ceilingLightsMap_count");
 }
 
@@ -120,6 +128,7 @@ void OmniFastSLAMApp::Impl::prepare()
     odometry = mrpt::poses::CPose2D(start.pose);
     filter = makeFilter<COmniFastSLAM>(mapTemplate);
     filter->options = filterOptions;
+    filter->kld = kld;
 }
 
 std::vector<core::ObservationSelector> OmniFastSLAMApp::Impl::stepObservations() const

@@ -11,7 +11,8 @@ ParticleFilterApp::ParticleFilterApp(core::AppArguments args, std::string name, 
     pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
 }
 
-void ParticleFilterApp::checkParticleFilterOptions(const std::string& proposals) const
+void ParticleFilterApp::checkParticleFilterOptions(const std::string& proposals,
+                                                   bool adaptive) const
 {
     const auto& o = pf.m_options;
     if (o.sampleSize < 1 || o.sampleSize > kMaxParticles)
@@ -25,7 +26,7 @@ void ParticleFilterApp::checkParticleFilterOptions(const std::string& proposals)
         throw usageError("[ParticleFilter] powFactor must be in (0, 1]");
     if (!(o.max_loglikelihood_dyn_range > 0 && std::isfinite(o.max_loglikelihood_dyn_range)))
         throw usageError("[ParticleFilter] max_loglikelihood_dyn_range must be finite and > 0");
-    if (o.adaptiveSampleSize)
+    if (o.adaptiveSampleSize && !adaptive)
         throw usageError("[ParticleFilter] adaptiveSampleSize is not supported (use 0)");
     using PF = mrpt::bayes::CParticleFilter;
     if (o.PF_algorithm != PF::pfStandardProposal && o.PF_algorithm != PF::pfOptimalProposal)

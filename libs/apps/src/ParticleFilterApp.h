@@ -29,7 +29,8 @@ class ParticleFilterApp : public SlamApp {
      *  powFactor in (0, 1], max_loglikelihood_dyn_range finite and > 0, adaptiveSampleSize is off
      *  and PF_algorithm is pfStandardProposal or pfOptimalProposal; `proposals` names these two
      *  for the app. */
-    void checkParticleFilterOptions(const std::string& proposals) const;
+    /// \param adaptive whether the filter implements adaptiveSampleSize (KLD-sampling)
+    void checkParticleFilterOptions(const std::string& proposals, bool adaptive = false) const;
 
     /// The map every particle starts from: the only map of `[MappingApplication]`, defined by
     /// `countKey` = 1.

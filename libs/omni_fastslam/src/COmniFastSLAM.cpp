@@ -7,6 +7,7 @@
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose2D.h>
+#include <mrpt_vslam/core/KLDSampling.h>
 #include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/omni_fastslam/COmniFastSLAM.h>
 
@@ -256,9 +257,33 @@ double COmniFastSLAM::updateParticle(TOmniFastSLAMParticle& p, const TPose2D& x_
     return log_w_inc;
 }
 
-void COmniFastSLAM::runStep(const mrpt::obs::CActionCollection* action,
-                            const mrpt::obs::CSensoryFrame* sf, bool fastslam2)
+mrpt::slam::TKLDParams COmniFastSLAM::defaultKLDParams()
 {
+    mrpt::slam::TKLDParams p;
+    p.KLD_binSize_XY = 0.1;
+    p.KLD_binSize_PHI = mrpt::DEG2RAD(2.0);
+    p.KLD_epsilon = 0.05;
+    p.KLD_delta = 0.01;
+    p.KLD_minSampleSize = 10;
+    p.KLD_maxSampleSize = 2000;
+    return p;
+}
+
+void COmniFastSLAM::runStep(const mrpt::obs::CActionCollection* action,
+                            const mrpt::obs::CSensoryFrame* sf, bool fastslam2,
+                            const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf)
+{
+    // CParticleFilter leaves the resampling to us when adaptiveSampleSize is set; the weights
+    // are those it normalised after the previous step
+    if (pf.adaptiveSampleSize && m_particles.size() > 0 && ESS() < pf.BETA) {
+        std::vector<double> log_w;
+        std::vector<TPose2D> poses;
+        for (const auto& part : m_particles) {
+            log_w.push_back(part.log_w);
+            poses.push_back(part.d->robot_in_map);
+        }
+        performSubstitution(core::kldResample(log_w, poses, kld, m_rng));
+    }
     const core::TOdometryGaussian motion = core::TOdometryGaussian::from(
         action ? action->getBestMovementEstimation().get() : nullptr, options.motion_noise_floor);
     lastStepStats = {};
@@ -300,16 +325,16 @@ void COmniFastSLAM::runStep(const mrpt::obs::CActionCollection* action,
 
 void COmniFastSLAM::prediction_and_update_pfStandardProposal(
     const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
-    const mrpt::bayes::CParticleFilter::TParticleFilterOptions&)
+    const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf)
 {
-    runStep(action, observation, false);
+    runStep(action, observation, false, pf);
 }
 
 void COmniFastSLAM::prediction_and_update_pfOptimalProposal(
     const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
-    const mrpt::bayes::CParticleFilter::TParticleFilterOptions&)
+    const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf)
 {
-    runStep(action, observation, true);
+    runStep(action, observation, true, pf);
 }
 
 }  // namespace mrpt_vslam::omni_fastslam

@@ -22,10 +22,11 @@ const std::string kPrefix = std::string(MRPT_VSLAM_SOURCE_DIR) + "/datasets/spor
 struct TRunResult {
     double final_position_error = 0, odometry_position_error = 0;
     std::vector<mrpt::math::TPoint3D> landmarks;
+    size_t min_particles = 0, max_particles = 0;
 };
 
 TRunResult runFrames(size_t frames, mrpt::bayes::CParticleFilter::TParticleFilterAlgorithm alg,
-                     uint32_t seed)
+                     uint32_t seed, bool adaptive = false, unsigned threads = 0)
 {
     const auto gt = core::TumTrajectory::load(kPrefix + ".groundtruth.tum");
     omni_fastslam::CCeilingLightsMap map;
@@ -34,10 +35,12 @@ TRunResult runFrames(size_t frames, mrpt::bayes::CParticleFilter::TParticleFilte
         map.insertionOptions.sigma0_zz = 0.1;
     map.insertionOptions.refine_initialization = true;
     COmniFastSLAM filter(map, 10, seed);
+    filter.setThreadCount(threads);
     mrpt::random::getRandomGenerator().randomize(seed);
     mrpt::bayes::CParticleFilter pf;
     pf.m_options.PF_algorithm = alg;
     pf.m_options.resamplingMethod = mrpt::bayes::CParticleFilter::prSystematic;
+    pf.m_options.adaptiveSampleSize = adaptive;
     pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
 
     const auto& p0 = gt.poses.front();
@@ -45,16 +48,19 @@ TRunResult runFrames(size_t frames, mrpt::bayes::CParticleFilter::TParticleFilte
     mrpt::poses::CPose2D odometry(p0.x, p0.y, p0.yaw);
     core::RawlogReader reader(kPrefix + ".rawlog");
     size_t n = 0;
+    TRunResult r;
+    r.min_particles = r.max_particles = filter.particlesCount();
     for (core::TRawlogEntry e; n < frames && reader.next(e);) {
         if (!e.actions || !e.observations) continue;
         pf.executeOn(filter, e.actions.get(), e.observations.get());
+        r.min_particles = std::min(r.min_particles, filter.particlesCount());
+        r.max_particles = std::max(r.max_particles, filter.particlesCount());
         odometry = odometry + e.actions->getBestMovementEstimation()->poseChange->getMeanVal();
         n++;
     }
     EXPECT_EQ(n, frames);
     const auto& best = filter.bestParticle();
     const auto& truth = gt.poses[frames - 1];
-    TRunResult r;
     r.final_position_error =
         std::hypot(best.robot_in_map.x - truth.x, best.robot_in_map.y - truth.y);
     r.odometry_position_error = std::hypot(odometry.x() - truth.x, odometry.y() - truth.y);
@@ -100,4 +106,18 @@ TEST(COmniFastSLAM, StandardProposalRuns)
     const auto r = runFrames(40, mrpt::bayes::CParticleFilter::pfStandardProposal, 1);
     EXPECT_TRUE(std::isfinite(r.final_position_error));
     EXPECT_GT(r.landmarks.size(), 0u);
+}
+
+// KLD-sampling (adaptiveSampleSize): the particle count follows the spread, from the minimum
+// (10) after the start to more when the odometry has spread the particles, and the run is
+// the same for any thread count.
+TEST(COmniFastSLAM, AdaptiveSampleSizeFollowsTheSpread)
+{
+    const auto one = runFrames(120, mrpt::bayes::CParticleFilter::pfOptimalProposal, 3, true, 1);
+    EXPECT_EQ(one.min_particles, 10u);
+    EXPECT_GT(one.max_particles, 30u);
+    EXPECT_LT(one.final_position_error, 0.5);
+    const auto two = runFrames(120, mrpt::bayes::CParticleFilter::pfOptimalProposal, 3, true, 2);
+    EXPECT_EQ(one.final_position_error, two.final_position_error);
+    EXPECT_EQ(one.max_particles, two.max_particles);
 }

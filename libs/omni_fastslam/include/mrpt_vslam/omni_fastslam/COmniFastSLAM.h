@@ -6,6 +6,7 @@
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPose2D.h>
 #include <mrpt/random/RandomGenerators.h>
+#include <mrpt/slam/TKLDParams.h>
 #include <mrpt_vslam/core/OdometryGaussian.h>
 #include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/core/ParticleFilterDataImpl.h>
@@ -67,7 +68,9 @@ struct TOmniFastSLAMParticle {
  *      lower φ) into N(μ_xt, Σ_xt) and sample x_t from it; sample the motion model when none;
  *   5. Alg. 4: EKF updates of the landmarks and the weight; Sec. III-C level 2 and
  *      updateCandidateLandmarks(); updateLandmarksType().
- *  Resampling (low variance = `prSystematic`) is done by CParticleFilter when ESS < BETA.
+ *  Resampling (low variance = `prSystematic`) is done by CParticleFilter when ESS < BETA; with
+ *  its `adaptiveSampleSize` set, by KLD-sampling here instead (kld), at the start of the step
+ *  after the one whose ESS fell below BETA, to the number of particles the spread asks for.
  */
 class COmniFastSLAM
     : public mrpt::bayes::CParticleFilterData<TOmniFastSLAMParticle,
@@ -95,6 +98,11 @@ class COmniFastSLAM
         void saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
                               const std::string& section) const override;
     } options;
+
+    /// KLD-sampling (Fox 2003) when CParticleFilter's adaptiveSampleSize is set (ini section
+    /// KLD_options, MRPT's keys); defaultKLDParams() unless changed.
+    mrpt::slam::TKLDParams kld = defaultKLDParams();
+    static mrpt::slam::TKLDParams defaultKLDParams();
 
     /// Per-step counters of the last executed step (all particles).
     struct TStepStats {
@@ -150,7 +158,7 @@ class COmniFastSLAM
                           const std::vector<int>& landmark_of_measurement,
                           const Eigen::Matrix3d& R_t);
     void runStep(const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* sf,
-                 bool fastslam2);
+                 bool fastslam2, const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf);
 
     mrpt::random::CRandomGenerator m_rng;
     unsigned m_threads = core::resolveThreadCount(0);  ///< setThreadCount()
