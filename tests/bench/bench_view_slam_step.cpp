@@ -116,6 +116,7 @@ void BM_InformationPolicyDecision(benchmark::State& state)
     options.existence.refit_every = int(state.range(0));
     auto policy = viewmap::ViewInitializationPolicy::create(options);
     mrpt::random::CRandomGenerator rng(1);
+    policy->decide(in, rng);  // the first fit starts the hyperparameters from scratch, once a run
     for (auto _ : state) benchmark::DoNotOptimize(policy->decide(in, rng));
     state.counters["features"] = double(features.size());
 }
@@ -124,6 +125,11 @@ void BM_InformationPolicyDecision(benchmark::State& state)
 
 BENCHMARK(BM_ViewSLAMStepTraditional)->Unit(benchmark::kMillisecond)->Iterations(80);
 BENCHMARK(BM_ViewSLAMStepInformation)->Unit(benchmark::kMillisecond)->Iterations(80);
-// Hyperparameters refitted every frame (1) and every 10 frames (the shipped config).
-BENCHMARK(BM_InformationPolicyDecision)->Arg(1)->Arg(10)->Unit(benchmark::kMillisecond);
+// Hyperparameters refitted every frame (1) and every 10 frames (the shipped config), after a first
+// decision; a fixed 20 decisions, so that the mean holds the refits in their shipped proportion.
+BENCHMARK(BM_InformationPolicyDecision)
+    ->Arg(1)
+    ->Arg(10)
+    ->Iterations(20)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

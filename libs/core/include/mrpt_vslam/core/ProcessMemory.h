@@ -9,7 +9,7 @@ namespace mrpt_vslam::core {
  *  The filters allocate and free the same few-MiB buffers every step (integral images, detector
  *  response layers, matcher workspaces). By default glibc maps each from the kernel and unmaps
  *  it on free, so every step pays the page faults of zero-filling it again; on a virtual machine
- *  that cost more than the work on the buffers (view-slam: 39 ms per frame against 17 ms).
+ *  that costs more than the work on the buffers (view-slam: half its time per frame).
  *  Call once at the start of a program; the apps and the benchmarks do. */
 void retainFreedMemory();
 
