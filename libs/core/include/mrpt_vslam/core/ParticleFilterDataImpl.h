@@ -1,6 +1,7 @@
 #pragma once
 
 #include <mrpt/bayes/CParticleFilterData.h>
+#include <mrpt_vslam/core/ParallelFor.h>
 
 #include <algorithm>
 #include <vector>
@@ -14,10 +15,15 @@ namespace mrpt_vslam::core {
  *  `out_particle_count` particles, 0 by default, which is how CParticleFilter::executeOn calls
  *  it: the resampled copies keep their parents' weights, so every later step weighs the set by
  *  its old weights a second time. Resampling always goes through performSubstitution(), so this
- *  class sets every log-weight to 0 there. Use it in place of CParticleFilterDataImpl. */
+ *  class sets every log-weight to 0 there. Use it in place of CParticleFilterDataImpl; derived
+ *  filters run their per-particle loops on m_threads. */
 template <class Derived, class ParticleList>
 class ParticleFilterDataImpl : public mrpt::bayes::CParticleFilterDataImpl<Derived, ParticleList> {
   public:
+    /// Threads the particles are updated on (0, the default: every core). The
+    /// results do not depend on it: the same seed gives the same particles bit for bit.
+    void setThreadCount(unsigned threads) { m_threads = resolveThreadCount(threads); }
+
     void performSubstitution(const std::vector<size_t>& indx) override
     {
         mrpt::bayes::CParticleFilterDataImpl<Derived, ParticleList>::performSubstitution(indx);
@@ -43,6 +49,9 @@ class ParticleFilterDataImpl : public mrpt::bayes::CParticleFilterDataImpl<Deriv
             });
         return *best->d;
     }
+
+  protected:
+    unsigned m_threads = resolveThreadCount(0);  ///< setThreadCount()
 };
 
 }  // namespace mrpt_vslam::core

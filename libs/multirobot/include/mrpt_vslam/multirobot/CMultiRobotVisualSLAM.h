@@ -162,10 +162,6 @@ class CMultiRobotVisualSLAM
     /// `observer` (nullptr: none) is told of every reset() and step from now on; it must
     /// outlive its use by the filter.
     void setStepObserver(TStepObserver* observer) { m_observer = observer; }
-    /// Threads the particles are updated on (0, the default: every core). The results do not
-    /// depend on it: the same seed gives the same particles bit for bit.
-    void setThreadCount(unsigned threads) { m_threads = core::resolveThreadCount(threads); }
-
   protected:
     void prediction_and_update_pfStandardProposal(
         const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
@@ -208,7 +204,6 @@ class CMultiRobotVisualSLAM
 
     size_t m_steps = 0;                                ///< since reset()
     TStepObserver* m_observer = nullptr;               ///< setStepObserver()
-    unsigned m_threads = core::resolveThreadCount(0);  ///< setThreadCount()
 
     CVisualLandmarksMap m_template;  ///< empty; shares the particles' descriptor pool
     mrpt::random::CRandomGenerator m_rng;

@@ -118,10 +118,6 @@ class COmniFastSLAM
     /// All particles at `robot_in_map`, equal weights, maps = the template.
     void reset(const mrpt::math::TPose2D& robot_in_map, double timestamp);
 
-    /// Threads the particles are updated on (0, the default: every core). The results do not
-    /// depend on it: the same seed gives the same particles bit for bit.
-    void setThreadCount(unsigned threads) { m_threads = core::resolveThreadCount(threads); }
-
     /// A particle's path, oldest first: (timestamp, pose).
     static std::vector<std::pair<double, mrpt::math::TPose2D>> pathOf(
         const TOmniFastSLAMParticle& p);
@@ -161,7 +157,6 @@ class COmniFastSLAM
                  bool fastslam2, const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf);
 
     mrpt::random::CRandomGenerator m_rng;
-    unsigned m_threads = core::resolveThreadCount(0);  ///< setThreadCount()
 };
 
 }  // namespace mrpt_vslam::omni_fastslam
