@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Speed, in one table: every Google Benchmark of tests/bench (CPU time per iteration) and the
-# whole-run timings of the shipped configurations on their shipped datasets (run.json: wall
+# whole-run timings of the shipped configurations on their shipped datasets and on the
+# simulator's 500-frame omni-views sequence, made in $OUT (run.json: wall
 # clock of the run and time per filter step, median of RUNS runs). Writes doc/results/speed.md
 # (or $RESULTS) with the machine's CPU, core count and load; the documentation quotes only that
 # file. Builds first (scripts/setup.sh). Takes about 20 min on this project's 2-core machines.
@@ -27,20 +28,22 @@ DATA="$REPO_DIR/datasets"
 mkdir -p "$OUT" "$(dirname "$RESULTS")"
 
 # --- whole runs -----------------------------------------------------------------------------
-# whole NAME APP CONFIG RAWLOG (under datasets/ or $OUT): RUNS runs with seeds 1..RUNS on one
-# thread and on every core; per thread count one table row with the medians of run.json's
-# total_s and per-step mean, and the data's duration (the span of its ground truth) over the run's
+# whole NAME APP CONFIG RAWLOG [OPTION...] (RAWLOG under datasets/ or $OUT; OPTIONs to the app):
+# RUNS runs with seeds 1..RUNS on one thread and on every core; per thread count one table row
+# with the medians of run.json's total_s and per-step mean, and the data's duration (the span of
+# its ground truth) over the run's
 whole() {
   local name="$1" app="$2" config="$3" rawlog="$4" seed threads
+  shift 4
   local data="$DATA"
   [ -f "$data/$rawlog" ] || data="$OUT"
   for threads in $( (echo 1; nproc) | uniq); do
     echo "whole run: $name, $threads thread(s)" >&2
     for seed in $(seq 1 "$RUNS"); do
       "$BIN/$app" "$CONFIGS/$config" "$data/$rawlog" --out "$OUT/$name-t$threads-seed$seed" \
-        --seed "$seed" --threads "$threads" --quiet
+        --seed "$seed" --threads "$threads" --quiet "$@"
     done
-    whole_row "$name-t$threads" "$threads" "$config" "$rawlog" "$data"
+    whole_row "$name-t$threads" "$threads" "$config${*:+ $*}" "$rawlog" "$data"
   done
 }
 
@@ -75,7 +78,13 @@ EOF_PY
   whole multirobot-3 multirobot-vslam multirobot-vslam/office-team-3.ini office-team/team3.rawlog
   whole multirobot-mrclam multirobot-vslam multirobot-vslam/mrclam.ini \
     utias-mrclam/mrclam7-r123-0-300.rawlog
+  whole omni-fastslam-m1000 omni-fastslam omni-fastslam/sports-hall.ini sports-hall/hall.rawlog \
+    --set ParticleFilter.sampleSize=1000
   whole view-slam view-slam view-slam/omni-views.ini omni-views/rooms.rawlog
+  # the simulator's whole omni-views sequence (500 frames), made here
+  [ -f "$OUT/omni-views-500/ov.rawlog" ] ||
+    "$BIN/vslam-sim" omni-views --seed 1 --out "$OUT/omni-views-500/ov" > /dev/null
+  whole view-slam-500 view-slam view-slam/omni-views.ini omni-views-500/ov.rawlog
   # the whole of UTIAS MRCLAM dataset 7, robots 1-3, imported as doc/real-data.md does
   if [ -f "${MRPT_VSLAM_MRCLAM_DIR:-}/Barcodes.dat" ]; then
     [ -f "$OUT/mrclam7-r123.rawlog" ] ||
