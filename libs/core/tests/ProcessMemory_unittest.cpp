@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 #include <mrpt_vslam/core/ProcessMemory.h>
 
-#if defined(__GLIBC__) && !defined(MRPT_VSLAM_SANITIZER)
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
 #include <malloc.h>
 
 #include <cstring>
@@ -25,6 +25,6 @@ TEST(ProcessMemory, FreedBlocksStayInTheProcess)
 #else
 TEST(ProcessMemory, FreedBlocksStayInTheProcess)
 {
-    GTEST_SKIP() << "glibc's allocator only (a sanitizer replaces it)";
+    GTEST_SKIP() << "glibc's allocator only (AddressSanitizer replaces it)";
 }
 #endif
