@@ -44,7 +44,8 @@ size_t kldSampleCount(size_t bins, const mrpt::slam::TKLDParams& p)
 
 std::vector<size_t> kldResample(const std::vector<double>& log_w,
                                 const std::vector<mrpt::math::TPose2D>& poses,
-                                const mrpt::slam::TKLDParams& p, mrpt::random::CRandomGenerator& rng)
+                                const mrpt::slam::TKLDParams& p,
+                                mrpt::random::CRandomGenerator& rng)
 {
     if (log_w.empty() || log_w.size() != poses.size())
         throw std::invalid_argument("kldResample: one pose per weight, at least one");

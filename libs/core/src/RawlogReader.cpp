@@ -257,8 +257,7 @@ CSerializable::Ptr RawlogReader::readFromFile()
         const bool nothing_read = dynamic_cast<const mrpt::serialization::CExceptionEOF*>(&e) &&
                                   m_impl->in.getPosition() == start && m_impl->in.checkEOF();
         // a corrupt length beyond validate()'s memory bound
-        if (reason.find("bad_alloc") != std::string::npos)
-            fail(after + kObjectTooLarge);
+        if (reason.find("bad_alloc") != std::string::npos) fail(after + kObjectTooLarge);
         if (!nothing_read) fail(after + reason);
         // End of the data: complete only if the gzip trailer agrees on the size.
         if (m_impl->trailer.isGzip &&

@@ -58,7 +58,8 @@ TEST(KLDSampling, StopsAtTheBoundOfTheOccupiedBins)
 {
     const auto p = params(10, 100000);
     std::vector<TPose2D> poses;
-    for (int i = 0; i < 400; i++) poses.emplace_back(0.1 * (i % 20) + 0.05, 0.1 * (i / 20) + 0.05, 0);
+    for (int i = 0; i < 400; i++)
+        poses.emplace_back(0.1 * (i % 20) + 0.05, 0.1 * (i / 20) + 0.05, 0);
     const std::vector<double> log_w(poses.size(), -3.0);
     mrpt::random::CRandomGenerator rng(7);
     const auto drawn = kldResample(log_w, poses, p, rng);

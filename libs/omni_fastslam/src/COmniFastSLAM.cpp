@@ -183,8 +183,8 @@ TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
             // A pair that cannot beat a new landmark is never assigned: skipped when the
             // innovation left after the shift of line 8, Q S⁻¹ ν to first order (S = Q + H_x R
             // H_xᵀ), is more than twice P_new's Mahalanobis distance away.
-            const Eigen::Vector2d S_inv_nu = (Q_jl + HxRHx).inverse() *
-                                             BearingMeasurementModel::innovation(z[l].z, pred.z);
+            const Eigen::Vector2d S_inv_nu =
+                (Q_jl + HxRHx).inverse() * BearingMeasurementModel::innovation(z[l].z, pred.z);
             if (S_inv_nu.dot(Q_jl * S_inv_nu) > kSkipFactor2 * p_new_mahalanobis2) continue;
             const Eigen::Matrix2d Q_inv = Q_jl.inverse();
             const Eigen::Matrix3d Sigma_x =

@@ -162,6 +162,7 @@ class CMultiRobotVisualSLAM
     /// `observer` (nullptr: none) is told of every reset() and step from now on; it must
     /// outlive its use by the filter.
     void setStepObserver(TStepObserver* observer) { m_observer = observer; }
+
   protected:
     void prediction_and_update_pfStandardProposal(
         const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
@@ -202,8 +203,8 @@ class CMultiRobotVisualSLAM
                         const std::vector<TLandmarkMeasurement>& z,
                         const std::vector<TRobotReading>& readings);
 
-    size_t m_steps = 0;                                ///< since reset()
-    TStepObserver* m_observer = nullptr;               ///< setStepObserver()
+    size_t m_steps = 0;                   ///< since reset()
+    TStepObserver* m_observer = nullptr;  ///< setStepObserver()
 
     CVisualLandmarksMap m_template;  ///< empty; shares the particles' descriptor pool
     mrpt::random::CRandomGenerator m_rng;
