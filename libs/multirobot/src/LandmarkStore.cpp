@@ -1,3 +1,4 @@
+#include <mrpt_vslam/core/FixedSizePool.h>
 #include <mrpt_vslam/multirobot/LandmarkStore.h>
 
 #include <atomic>
@@ -10,9 +11,9 @@ LandmarkStore::Block& LandmarkStore::writableBlock(size_t b)
     if (b >= m_blocks.size()) m_blocks.resize(b + 1);
     auto& block = m_blocks[b];
     if (!block)
-        block = std::make_shared<Block>();
+        block = std::allocate_shared<Block>(core::PoolAllocator<Block>());
     else if (block.use_count() > 1)
-        block = std::make_shared<Block>(*block);  // copy on write
+        block = std::allocate_shared<Block>(core::PoolAllocator<Block>(), *block);  // copy on write
     else  // sole owner; a particle updated on another thread may have just let go of it
         std::atomic_thread_fence(std::memory_order_acquire);
     return *block;

@@ -103,7 +103,7 @@ COmniFastSLAM::COmniFastSLAM(const CCeilingLightsMap& map_template, size_t parti
 
 void COmniFastSLAM::reset(const TPose2D& robot_in_map, double timestamp)
 {
-    const auto start = std::make_shared<const TOmniFastSLAMPathNode>(
+    const auto start = core::newPathNode<TOmniFastSLAMStep>(
         timestamp, TOmniFastSLAMStep{robot_in_map, {}}, nullptr);
     for (auto& p : m_particles) {
         p.log_w = 0;
@@ -253,7 +253,7 @@ double COmniFastSLAM::updateParticle(TOmniFastSLAMParticle& p, const TPose2D& x_
     p.map.updateLandmarksType();
 
     p.robot_in_map = x_t;
-    p.path = std::make_shared<const TOmniFastSLAMPathNode>(timestamp, std::move(step), p.path);
+    p.path = core::newPathNode<TOmniFastSLAMStep>(timestamp, std::move(step), p.path);
     return log_w_inc;
 }
 

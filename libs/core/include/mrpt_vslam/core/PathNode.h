@@ -1,5 +1,7 @@
 #pragma once
 
+#include <mrpt_vslam/core/FixedSizePool.h>
+
 #include <memory>
 #include <utility>
 #include <vector>
@@ -33,6 +35,16 @@ struct TPathNode {
         }
     }
 };
+
+/// A node for the step after `previous`, from the pool of path nodes (resampling releases
+/// them by the thousand each step).
+template <class State>
+std::shared_ptr<const TPathNode<State>> newPathNode(
+    double t, State s, std::shared_ptr<const TPathNode<State>> previous)
+{
+    return std::allocate_shared<const TPathNode<State>>(PoolAllocator<TPathNode<State>>(), t,
+                                                        std::move(s), std::move(previous));
+}
 
 /// The nodes of the path that ends at `newest`, oldest first.
 template <class State>
