@@ -194,7 +194,7 @@ void CMultiRobotVisualSLAM::reset(const std::vector<TPose2D>& start_poses, doubl
             d.poses[k].phi = mrpt::math::wrapToPi(
                 d.poses[k].phi + options.initial_std_phi * m_rng.drawGaussian1D_normalized());
         }
-        d.path = std::make_shared<const TTeamPathNode>(timestamp, TTeamStep{d.poses, {}}, nullptr);
+        d.path = core::newPathNode<TTeamStep>(timestamp, TTeamStep{d.poses, {}}, nullptr);
         d.map = m_template;
         d.accumulated_log_w = 0;
         d.correspondences.clear();
@@ -357,32 +357,31 @@ void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandma
         // line 44 and line 11: the product over the team
         for (size_t j = 0; j < n; j++) addLogWeight(p, r[j].log_w);
     });
-    if (provisional) {
-        std::vector<std::optional<uint32_t>> final_id(n);
-        for (size_t i = 0; i < m_particles.size(); i++) {
-            std::vector<std::pair<uint32_t, uint32_t>> renumbered;
+    std::vector<std::optional<uint32_t>> final_id(n);
+    if (provisional)  // the pool's ids, from the first particle that created each landmark
+        for (size_t i = 0; i < m_particles.size(); i++)
             for (size_t j = 0; j < n; j++) {
-                TFusionResult& r = fused[i * n + j];
-                if (!r.created) continue;
-                if (!final_id[j]) {
-                    candidates[j].new_id.reset();
-                    const TPlanarTransform pose(m_particles[i].d->poses[k]);
-                    final_id[j] = m_particles[i].d->map.reserveNewId(z[j], toMapFrame(z[j], pose),
-                                                                     candidates[j]);
-                }
+                if (!fused[i * n + j].created || final_id[j]) continue;
+                candidates[j].new_id.reset();
+                const TPlanarTransform pose(m_particles[i].d->poses[k]);
+                final_id[j] =
+                    m_particles[i].d->map.reserveNewId(z[j], toMapFrame(z[j], pose), candidates[j]);
+            }
+    core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
+        auto& d = *m_particles[i].d;
+        std::vector<std::pair<uint32_t, uint32_t>> renumbered;
+        for (size_t j = 0; j < n; j++) {
+            TFusionResult& r = fused[i * n + j];
+            if (provisional && r.created) {
                 renumbered.emplace_back(r.id, *final_id[j]);
                 r.id = *final_id[j];
             }
-            if (!renumbered.empty()) m_particles[i].d->map.renumberLandmarks(renumbered);
+            d.correspondences.push_back({static_cast<uint32_t>(k), r.id, z[j].track_id});
         }
-    }
-    for (size_t i = 0; i < m_particles.size(); i++)
-        for (size_t j = 0; j < n; j++) {
-            const TFusionResult& r = fused[i * n + j];
-            (r.created ? lastStepStats.created : lastStepStats.associated)++;
-            m_particles[i].d->correspondences.push_back(
-                {static_cast<uint32_t>(k), r.id, z[j].track_id});
-        }
+        if (!renumbered.empty()) d.map.renumberLandmarks(renumbered);
+    });
+    for (const TFusionResult& r : fused)
+        (r.created ? lastStepStats.created : lastStepStats.associated)++;
 }
 
 void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussian& motion,
@@ -534,7 +533,7 @@ void CMultiRobotVisualSLAM::runStep(
             performResampling(pf_options);
     }
     for (auto& p : m_particles) {
-        p.d->path = std::make_shared<const TTeamPathNode>(
+        p.d->path = core::newPathNode<TTeamStep>(
             timestamp, TTeamStep{p.d->poses, std::move(p.d->correspondences)}, p.d->path);
         p.d->correspondences.clear();
     }
