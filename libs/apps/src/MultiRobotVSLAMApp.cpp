@@ -487,8 +487,7 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
         alongPath = smoother->mapAlongPath(best, &alongPathCorrespondences);
         alongPathSeconds = rebuild.elapsedSeconds();
     }
-    if (smootherOptions.map_along_path)
-        best.map.saveMetricMapRepresentationToFile(out.file("particle_map"));
+    if (smootherOptions.map_along_path) core::saveMapFiles(best.map, out.path(), "particle_map");
     const CVisualLandmarksMap& map = smoothed ? smoothed->map : alongPath ? *alongPath : best.map;
     // the correspondences `map` was made with
     const std::vector<TCorrespondence> correspondences =

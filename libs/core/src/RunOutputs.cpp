@@ -28,19 +28,25 @@ void saveObjectGz(const mrpt::serialization::CSerializable& obj, const std::stri
     saveGz(obj, file);
 }
 
-void saveFinalMap(const mrpt::maps::CMetricMap& map, const std::string& out_dir)
+void saveMapFiles(const mrpt::maps::CMetricMap& map, const std::string& out_dir,
+                  const std::string& prefix)
 {
     namespace fs = std::filesystem;
-    const std::string tmp = "map.tmp";
+    const std::string tmp = prefix + ".tmp";
     map.saveMetricMapRepresentationToFile((fs::path(out_dir) / tmp).string());
     for (const auto& entry : fs::directory_iterator(out_dir)) {
         const std::string name = entry.path().filename().string();
         if (name.rfind(tmp, 0) == 0)
             AtomicFile::commitRename(
                 entry.path().string(),
-                (fs::path(out_dir) / ("map" + name.substr(tmp.size()))).string());
+                (fs::path(out_dir) / (prefix + name.substr(tmp.size()))).string());
     }
-    saveObjectGz(map, (fs::path(out_dir) / "final_map.gz").string());
+}
+
+void saveFinalMap(const mrpt::maps::CMetricMap& map, const std::string& out_dir)
+{
+    saveMapFiles(map, out_dir, "map");
+    saveObjectGz(map, (std::filesystem::path(out_dir) / "final_map.gz").string());
 }
 
 void saveScene(const mrpt::opengl::COpenGLScene& scene, const std::string& file)

@@ -102,6 +102,11 @@ void RunReport::setTiming(const RunTimer& timer)
     setTiming(timer.elapsedSeconds(), timer.stepStatistics());
 }
 
+void RunReport::setPartTiming(const std::string& name, double seconds)
+{
+    m_impl->doc["timing"][name + "_s"] = number(seconds);
+}
+
 void RunReport::setResult(const std::string& name, double value)
 {
     m_impl->doc["results"][name] = number(value);

@@ -22,9 +22,13 @@ namespace mrpt_vslam::core {
 /// Serializes one object gz-compressed (`final_map.gz`), readable with `archive >> obj`.
 void saveObjectGz(const mrpt::serialization::CSerializable& obj, const std::string& file);
 
-/** The final map of a run into `out_dir`: its `saveMetricMapRepresentationToFile()` files
- *  under the prefix `map` (`map.txt`, plus whatever else the map writes, e.g.
- *  `map_descriptors.txt`), each renamed into place when complete, and `final_map.gz`. */
+/** A map's `saveMetricMapRepresentationToFile()` files in `out_dir` under `prefix`
+ *  (`<prefix>.txt`, plus whatever else the map writes, e.g. `<prefix>_descriptors.txt`), each
+ *  renamed into place when complete. */
+void saveMapFiles(const mrpt::maps::CMetricMap& map, const std::string& out_dir,
+                  const std::string& prefix);
+/** The final map of a run into `out_dir`: saveMapFiles() under the prefix `map` and
+ *  `final_map.gz`. */
 void saveFinalMap(const mrpt::maps::CMetricMap& map, const std::string& out_dir);
 
 /// Saves a scene as MRPT's `.3Dscene` (opens in SceneViewer3D without any plugin).

@@ -52,6 +52,9 @@ class RunReport {
     void setCount(const std::string& name, double value);
     void setTiming(double total_s, const TStepStatistics& steps);
     void setTiming(const RunTimer& timer);
+    /** The time of one part of the run beside the steps (`timing.<name>_s`), e.g. a smoothing
+     *  after the last step: timings stay out of the results, which a seed reproduces. */
+    void setPartTiming(const std::string& name, double seconds);
     void setResult(const std::string& name, double value);
     void setResultText(const std::string& name, const std::string& text);
     /** A result given as JSON text (object, array...). Throws std::invalid_argument if it does
