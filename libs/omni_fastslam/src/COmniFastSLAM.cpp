@@ -111,6 +111,7 @@ void COmniFastSLAM::reset(const TPose2D& robot_in_map, double timestamp)
         p.d->path = start;
         p.d->accumulated_log_w = 0;
     }
+    if (m_observer) m_observer->onReset(robot_in_map, timestamp);
 }
 
 std::vector<std::pair<double, TPose2D>> COmniFastSLAM::pathOf(const TOmniFastSLAMParticle& p)
@@ -242,7 +243,8 @@ double COmniFastSLAM::updateParticle(TOmniFastSLAMParticle& p, const TPose2D& x_
     TOmniFastSLAMStep step{x_t, {}};
     for (size_t l = 0; l < z.size(); l++)
         if (const int j = landmark_of_measurement[l]; j >= 0)
-            step.correspondences.push_back({p.map.landmarks()[j].id, z[l].hidden_id});
+            step.correspondences.push_back(
+                {p.map.landmarks()[j].id, z[l].hidden_id, static_cast<uint32_t>(l)});
     // Alg. 4 lines 1-27
     const double log_w_inc = p.map.updateLandmarks(z, x_t, landmark_of_measurement, R_t);
     // Sec. III-C level 2, Alg. 4 lines 28-29
@@ -287,6 +289,10 @@ void COmniFastSLAM::runStep(const mrpt::obs::CActionCollection* action,
     const core::TOdometryGaussian motion = core::TOdometryGaussian::from(
         action ? action->getBestMovementEstimation().get() : nullptr, options.motion_noise_floor);
     lastStepStats = {};
+    if (m_observer && !m_particles.empty()) {
+        double timestamp = 0;
+        m_observer->onStep(motion, measurementsFromFrame(sf, m_particles[0].d->map, timestamp));
+    }
     const auto noise = core::drawStandardNormals(m_rng, m_particles.size());
     std::vector<size_t> measured(m_particles.size()), associated(m_particles.size());
     core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {

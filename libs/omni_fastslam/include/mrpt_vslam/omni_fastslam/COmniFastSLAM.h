@@ -27,6 +27,7 @@ struct TOmniFastSLAMStep {
     mrpt::math::TPose2D robot_in_map;
     struct TCorrespondence {
         int64_t landmark_id, hidden_id;
+        uint32_t measurement;  ///< index of the measurement in the step's frame
     };
     std::vector<TCorrespondence> correspondences;
 };
@@ -118,6 +119,18 @@ class COmniFastSLAM
     /// All particles at `robot_in_map`, equal weights, maps = the template.
     void reset(const mrpt::math::TPose2D& robot_in_map, double timestamp);
 
+    /** What a run is made of, step by step (for smoothing after the run, LightsPathSmoother):
+     *  told on reset() and at each step, before the particles are updated. */
+    struct TStepObserver {
+        virtual ~TStepObserver() = default;
+        virtual void onReset(const mrpt::math::TPose2D& robot_in_map, double timestamp) = 0;
+        /// The step's odometry Gaussian and measurements; path node k follows the k-th call.
+        virtual void onStep(const core::TOdometryGaussian& motion,
+                            const std::vector<TBearingMeasurement>& z) = 0;
+    };
+    /// Tells `observer` (nullptr: none) of every reset and step; it must outlive the filter's use.
+    void setStepObserver(TStepObserver* observer) { m_observer = observer; }
+
     /// A particle's path, oldest first: (timestamp, pose).
     static std::vector<std::pair<double, mrpt::math::TPose2D>> pathOf(
         const TOmniFastSLAMParticle& p);
@@ -157,6 +170,7 @@ class COmniFastSLAM
                  bool fastslam2, const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf);
 
     mrpt::random::CRandomGenerator m_rng;
+    TStepObserver* m_observer = nullptr;
 };
 
 }  // namespace mrpt_vslam::omni_fastslam
