@@ -1,21 +1,24 @@
 #!/usr/bin/env bash
 # Gamallo et al. 2013, Sec. IV on the shipped sports-hall datasets, written to
 # doc/results/omni-fastslam.md (or $RESULTS) with its plots in doc/results/omni-fastslam/:
-#   1. the default run (sports-hall.ini, seed 1): accuracy, the per-light table (the paper's
-#      Table I) and the path / error plots (Fig. 6);
-#   2. SEEDS with the hierarchical Hungarian and with maximum-likelihood association (Figs. 7-9);
+#   1. the default run (sports-hall.ini, seed 1, smoothed after the run): accuracy, the
+#      per-light table (the paper's Table I) and the path / error plots (Fig. 6);
+#   2. SEEDS with the hierarchical Hungarian and with maximum-likelihood association (Figs. 7-9),
+#      the filter's own estimate and the smoothed one;
 #   3. bearings input against light detection in the images (input = images), seeds 1-3;
 #   4. the deviations from the paper, each against the paper's value over SEEDS: the initial
-#      landmark covariance Sigma0 and the refinement of a new landmark;
+#      landmark covariance Sigma0 and the refinement of a new landmark (the filter's estimate);
 #   5. the harder hall (datasets/sports-hall-hard) over SEEDS: Hungarian, ML, and the paper's
-#      parameters (Sigma0, no refinement);
+#      parameters (Sigma0, no refinement), the filter's estimate and the smoothed one;
 #   6. an adaptive number of particles (adaptiveSampleSize = 1, KLD-sampling) against the
-#      shipped fixed M on both halls, SEEDS;
-#   7. with MRPT_VSLAM_MRCLAM_DIR (the folder of UTIAS MRCLAM dataset 7, doc/real-data.md):
+#      shipped fixed M on both halls, SEEDS (the filter's estimate);
+#   7. the smoothing after the run (LightsPathSmoother) on both halls, SEEDS: the filter's
+#      estimate, one round (the particle's associations) and the shipped two rounds;
+#   8. with MRPT_VSLAM_MRCLAM_DIR (the folder of UTIAS MRCLAM dataset 7, doc/real-data.md):
 #      the planar bearing-only mode on robot 1 (mrclam-bearing-only.ini, MRCLAM_SEEDS), in
 #      doc/results/omni-fastslam-mrclam-r1.md (or $RESULTS_MRCLAM); skipped without it.
 # Run folders (metrics.json, run.json, plots) under out/reproduce-omni-fastslam/ (or $OUT).
-# Builds first (scripts/setup.sh). Takes about 2 min (2 more with the MRCLAM part).
+# Builds first (scripts/setup.sh). Takes about 3 min (2 more with the MRCLAM part).
 # Environment: OUT, SEEDS (default 1..10), MRCLAM_SEEDS (default 1..8), RESULTS, RESULTS_MRCLAM.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -36,11 +39,25 @@ PLOTS="${RESULTS%.md}"
 INSERT="MappingApplication_ceilingLightsMap_00_insertOpts"
 mkdir -p "$OUT" "$PLOTS"
 
-# run NAME CONFIG RAWLOG GROUND_TRUTH [OPTION...]: one run and its evaluation in $OUT/NAME
+# run NAME CONFIG RAWLOG GROUND_TRUTH [OPTION...]: one run and its evaluation in $OUT/NAME;
+# when it was smoothed, the filter's own estimate (filter_path*.tum, filter_map.txt) is
+# evaluated in $OUT/NAME/filter
 run() {
   local dir="$OUT/$1" config="$2" rawlog="$3" truth="$4"; shift 4
   "$BIN/omni-fastslam" "$config" "$rawlog" --out "$dir" --quiet "$@"
   "$BIN/vslam-eval" "$dir" --ground-truth "$truth" > "$dir/summary.txt"
+  local filter_path
+  filter_path="$(find "$dir" -maxdepth 1 -name 'filter_path*.tum' | head -n 1)"
+  if [ -n "$filter_path" ]; then
+    local suffix
+    suffix="$(basename "$filter_path" .tum)"
+    suffix="${suffix#filter_path}"  # _<ROBOT> of a robot of a multi-robot rawlog
+    mkdir -p "$dir/filter"
+    "$BIN/vslam-eval" "$dir" --ground-truth "$truth.groundtruth$suffix.tum" \
+      --landmarks-gt "$truth.landmarks.txt" --estimate "$filter_path" \
+      --odometry "$dir/odometry_path$suffix.tum" --map "$dir/filter_map.txt" \
+      --out "$dir/filter" > "$dir/filter/summary.txt"
+  fi
 }
 
 # hall NAME [OPTION...]: a run on the shipped hall with sports-hall.ini
@@ -92,6 +109,12 @@ for seed in $SEEDS; do
   run "hard-kld-seed$seed" "$CONFIGS/sports-hall.ini" "$HARD.rawlog" "$HARD" --seed "$seed" \
     --set ParticleFilter.adaptiveSampleSize=1
 done
+echo "7. one round of smoothing on both halls, seeds $SEEDS"
+for seed in $SEEDS; do
+  hall "one-round-seed$seed" --seed "$seed" --set LightsPathSmoother.rounds=1
+  run "hard-one-round-seed$seed" "$CONFIGS/sports-hall.ini" "$HARD.rawlog" "$HARD" --seed "$seed" \
+    --set LightsPathSmoother.rounds=1
+done
 for f in paths errors landmark_errors; do
   cp "$OUT/hungarian-seed1/$f.png" "$PLOTS/$f.png"
 done
@@ -106,13 +129,14 @@ done
 import json, statistics, sys
 out, seeds, plots = sys.argv[1], sys.argv[2].split(), sys.argv[3]
 
-def load(name):
-    m = json.load(open(f"{out}/{name}/metrics.json"))
+def load(name, estimate=""):
+    """estimate "": the run's result; "filter": the filter's own estimate before smoothing"""
+    m = json.load(open(f"{out}/{name}/{estimate + '/' if estimate else ''}metrics.json"))
     r = json.load(open(f"{out}/{name}/run.json"))
     return m, r
 
-def row(name):
-    m, r = load(name)
+def row(name, estimate=""):
+    m, r = load(name, estimate)
     e, lm = m["estimate"], m["landmarks"]
     return {"ate": e["ate_rmse_m"], "ate_max": e["ate_max_m"],
             "aligned": e["aligned_se2"]["ate_rmse_m"],
@@ -125,12 +149,15 @@ def row(name):
 def once(r):  # every light mapped exactly once
     return r["false"] == 0 and r["dup"] == 0 and r["missed"] == 0
 
+def closed(r):  # the loops closed: no light mapped twice
+    return r["false"] == 0 and r["dup"] == 0
+
 default = row("hungarian-seed1")
 m, _ = load("hungarian-seed1")
 print("## 1. The default run")
 print()
-print("`sports-hall.ini` as shipped (M = 10, hierarchical Hungarian association, bearings input),"
-      " seed 1.")
+print("`sports-hall.ini` as shipped (M = 10, hierarchical Hungarian association, bearings input,"
+      " the path and lights smoothed after the run), seed 1.")
 print()
 print("| ATE RMSE [m] | ATE max [m] | after SE(2) alignment [m] | dead reckoning ATE RMSE [m] |"
       " lights matched / false / duplicated / missed | light error mean [m] | light error max [m] |"
@@ -160,56 +187,69 @@ print(f"![error per light, seed 1]({plots}/landmark_errors.png)")
 print()
 
 def seed_table(title, variants):
-    """variants: [(label, name prefix)]: a row per seed and variant, then a summary per variant."""
+    """variants: [(label, name prefix, estimate)]: a row per seed and variant, then a summary
+    per variant; estimate "filter" is the filter's own, "" the run's result (smoothed)."""
     print(title)
     print()
     print("| variant | seed | ATE RMSE [m] | ATE max [m] | heading < 5° | matched | false |"
-          " duplicated | missed | light error mean [m] | mean light height [m] | run [s] |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+          " duplicated | missed | loops closed | light error mean [m] | light error max [m] |"
+          " mean light height [m] | run [s] |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     rows = {}
-    for label, prefix in variants:
-        rows[label] = [row(f"{prefix}-seed{s}") for s in seeds]
+    for label, prefix, estimate in variants:
+        rows[label] = [row(f"{prefix}-seed{s}", estimate) for s in seeds]
         for s, r in zip(seeds, rows[label]):
             print(f"| {label} | {s} | {r['ate']:.3f} | {r['ate_max']:.3f} | {r['heading']:.0f} % |"
                   f" {r['matched']} | {r['false']} | {r['dup']} | {r['missed']} |"
-                  f" {r['lm_mean']:.3f} | {r['height']:.2f} | {r['time']:.2f} |")
+                  f" {'yes' if closed(r) else 'no'} | {r['lm_mean']:.3f} | {r['lm_max']:.3f} |"
+                  f" {r['height']:.2f} | {r['time']:.2f} |")
     print()
     print("| variant | seeds | ATE RMSE mean [m] | ATE RMSE min-max [m] | seeds with ATE ≤ 0.30 m |"
-          " seeds with every light once | run mean [s] |")
-    print("|---|---|---|---|---|---|---|")
+          " seeds with the loops closed | seeds with every light once | seeds with every light"
+          " once within 0.5 m | run mean [s] |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for label, rs in rows.items():
         ates = [r["ate"] for r in rs]
+        within = sum(once(r) and r["lm_max"] < 0.5 for r in rs)
         print(f"| {label} | {len(rs)} | {statistics.mean(ates):.3f} | {min(ates):.3f}-{max(ates):.3f} |"
-              f" {sum(a <= 0.30 for a in ates)} of {len(rs)} | {sum(map(once, rs))} of {len(rs)} |"
+              f" {sum(a <= 0.30 for a in ates)} of {len(rs)} | {sum(map(closed, rs))} of {len(rs)} |"
+              f" {sum(map(once, rs))} of {len(rs)} | {within} of {len(rs)} |"
               f" {statistics.mean(r['time'] for r in rs):.2f} |")
     print()
 
 seed_table("## 2. Hungarian and maximum-likelihood association (the paper's Figs. 7-9)\n\n"
            "`sports-hall.ini`, `association_method` = hungarian (shipped) or ml; the true light"
-           " height is 6.5 m.",
-           [("hungarian", "hungarian"), ("ml", "ml")])
+           " height is 6.5 m. *filter*: the best particle's path and map; *smoothed*: the run's"
+           " result, after the least squares of section 7 (which associate again with the same"
+           " method). Loops closed: no light mapped twice.",
+           [("hungarian, filter", "hungarian", "filter"), ("ml, filter", "ml", "filter"),
+            ("hungarian, smoothed", "hungarian", ""), ("ml, smoothed", "ml", "")])
 seeds_all = seeds
 seeds = ["1", "2", "3"]
 seed_table("## 3. Bearings or images\n\n"
            "`input = auto` (the rawlog's bearings, shipped) against `input = images` (lights"
            " detected in the OMNICAM images: decoding, detection and the camera model's LUT in the"
            " run time).",
-           [("bearings", "hungarian"), ("images", "images")])
+           [("bearings", "hungarian", ""), ("images", "images", "")])
 seeds = seeds_all
 seed_table("## 4. Deviations from the paper\n\n"
-           "Each against the shipped value: the paper's initial landmark covariance"
+           "The filter's own estimate, each against the shipped value: the paper's initial"
+           " landmark covariance"
            " Σ0 = 0.0025 m² (and 0.01 m²) against the shipped 0.1 m²; `refine_initialization ="
            " false` (the paper: a new light at its best cross-point only).",
-           [("shipped", "hungarian"), ("Σ0 = 0.0025", "sigma0-0.0025"),
-            ("Σ0 = 0.01", "sigma0-0.01"), ("no refinement", "no-refinement")])
+           [("shipped", "hungarian", "filter"), ("Σ0 = 0.0025", "sigma0-0.0025", "filter"),
+            ("Σ0 = 0.01", "sigma0-0.01", "filter"), ("no refinement", "no-refinement", "filter")])
 seed_table("## 5. A harder hall: poor odometry, close lights, a lower ceiling\n\n"
            "`datasets/sports-hall-hard` (`vslam-sim sports-hall --variant hard`: dead reckoning"
            f" {row('hard-hungarian-seed1')['odometry']:.2f} m ATE RMSE, lights 15 and 16 about"
            " 1.1 m from lights 2 and 7, the lights at 5.0 m, 530 frames) with `sports-hall.ini` as"
            " shipped: hierarchical Hungarian association (shipped) or ml, and the paper's"
-           " parameters (Hungarian, Σ0 = 0.0025 m², no refinement of a new light).",
-           [("hungarian", "hard-hungarian"), ("ml", "hard-ml"),
-            ("paper's Σ0, no refinement", "hard-paper")])
+           " parameters (Hungarian, Σ0 = 0.0025 m², no refinement of a new light); the filter's"
+           " own estimate and the smoothed one (section 7).",
+           [("hungarian, filter", "hard-hungarian", "filter"), ("ml, filter", "hard-ml", "filter"),
+            ("paper's Σ0, no refinement, filter", "hard-paper", "filter"),
+            ("hungarian, smoothed", "hard-hungarian", ""), ("ml, smoothed", "hard-ml", ""),
+            ("paper's Σ0, no refinement, smoothed", "hard-paper", "")])
 print(f"![estimated path, odometry, ground truth and lights on the hard hall, seed 1]"
       f"({plots}/hard-paths.png)")
 print(f"![position and heading error over time on the hard hall, seed 1]({plots}/hard-errors.png)")
@@ -218,20 +258,32 @@ seed_table("## 6. An adaptive number of particles\n\n"
            "`sports-hall.ini` as shipped (M = 10 throughout) against `adaptiveSampleSize = 1`:"
            " KLD-sampling (Fox 2003) at each resampling, from M = 10 at the start, with the"
            " `[KLD_options]` defaults (bins of 0.1 m and 2°, ε = 0.05, δ = 0.01, 10 to 2000"
-           " particles), on the shipped hall and on the hard one.",
-           [("shipped hall, M = 10", "hungarian"), ("shipped hall, KLD", "kld"),
-            ("hard hall, M = 10", "hard-hungarian"), ("hard hall, KLD", "hard-kld")])
+           " particles), on the shipped hall and on the hard one; the filter's own estimate.",
+           [("shipped hall, M = 10", "hungarian", "filter"), ("shipped hall, KLD", "kld", "filter"),
+            ("hard hall, M = 10", "hard-hungarian", "filter"),
+            ("hard hall, KLD", "hard-kld", "filter")])
+seed_table("## 7. Smoothing the path and the lights after the run\n\n"
+           "`sports-hall.ini` as shipped: the filter's own estimate (the best particle's path and"
+           " map), the least squares of `[LightsPathSmoother]` with one round (the particle's own"
+           " associations) and with the shipped two rounds (the bearings associated again at the"
+           " smoothed poses). The run time includes the smoothing.",
+           [("shipped hall, filter", "hungarian", "filter"),
+            ("shipped hall, one round", "one-round", ""),
+            ("shipped hall, two rounds", "hungarian", ""),
+            ("hard hall, filter", "hard-hungarian", "filter"),
+            ("hard hall, one round", "hard-one-round", ""),
+            ("hard hall, two rounds", "hard-hungarian", "")])
 PY
 } > "$RESULTS.tmp"
 mv "$RESULTS.tmp" "$RESULTS"
 echo "wrote $RESULTS"
 
-# --- 7. planar bearing-only mode on MRCLAM robot 1 ------------------------------------------------
+# --- 8. planar bearing-only mode on MRCLAM robot 1 ------------------------------------------------
 if [ -z "${MRPT_VSLAM_MRCLAM_DIR:-}" ]; then
-  echo "7. skipped: MRPT_VSLAM_MRCLAM_DIR is not set (the MRCLAM part needs dataset 7)"
+  echo "8. skipped: MRPT_VSLAM_MRCLAM_DIR is not set (the MRCLAM part needs dataset 7)"
   exit 0
 fi
-echo "7. MRCLAM robot 1, planar bearing-only, seeds $MRCLAM_SEEDS"
+echo "8. MRCLAM robot 1, planar bearing-only, seeds $MRCLAM_SEEDS"
 MRCLAM="$OUT/mrclam"
 mkdir -p "$MRCLAM"
 "$BIN/mrclam2rawlog" "$MRPT_VSLAM_MRCLAM_DIR" --out "$MRCLAM/dataset7_r1.rawlog" --robots 1 \
@@ -250,24 +302,29 @@ print("`mrclam-bearing-only.ini` as shipped on robot 1 (`mrclam2rawlog --robots 
       " those whose landmark number is not the most frequent one of their map landmark."
       " Landmarks matched one-to-one within 1.5 m.")
 print()
-print("| seed | ATE RMSE [m] | after SE(2) alignment [m] | heading RMSE [deg] | matched | false |"
-      " estimated | wrong associations | run [s] |")
-print("|---|---|---|---|---|---|---|---|---|")
-rows = []
-for s in seeds:
-    m = json.load(open(f"{out}/seed{s}/metrics.json"))
-    r = json.load(open(f"{out}/seed{s}/run.json"))
-    e, lm = m["robots"]["R1"]["estimate"], m["landmarks"]
-    res = r["results"]
-    rows.append((e["ate_rmse_m"], e["aligned_se2"]["ate_rmse_m"], e["heading_rmse_deg"]))
-    wrong = f"{res['wrong_associations']} of {res['labelled_associations']}"
-    print(f"| {s} | {e['ate_rmse_m']:.2f} | {e['aligned_se2']['ate_rmse_m']:.2f} |"
-          f" {e['heading_rmse_deg']:.0f} | {lm['matched']} | {lm['false']} |"
-          f" {lm['estimated_landmarks']} | {wrong} | {r['timing']['total_s']:.2f} |")
+print("*filter*: the best particle's path and map; *smoothed*: the run's result, after the least"
+      " squares of `[LightsPathSmoother]` (shipped).")
+print()
+print("| estimate | seed | ATE RMSE [m] | after SE(2) alignment [m] | heading RMSE [deg] | matched |"
+      " false | estimated | wrong associations | run [s] |")
+print("|---|---|---|---|---|---|---|---|---|---|")
+for label, estimate in (("filter", "filter/"), ("smoothed", "")):
+    rows = []
+    for s in seeds:
+        m = json.load(open(f"{out}/seed{s}/{estimate}metrics.json"))
+        r = json.load(open(f"{out}/seed{s}/run.json"))
+        e, lm = (m["estimate"] if estimate else m["robots"]["R1"]["estimate"]), m["landmarks"]
+        res = r["results"]
+        rows.append((e["ate_rmse_m"], e["aligned_se2"]["ate_rmse_m"], e["heading_rmse_deg"]))
+        wrong = f"{res['wrong_associations']} of {res['labelled_associations']}"
+        print(f"| {label} | {s} | {e['ate_rmse_m']:.2f} | {e['aligned_se2']['ate_rmse_m']:.2f} |"
+              f" {e['heading_rmse_deg']:.0f} | {lm['matched']} | {lm['false']} |"
+              f" {lm['estimated_landmarks']} | {wrong} | {r['timing']['total_s']:.2f} |")
+    print(f"| {label} | mean | {statistics.mean(r[0] for r in rows):.2f} |"
+          f" {statistics.mean(r[1] for r in rows):.2f} | {statistics.mean(r[2] for r in rows):.0f}"
+          f" | | | | | |")
 odo = m["robots"]["R1"]["odometry"]
-print(f"| mean | {statistics.mean(r[0] for r in rows):.2f} | {statistics.mean(r[1] for r in rows):.2f} |"
-      f" {statistics.mean(r[2] for r in rows):.0f} | | | | | |")
-print(f"| dead reckoning | {odo['ate_rmse_m']:.2f} | {odo['aligned_se2']['ate_rmse_m']:.2f} |"
+print(f"| dead reckoning | | {odo['ate_rmse_m']:.2f} | {odo['aligned_se2']['ate_rmse_m']:.2f} |"
       f" {odo['heading_rmse_deg']:.0f} | | | | | |")
 PY
   first="${MRCLAM_SEEDS%% *}"

@@ -16,6 +16,7 @@
 #include <mrpt_vslam/core/SingleRobotStart.h>
 #include <mrpt_vslam/omni_fastslam/COmniFastSLAM.h>
 #include <mrpt_vslam/omni_fastslam/CeilingLightDetector.h>
+#include <mrpt_vslam/omni_fastslam/LightsPathSmoother.h>
 
 #include <cstdio>
 #include <stdexcept>
@@ -27,9 +28,11 @@ namespace mrpt_vslam::apps {
 using omni_fastslam::CCeilingLightsMap;
 using omni_fastslam::CeilingLightDetector;
 using omni_fastslam::COmniFastSLAM;
+using omni_fastslam::LightsPathSmoother;
 
 namespace {
 constexpr const char* kAppSection = "OmniFastSLAM";
+constexpr const char* kSmootherSection = "LightsPathSmoother";
 
 /// Where the light measurements come from (ini key `input`).
 enum class TInput { Auto, Bearings, Images };
@@ -56,6 +59,12 @@ struct OmniFastSLAMApp::Impl : ParticleFilterApp {
     CeilingLightDetector::TOptions detectorOptions;
     std::unique_ptr<CeilingLightDetector> detector;
     std::unique_ptr<COmniFastSLAM> filter;
+    LightsPathSmoother::TOptions smootherOptions;
+    std::unique_ptr<LightsPathSmoother> smoother;  ///< with smooth_path
+    /// With smooth_path: the smoothed path and lights, the time they took, the filter's path.
+    std::optional<LightsPathSmoother::TResult> smoothed;
+    double smoothingSeconds = 0;
+    core::TumTrajectory filterPath;
     mrpt::poses::CPose2D odometry;  ///< dead reckoning from the start pose
 
     size_t framesWithImages = 0, measurements = 0;
@@ -105,6 +114,7 @@ void OmniFastSLAMApp::Impl::loadConfig()
         if (!robot.empty()) filterOptions.bearings_label = robot + "_RB";
         pf.m_options.loadFromConfigFile(cfg, "ParticleFilter");
         kld.loadFromConfigFile(cfg, "KLD_options");
+        smootherOptions.loadFromConfigFile(cfg, kSmootherSection);
         try {
             core::validateKLDParams(kld);
         } catch (const std::invalid_argument& e) {
@@ -129,6 +139,11 @@ void OmniFastSLAMApp::Impl::prepare()
     filter = makeFilter<COmniFastSLAM>(mapTemplate);
     filter->options = filterOptions;
     filter->kld = kld;
+    if (smootherOptions.smooth_path) {
+        smoother = std::make_unique<LightsPathSmoother>();
+        smoother->options = smootherOptions;
+        filter->setStepObserver(smoother.get());
+    }
 }
 
 std::vector<core::ObservationSelector> OmniFastSLAMApp::Impl::stepObservations() const
@@ -213,6 +228,13 @@ void OmniFastSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
                                  filterOptions.bearings_label + " or " + imageLabel +
                                  "); the rawlog has: " + contents.describe());
     app.estimatedPath = asTrajectory(COmniFastSLAM::pathOf(filter->bestParticle()));
+    if (smoother) {
+        const core::RunTimer smoothing;
+        smoothed = smoother->smooth(filter->bestParticle());
+        smoothingSeconds = smoothing.elapsedSeconds();
+        filterPath = app.estimatedPath;
+        app.estimatedPath = asTrajectory(smoothed->path);
+    }
 }
 
 void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
@@ -220,13 +242,31 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
 {
     const auto& best = filter->bestParticle();
     const std::string suffix = robot.empty() ? "" : "_" + robot;
-    app.estimatedPath.save(out.file("estimated_path" + suffix + ".tum"),
-                           "omni-fastslam: best particle's path");
+    app.estimatedPath.save(
+        out.file("estimated_path" + suffix + ".tum"),
+        smoothed ? "omni-fastslam: smoothed path" : "omni-fastslam: best particle's path");
     app.odometryPath.save(out.file("odometry_path" + suffix + ".tum"),
                           "omni-fastslam: dead reckoning");
-    core::saveFinalMap(best.map, out.path());
-
-    drawBestParticle(scene);
+    if (smoothed) {
+        filterPath.save(out.file("filter_path" + suffix + ".tum"),
+                        "omni-fastslam: best particle's path, before smoothing");
+        core::saveFinalMap(smoothed->map, out.path());
+        core::saveMapFiles(best.map, out.path(), "filter_map");
+        scene.insert(smoothed->map.getVisualization());
+        scene.insert(core::trajectoryAsLines(app.estimatedPath, {0, 0.8f, 0}, "smoothed"));
+        scene.insert(core::trajectoryAsLines(filterPath, {0.6f, 0.8f, 0.6f}, "filter"));
+        report.setResultJson(
+            "smoothing",
+            mrpt::format("{\"iterations\": %zu, \"bearings\": %zu, \"outliers\": %zu, "
+                         "\"merged_lights\": %zu, \"initial_cost\": %.6g, \"final_cost\": "
+                         "%.6g}",
+                         smoothed->iterations, smoothed->bearings, smoothed->outliers,
+                         smoothed->merged, smoothed->initial_cost, smoothed->final_cost));
+        report.setPartTiming("smoothing", smoothingSeconds);
+    } else {
+        core::saveFinalMap(best.map, out.path());
+        drawBestParticle(scene);
+    }
     drawOdometryAndGroundTruth(scene, app.odometryPath, start.groundTruth);
     if (const auto landmarks = trueLandmarks(start.groundTruthPrefix))
         drawLandmarks(scene, *landmarks);
@@ -235,7 +275,7 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     report.setCount("frames_with_images", framesWithImages);
     report.setCount("measurements", measurements);
     report.setCount("particles", filter->particlesCount());
-    report.setCount("landmarks", best.map.landmarks().size());
+    report.setCount("landmarks", (smoothed ? smoothed->map : best.map).landmarks().size());
     report.setCount("candidates", best.map.candidates().size());
     // which camera pose the measurement model used: the config's, or the observations' own
     const auto& pose = best.map.sensorPoseInUse();
