@@ -93,27 +93,29 @@ for seed in $SEEDS; do
   hall "no-refinement-seed$seed" --seed "$seed" --set "$INSERT.refine_initialization=false"
 done
 HARD="$REPO_DIR/datasets/sports-hall-hard/hall-hard"
+# hard NAME [OPTION...]: a run on the hard hall with sports-hall.ini
+hard() {
+  local name="$1"; shift
+  run "$name" "$CONFIGS/sports-hall.ini" "$HARD.rawlog" "$HARD" "$@"
+}
 echo "5. the hard hall: Hungarian, ML and the paper's parameters, seeds $SEEDS"
 for seed in $SEEDS; do
   for method in hungarian ml; do
-    run "hard-$method-seed$seed" "$CONFIGS/sports-hall.ini" "$HARD.rawlog" "$HARD" --seed "$seed" \
-      --set "$INSERT.association_method=$method"
+    hard "hard-$method-seed$seed" --seed "$seed" --set "$INSERT.association_method=$method"
   done
-  run "hard-paper-seed$seed" "$CONFIGS/sports-hall.ini" "$HARD.rawlog" "$HARD" --seed "$seed" \
-    --set "$INSERT.sigma0_xx=0.0025" --set "$INSERT.sigma0_yy=0.0025" \
-    --set "$INSERT.sigma0_zz=0.0025" --set "$INSERT.refine_initialization=false"
+  hard "hard-paper-seed$seed" --seed "$seed" --set "$INSERT.sigma0_xx=0.0025" \
+    --set "$INSERT.sigma0_yy=0.0025" --set "$INSERT.sigma0_zz=0.0025" \
+    --set "$INSERT.refine_initialization=false"
 done
 echo "6. an adaptive number of particles (KLD-sampling) on both halls, seeds $SEEDS"
 for seed in $SEEDS; do
   hall "kld-seed$seed" --seed "$seed" --set ParticleFilter.adaptiveSampleSize=1
-  run "hard-kld-seed$seed" "$CONFIGS/sports-hall.ini" "$HARD.rawlog" "$HARD" --seed "$seed" \
-    --set ParticleFilter.adaptiveSampleSize=1
+  hard "hard-kld-seed$seed" --seed "$seed" --set ParticleFilter.adaptiveSampleSize=1
 done
 echo "7. one round of smoothing on both halls, seeds $SEEDS"
 for seed in $SEEDS; do
   hall "one-round-seed$seed" --seed "$seed" --set LightsPathSmoother.rounds=1
-  run "hard-one-round-seed$seed" "$CONFIGS/sports-hall.ini" "$HARD.rawlog" "$HARD" --seed "$seed" \
-    --set LightsPathSmoother.rounds=1
+  hard "hard-one-round-seed$seed" --seed "$seed" --set LightsPathSmoother.rounds=1
 done
 for f in paths errors landmark_errors; do
   cp "$OUT/hungarian-seed1/$f.png" "$PLOTS/$f.png"

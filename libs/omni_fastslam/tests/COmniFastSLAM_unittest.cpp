@@ -13,6 +13,8 @@
 
 #include <cmath>
 
+#include "LightsTestUtils.h"
+
 using namespace mrpt_vslam;
 using omni_fastslam::COmniFastSLAM;
 
@@ -29,12 +31,7 @@ TRunResult runFrames(size_t frames, mrpt::bayes::CParticleFilter::TParticleFilte
                      uint32_t seed, bool adaptive = false, unsigned threads = 0)
 {
     const auto gt = core::TumTrajectory::load(kPrefix + ".groundtruth.tum");
-    omni_fastslam::CCeilingLightsMap map;
-    map.sensorOptions.max_theta = 70 * M_PI / 180;
-    map.insertionOptions.sigma0_xx = map.insertionOptions.sigma0_yy =
-        map.insertionOptions.sigma0_zz = 0.1;
-    map.insertionOptions.refine_initialization = true;
-    COmniFastSLAM filter(map, 10, seed);
+    COmniFastSLAM filter(omni_fastslam::test::hallMapTemplate(), 10, seed);
     filter.setThreadCount(threads);
     mrpt::random::getRandomGenerator().randomize(seed);
     mrpt::bayes::CParticleFilter pf;

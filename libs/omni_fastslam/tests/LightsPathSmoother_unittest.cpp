@@ -13,6 +13,8 @@
 
 #include <cmath>
 
+#include "LightsTestUtils.h"
+
 using namespace mrpt_vslam;
 using omni_fastslam::COmniFastSLAM;
 using omni_fastslam::LightsPathSmoother;
@@ -48,12 +50,7 @@ double positionRmse(const std::vector<std::pair<double, mrpt::math::TPose2D>>& p
 TRun run(uint32_t seed, const LightsPathSmoother::TOptions& options)
 {
     const auto gt = core::TumTrajectory::load(kPrefix + ".groundtruth.tum");
-    omni_fastslam::CCeilingLightsMap map;
-    map.sensorOptions.max_theta = 70 * M_PI / 180;
-    map.insertionOptions.sigma0_xx = map.insertionOptions.sigma0_yy =
-        map.insertionOptions.sigma0_zz = 0.1;
-    map.insertionOptions.refine_initialization = true;
-    COmniFastSLAM filter(map, 10, seed);
+    COmniFastSLAM filter(omni_fastslam::test::hallMapTemplate(), 10, seed);
     mrpt::random::getRandomGenerator().randomize(seed);  // CParticleFilter's resampling draws
     LightsPathSmoother smoother;
     smoother.options = options;

@@ -3,12 +3,25 @@
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/omni_fastslam/BearingMeasurementModel.h>
+#include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
 
 #include <cmath>
 #include <limits>
 #include <vector>
 
 namespace mrpt_vslam::omni_fastslam::test {
+
+/** The map options of `sports-hall.ini` for the shipped halls' rawlogs: 70° perceptual range,
+ *  Σ0 = 0.1 m², a new light refined from its candidate's measurements. */
+inline CCeilingLightsMap hallMapTemplate()
+{
+    CCeilingLightsMap map;
+    map.sensorOptions.max_theta = 70 * M_PI / 180;
+    map.insertionOptions.sigma0_xx = map.insertionOptions.sigma0_yy =
+        map.insertionOptions.sigma0_zz = 0.1;
+    map.insertionOptions.refine_initialization = true;
+    return map;
+}
 
 /** An OMNICAM_BEARINGS observation of `lights` from `robot`: yaw = φ, pitch = θ − π/2, range NaN,
  *  Gaussian angle noise of σ `sigma` [rad] when `rng` is given, lights with θ > max_theta left
