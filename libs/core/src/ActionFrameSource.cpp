@@ -12,7 +12,7 @@
 namespace mrpt_vslam::core {
 
 ActionFrameSource::ActionFrameSource(
-    RawlogReader& reader, std::vector<ObservationSelector> steps,
+    RawlogEntrySource& reader, std::vector<ObservationSelector> steps,
     const mrpt::obs::CActionRobotMovement2D::TMotionModelOptions& motion_model,
     std::vector<std::string> odometry_labels)
     : m_reader(reader),
@@ -49,6 +49,9 @@ mrpt::obs::CActionRobotMovement2D::TMotionModelOptions ActionFrameSource::loadMo
 
 bool ActionFrameSource::haveOdometry() const
 {
+    if (m_stand_still_until_odometry)
+        return std::any_of(m_odometry_at_last_step.begin(), m_odometry_at_last_step.end(),
+                           [](const auto& o) { return o.has_value(); });
     return std::all_of(m_odometry_at_last_step.begin(), m_odometry_at_last_step.end(),
                        [](const auto& o) { return o.has_value(); });
 }
@@ -60,7 +63,10 @@ void ActionFrameSource::emitPending(mrpt::obs::CActionCollection::Ptr& actions,
     for (size_t k = 0; k < m_odometry.size(); k++) {
         mrpt::obs::CActionRobotMovement2D move;
         move.timestamp = m_pending_time;
-        move.computeFromOdometry(*m_odometry[k] - *m_odometry_at_last_step[k], m_motion_model);
+        const bool moved = m_odometry[k].has_value();  // else standing still until it has
+        move.computeFromOdometry(
+            moved ? *m_odometry[k] - *m_odometry_at_last_step[k] : mrpt::poses::CPose2D(),
+            m_motion_model);
         m_odometry_at_last_step[k] = m_odometry[k];
         actions->insert(move);
     }

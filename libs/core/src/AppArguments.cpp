@@ -44,7 +44,7 @@ unsigned parseThreads(const std::string& text)
 }  // namespace
 
 AppArguments AppArguments::parse(int argc, const char* const* argv, const std::string& appName,
-                                 const std::string& description)
+                                 const std::string& description, bool live)
 {
     // TCLAP remembers in a process-wide flag that an optional positional was declared, and then
     // refuses the required CONFIG of any later parser; each parse starts afresh.
@@ -71,6 +71,14 @@ AppArguments AppArguments::parse(int argc, const char* const* argv, const std::s
     TCLAP::ValueArg<std::string> ground_truth(
         "", "ground-truth", "Ground truth NAME (default: found beside the rawlog).", false, "",
         "NAME", cmd);
+    // declared only where the app offers it, so that --help lists it only there
+    std::optional<TCLAP::ValueArg<std::string>> listen;
+    if (live)
+        listen.emplace("", "listen",
+                       "Runs the filter live on the readings that robot nodes (vslam-robot-node) "
+                       "stream to this ZeroMQ address, e.g. tcp://*:5555, instead of a rawlog "
+                       "(doc/team-online.md).",
+                       false, "", "ENDPOINT", cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "No progress line or log output.", cmd, false);
     TCLAP::SwitchArg gui("", "gui",
                          "Live 3D view of the estimate while it runs; at the end the window stays "
@@ -108,6 +116,11 @@ AppArguments AppArguments::parse(int argc, const char* const* argv, const std::s
     }
     if (out.isSet() && a.outDir.empty()) throw usage_error("--out needs a folder name");
     a.groundTruth = ground_truth.getValue();
+    if (listen) a.listen = listen->getValue();
+    if (listen && listen->isSet() && a.listen.empty())
+        throw usage_error("--listen needs an address such as tcp://*:5555");
+    if (!a.listen.empty() && !a.rawlogFile.empty())
+        throw usage_error("give a RAWLOG or --listen, not both");
     a.quiet = quiet.getValue();
     a.gui = gui.getValue();
     return a;
@@ -129,6 +142,7 @@ std::string AppArguments::resolveRawlog(const CheckedConfigFile& cfg,
                                         const std::string& section) const
 {
     const std::string configured = cfg.read_string(section, "rawlog_file", "");  // always read
+    if (!listen.empty()) return listen;
     const std::string file = rawlogFile.empty() ? configured : rawlogFile;
     if (file.empty())
         throw UsageError(cfg.name() + ": no rawlog given (argument RAWLOG or [" + section +

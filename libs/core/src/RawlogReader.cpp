@@ -313,24 +313,26 @@ bool RawlogReader::next(TRawlogEntry& entry)
     const std::initializer_list<const CSerializable*> parts = {
         entry.actions.get(), entry.observations.get(), entry.observation.get(), entry.other.get()};
     for (const CSerializable* part : parts)
-        if (part) account(*part);
+        if (part) m_summary.add(*part);
     return true;
 }
 
-void RawlogReader::account(const CSerializable& obj)
+RawlogEntrySource::~RawlogEntrySource() = default;
+
+void TRawlogSummary::add(const CSerializable& obj)
 {
-    auto& counts = m_summary.byClassAndLabel;
+    auto& counts = byClassAndLabel;
     if (const auto* acts = dynamic_cast<const CActionCollection*>(&obj)) {
-        ++m_summary.actionCollections;
+        ++actionCollections;
         for (size_t i = 0; i < acts->size(); ++i) ++counts[{shortClassName(acts->get(i)), ""}];
     } else if (const auto* sf = dynamic_cast<const CSensoryFrame*>(&obj)) {
-        ++m_summary.sensoryFrames;
+        ++sensoryFrames;
         for (const auto& o : *sf) ++counts[{shortClassName(*o), o->sensorLabel}];
     } else if (const auto* o = dynamic_cast<const CObservation*>(&obj)) {
-        ++m_summary.observations;
+        ++observations;
         ++counts[{shortClassName(*o), o->sensorLabel}];
     } else {
-        ++m_summary.others;
+        ++others;
         ++counts[{shortClassName(obj), ""}];
     }
 }

@@ -141,3 +141,28 @@ TEST(AppArguments, DefaultOutDirUsesConfigStem)
               "out/view-slam-indoor.v2");
     EXPECT_EQ(AppArguments::defaultOutDir("view-slam", "plain"), "out/view-slam-plain");
 }
+
+// --listen only where the app offers it (and its --help lists it), and not with a RAWLOG.
+TEST(AppArguments, ListenIsForLiveAppsAndReplacesTheRawlog)
+{
+    const auto parseLive = [](std::vector<const char*> argv) {
+        return AppArguments::parse(static_cast<int>(argv.size()), argv.data(), "multirobot-vslam",
+                                   "Team SLAM.", true);
+    };
+    EXPECT_NE(usageErrorOf({"omni-fastslam", "a.ini", "--listen", "tcp://0.0.0.0:5555"})
+                  .find("unknown option --listen"),
+              std::string::npos);
+    EXPECT_EQ(parseArgs({"omni-fastslam", "--help"}).message.find("--listen"), std::string::npos);
+    EXPECT_NE(parseLive({"multirobot-vslam", "--help"}).message.find("--listen"),
+              std::string::npos);
+    const auto live = parseLive({"multirobot-vslam", "a.ini", "--listen", "tcp://0.0.0.0:5555"});
+    EXPECT_EQ(live.listen, "tcp://0.0.0.0:5555");
+    EXPECT_TRUE(live.rawlogFile.empty());
+    try {
+        parseLive({"multirobot-vslam", "a.ini", "b.rawlog", "--listen", "tcp://0.0.0.0:5555"});
+        ADD_FAILURE() << "a RAWLOG with --listen was taken";
+    } catch (const UsageError& e) {
+        EXPECT_NE(std::string(e.what()).find("not both"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(parseLive({"multirobot-vslam", "a.ini", "--listen", ""}), UsageError);
+}

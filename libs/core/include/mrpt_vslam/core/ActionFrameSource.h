@@ -6,7 +6,7 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
-#include <mrpt_vslam/core/RawlogReader.h>
+#include <mrpt_vslam/core/RawlogEntrySource.h>
 
 #include <optional>
 #include <string>
@@ -23,14 +23,16 @@ namespace mrpt_vslam::core {
  *  - format #2 (observation-only): `CObservationOdometry` readings give the odometry, and every
  *    group of observations with the same timestamp that holds one matching `steps` becomes a
  *    frame, with a `CActionRobotMovement2D` built from the odometry increment since the previous
- *    frame and `motion_model`. Frames before the first odometry reading are dropped.
+ *    frame and `motion_model`. Frames before every robot's first odometry reading are dropped
+ *    (with standStillUntilOdometry(): only those before any robot's; a robot without odometry
+ *    yet stands still).
  *
  *  Usage: `ActionFrameSource src(reader, {ObservationSelector::of<CObservationImage>("")},
  *  motion);` then `while (src.next(acts, sf)) ...`.
  */
 class ActionFrameSource {
   public:
-    ActionFrameSource(RawlogReader& reader, std::vector<ObservationSelector> steps,
+    ActionFrameSource(RawlogEntrySource& reader, std::vector<ObservationSelector> steps,
                       const mrpt::obs::CActionRobotMovement2D::TMotionModelOptions& motion_model,
                       std::vector<std::string> odometry_labels = {});
 
@@ -39,6 +41,10 @@ class ActionFrameSource {
      *  unless a1-a4 are finite and >= 0 and the two minimum stds finite and > 0. */
     static mrpt::obs::CActionRobotMovement2D::TMotionModelOptions loadMotionModel(
         const mrpt::config::CConfigFileBase& cfg, const std::string& section);
+
+    /** Format #2: a robot whose odometry has not arrived yet (one that joins a team late) stands
+     *  still in the steps until it does, instead of holding every step back. */
+    void standStillUntilOdometry() { m_stand_still_until_odometry = true; }
 
     /** The next step. \return false at the end of the rawlog. Throws std::runtime_error naming
      *  the rawlog for an action collection without odometry. */
@@ -53,7 +59,7 @@ class ActionFrameSource {
     /// `later`'s odometry after m_carried's, robot by robot (CPosePDFGaussian composition).
     mrpt::obs::CActionCollection::Ptr afterCarried(const mrpt::obs::CActionCollection& later) const;
 
-    RawlogReader& m_reader;
+    RawlogEntrySource& m_reader;
     std::vector<ObservationSelector> m_steps;
     mrpt::obs::CActionRobotMovement2D::TMotionModelOptions m_motion_model;
     std::vector<std::string> m_odometry_labels;  ///< empty: one robot, any label
@@ -63,6 +69,7 @@ class ActionFrameSource {
     mrpt::obs::CSensoryFrame::Ptr m_pending;      ///< format #2 frame being assembled
     mrpt::Clock::time_point m_pending_time;
     bool m_pending_is_step = false;
+    bool m_stand_still_until_odometry = false;
 };
 
 }  // namespace mrpt_vslam::core

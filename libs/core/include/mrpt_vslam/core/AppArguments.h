@@ -11,7 +11,8 @@ namespace mrpt_vslam::core {
 
 /** The command line shared by the driver apps (doc/app-conventions.md):
  *  `APP CONFIG.ini [RAWLOG] [--out DIR] [--seed N] [--threads N] [--set SECTION.KEY=VALUE]...
- *   [--ground-truth NAME] [--quiet] [--gui] [--help] [--version]`.
+ *   [--ground-truth NAME] [--quiet] [--gui] [--help] [--version]`, and for the apps that take
+ *  readings live (multirobot-vslam) `[--listen ENDPOINT]`.
  *
  *  Usage in main():
  *  1. `auto args = AppArguments::parse(argc, argv, "omni-fastslam", "FastSLAM 2.0 with ...");`
@@ -35,15 +36,18 @@ class AppArguments {
     unsigned threads = 0;                    ///< `--threads`; 0: every core
     std::vector<TConfigOverride> overrides;  ///< every `--set`, in order
     std::string groundTruth;                 ///< `--ground-truth`; empty: look beside the rawlog
-    bool quiet = false;                      ///< `--quiet`: no progress line, no chatter
-    bool gui = false;                        ///< `--gui`: live 3D view
-    std::vector<std::string> commandLine;    ///< argv as given, for run.json
+    /// `--listen`: the ZeroMQ address the robots' readings arrive at, instead of a rawlog
+    std::string listen;
+    bool quiet = false;                    ///< `--quiet`: no progress line, no chatter
+    bool gui = false;                      ///< `--gui`: live 3D view
+    std::vector<std::string> commandLine;  ///< argv as given, for run.json
 
     /** Parses argv. Throws UsageError with a one-line reason ending in "(see APP --help)" for
      *  unknown options, a missing CONFIG, extra positionals, or a malformed `--seed`,
-     *  `--threads` or `--set`. */
+     *  `--threads` or `--set`, and for RAWLOG with `--listen`.
+     *  \param live whether the app offers `--listen` */
     static AppArguments parse(int argc, const char* const* argv, const std::string& appName,
-                              const std::string& description);
+                              const std::string& description, bool live = false);
 
     /** `out/<appName>-<config file name without directory and extension>`. */
     static std::string defaultOutDir(const std::string& appName, const std::string& configFile);
@@ -52,7 +56,8 @@ class AppArguments {
      *  \param config_seed the config's `random_seed` key (0 if absent). */
     uint32_t resolveSeed(uint32_t config_seed) const;
 
-    /** The rawlog to read: RAWLOG if given, else the config's `[section] rawlog_file`.
+    /** The rawlog to read: RAWLOG if given, else the config's `[section] rawlog_file`; with
+     *  `--listen`, its address.
      *  Throws UsageError "CONFIG: no rawlog given (...)" when neither is there. */
     std::string resolveRawlog(const CheckedConfigFile& cfg, const std::string& section) const;
 

@@ -1,59 +1,12 @@
 #pragma once
 
-#include <mrpt/core/Clock.h>
-#include <mrpt/obs/CActionCollection.h>
-#include <mrpt/obs/CObservation.h>
-#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt_vslam/core/RawlogEntrySource.h>
 
 #include <cstddef>
-#include <map>
 #include <memory>
 #include <string>
-#include <utility>
 
 namespace mrpt_vslam::core {
-
-/** How a rawlog stores its data (doc/data-formats.md). */
-enum class RawlogFormat {
-    Empty,                   ///< no actions or observations (read yet)
-    ActionObservationPairs,  ///< #1: CActionCollection, CSensoryFrame, ...
-    ObservationsOnly,        ///< #2: one CObservation after another
-    Mixed                    ///< both kinds of entries
-};
-
-/** One step of a rawlog. Exactly one of the groups is set:
- *  `actions` and/or `observations` (format #1: an action collection with the sensory frame that
- *  follows it; either may be missing at the ends or in odd files), `observation` (format #2),
- *  or `other` (any other serializable object the file holds). */
-struct TRawlogEntry {
-    mrpt::obs::CActionCollection::Ptr actions;
-    mrpt::obs::CSensoryFrame::Ptr observations;
-    mrpt::obs::CObservation::Ptr observation;
-    mrpt::serialization::CSerializable::Ptr other;
-    /** Time of the observation, of the first observation of the frame, or of the first action;
-     *  INVALID_TIMESTAMP if none has one. */
-    mrpt::Clock::time_point timestamp = INVALID_TIMESTAMP;
-    size_t index = 0;  ///< 0-based number of this entry among those next() returned
-};
-
-/** What a rawlog holds, to tell the user what was found when it does not fit the app. */
-struct TRawlogSummary {
-    size_t objects = 0;            ///< top-level objects read from the file
-    size_t actionCollections = 0;  ///< top-level CActionCollection
-    size_t sensoryFrames = 0;      ///< top-level CSensoryFrame
-    size_t observations = 0;       ///< top-level CObservation (format #2)
-    size_t others = 0;             ///< top-level objects of any other class
-    /** Count per (class, sensorLabel) of every observation (top-level or inside a frame) and
-     *  every action ("" label); classes of `mrpt::obs` without their namespace. */
-    std::map<std::pair<std::string, std::string>, size_t> byClassAndLabel;
-
-    RawlogFormat format() const;
-    /** Observations (or actions) of `class_name` with `label` ("*": any label). */
-    size_t count(const std::string& class_name, const std::string& label = "*") const;
-    /** e.g. "320 x CObservationOdometry (ODOM), 320 x CObservationImage (OMNICAM)", or
-     *  "nothing" for an empty rawlog. */
-    std::string describe() const;
-};
 
 /** Reads a rawlog entry by entry, in either format, and fails loudly: every problem is an
  *  exception naming the file, never a silent early end.
@@ -79,21 +32,21 @@ struct TRawlogSummary {
  *                                reader.summary().describe());
  *  \endcode
  */
-class RawlogReader {
+class RawlogReader : public RawlogEntrySource {
   public:
     /// Opens `file` and validate()s it. \throw std::runtime_error as described above
     explicit RawlogReader(const std::string& file);
-    ~RawlogReader();
+    ~RawlogReader() override;
     RawlogReader(const RawlogReader&) = delete;
     RawlogReader& operator=(const RawlogReader&) = delete;
 
     /** Reads the next entry. \return false at the (clean) end of the file. Throws
      *  std::runtime_error as described above. */
-    bool next(TRawlogEntry& entry);
+    bool next(TRawlogEntry& entry) override;
 
     /** What was read so far (all of it once next() returned false). */
-    const TRawlogSummary& summary() const { return m_summary; }
-    const std::string& file() const { return m_file; }
+    const TRawlogSummary& summary() const override { return m_summary; }
+    const std::string& file() const override { return m_file; }
 
     /** MRPT's folder for the external images of `file` (`DIR/NAME.rawlog`): the first existing
      *  of `DIR/NAME_Images`, `DIR/NAME_images`, `DIR/NAME_IMAGES`, else `DIR/Images`.
@@ -115,7 +68,6 @@ class RawlogReader {
     /** Next object from the file or the pending queue; nullptr at the end. */
     mrpt::serialization::CSerializable::Ptr nextObject();
     mrpt::serialization::CSerializable::Ptr readFromFile();
-    void account(const mrpt::serialization::CSerializable& obj);
     [[noreturn]] void fail(const std::string& what) const;
 
     struct Impl;
