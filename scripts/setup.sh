@@ -19,6 +19,7 @@ DEBIAN_PACKAGES=(
   libopencv-dev libeigen3-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   libplplot-dev plplot-driver-cairo
+  libzmq3-dev cppzmq-dev
 )
 
 install_missing_packages() {
