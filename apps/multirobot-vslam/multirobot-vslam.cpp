@@ -17,7 +17,9 @@ int main(int argc, char** argv)
             "Rao-Blackwellized particle filter over the paths of a robot team and one shared map "
             "of 3D landmarks with U-SURF descriptors. Reads an observation-only rawlog with "
             "<ROBOT>_ODOM odometry and <ROBOT>_LANDMARKS or <ROBOT>_STEREO observations; writes "
-            "the run folder described in doc/multirobot.md.");
+            "the run folder described in doc/multirobot.md. With --listen, the robots stream "
+            "their readings live (vslam-robot-node, doc/team-online.md).",
+            true);
         if (args.request != core::AppArguments::Request::Run) {
             std::cout << args.message;
             return 0;

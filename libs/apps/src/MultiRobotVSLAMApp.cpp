@@ -15,6 +15,7 @@
 #include <mrpt_vslam/multirobot/LandmarkIdentityTally.h>
 #include <mrpt_vslam/multirobot/StereoFrontEnd.h>
 #include <mrpt_vslam/multirobot/TeamPathSmoother.h>
+#include <mrpt_vslam/team/TeamListener.h>
 
 #include <bitset>
 #include <cstdio>
@@ -40,6 +41,7 @@ namespace {
 constexpr const char* kAppSection = "MultiRobotVSLAM";
 constexpr const char* kFrontEndSection = "StereoFrontEnd";
 constexpr const char* kSmootherSection = "TeamPathSmoother";
+constexpr const char* kListenerSection = "TeamListener";
 /// The keys of [TeamPathSmoother] that were in [MultiRobotVSLAM] before: (former, new).
 constexpr std::pair<const char*, const char*> kMovedKeys[] = {
     {"map_along_path", "map_along_path"},
@@ -83,6 +85,8 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
     CMultiRobotVisualSLAM::TOptions filterOptions;
     TeamPathSmoother::TOptions smootherOptions;
     StereoFrontEnd::TOptions frontEndOptions;
+    team::TeamListener::TOptions listenerOptions;            ///< with --listen
+    team::TeamListener* listener = nullptr;                  ///< with --listen, during run()
     std::vector<std::unique_ptr<StereoFrontEnd>> frontEnds;  ///< one per robot, on demand
     std::unique_ptr<CMultiRobotVisualSLAM> filter;
     std::unique_ptr<TeamPathSmoother> smoother;  ///< with map_along_path
@@ -121,6 +125,7 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
 
     void loadConfig() override;
     void prepare() override;
+    std::unique_ptr<core::RawlogEntrySource> openInput() override;
     std::vector<core::ObservationSelector> stepObservations() const override;
     std::vector<std::string> odometryLabels() const override;
     void step(mrpt::obs::CActionCollection::Ptr actions, mrpt::obs::CSensoryFrame& frame,
@@ -155,6 +160,18 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
     gtMatchRadius = cfg.read_double(kAppSection, "gt_match_radius", gtMatchRadius);
     odometryLabel = cfg.read_string(kAppSection, "odometry_label", "");
     if (!(gtMatchRadius > 0)) throw usageError("[MultiRobotVSLAM] gt_match_radius must be > 0");
+    auto& l = listenerOptions;
+    l.reorder_window_s = cfg.read_double(kListenerSection, "reorder_window_s", l.reorder_window_s);
+    l.join_window_s = cfg.read_double(kListenerSection, "join_window_s", l.join_window_s);
+    l.idle_timeout_s = cfg.read_double(kListenerSection, "idle_timeout_s", l.idle_timeout_s);
+    for (const auto& [key, value] :
+         {std::pair<const char*, double>{"reorder_window_s", l.reorder_window_s},
+          {"join_window_s", l.join_window_s},
+          {"idle_timeout_s", l.idle_timeout_s}})
+        if (!(value > 0 && value <= 86400))
+            throw usageError(std::string("[") + kListenerSection + "] " + key +
+                             " must be > 0 and at most 86400 [s]");
+    l.quiet = args.quiet;
 
     try {
         filterOptions.loadFromConfigFile(cfg, kAppSection);
@@ -290,6 +307,17 @@ void MultiRobotVSLAMApp::Impl::prepare()
     for (const auto& p : startPoses) odometry.emplace_back(p);
     app.estimatedPaths.assign(app.robots.size(), {});
     app.odometryPaths.assign(app.robots.size(), {});
+}
+
+std::unique_ptr<core::RawlogEntrySource> MultiRobotVSLAMApp::Impl::openInput()
+{
+    if (args.listen.empty()) return SlamApp::openInput();
+    auto live = std::make_unique<team::TeamListener>(args.listen, app.robots, listenerOptions);
+    listener = live.get();
+    if (!args.quiet)
+        std::printf("multirobot-vslam: listening at %s for %zu robots\n", args.listen.c_str(),
+                    app.robots.size());
+    return live;
 }
 
 std::vector<core::ObservationSelector> MultiRobotVSLAMApp::Impl::stepObservations() const
@@ -536,6 +564,7 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
         }
     }
     if (landmarks) report.setResultJson("landmark_merging", landmarkMergingJson(map, *landmarks));
+    if (listener) report.setResultJson("team_link", listener->statsJson());
     if (const auto a = identityAssociationJson(TLandmarkIdentityTally::of(correspondences, map));
         !a.empty())
         report.setResultJson("association_by_identity", a);

@@ -47,7 +47,7 @@ void SlamApp::initialize()
         throw configError(e);
     }
     cfg.throwIfUnreadKeys();
-    if (!mrpt::system::fileExists(rawlog))
+    if (args.listen.empty() && !mrpt::system::fileExists(rawlog))
         throw std::runtime_error(rawlog + ": cannot open rawlog");
     prepare();
     if (args.gui) m_window = std::make_unique<LiveView>(name);
@@ -57,6 +57,11 @@ void SlamApp::startRun(const core::OutputDirectory&) {}
 
 std::vector<std::string> SlamApp::odometryLabels() const { return {}; }
 
+std::unique_ptr<core::RawlogEntrySource> SlamApp::openInput()
+{
+    return std::make_unique<core::RawlogReader>(rawlog);
+}
+
 void SlamApp::run()
 {
     core::OutputDirectory out(args.outDir);
@@ -64,20 +69,23 @@ void SlamApp::run()
     for (const char* report : {"run.json", "metrics.json"}) std::remove(out.file(report).c_str());
     core::RunTimer timer;
     try {
-        core::RawlogReader reader(rawlog);
+        const auto input = openInput();
         core::ProgressReporter progress(name, 0, args.quiet);
         startRun(out);
-        core::ActionFrameSource source(reader, stepObservations(), m_motionModel, odometryLabels());
+        core::ActionFrameSource source(*input, stepObservations(), m_motionModel, odometryLabels());
+        // live, a robot that joins late stands still until then
+        if (!args.listen.empty()) source.standStillUntilOdometry();
         mrpt::obs::CActionCollection::Ptr actions;
         mrpt::obs::CSensoryFrame::Ptr frame;
         while (source.next(actions, frame)) {
             step(actions, *frame, timer);
+            input->stepFinished();
             progress.update(++steps);
             if (m_window)
                 m_window->show([this](mrpt::opengl::COpenGLScene& scene) { drawLive(scene); });
         }
         progress.finish(steps);
-        endSteps(reader.summary());
+        endSteps(input->summary());
         writeRunFolder(out, timer);
     } catch (const std::exception& e) {
         core::RunReport report(name);

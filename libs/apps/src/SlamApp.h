@@ -32,7 +32,8 @@ namespace mrpt_vslam::apps {
  *  - initialize(): the config (`--set`, `rawlog_file`, `random_seed`, the app's keys,
  *    `[MotionModel]`, then no unknown key), the rawlog's presence, the app's inputs, the `--gui`
  *    window;
- *  - run(): the run folder, the rawlog's filter steps (core::ActionFrameSource, both formats)
+ *  - run(): the run folder, the rawlog's filter steps (core::ActionFrameSource, both formats;
+ *    or, with `--listen`, the readings streamed to the app, openInput())
  *    with the progress line, the step timer and the window redrawn after each step; then the
  *    app's results, `final.3Dscene`, `config.ini`, `run.json` and, with ground truth,
  *    `metrics.json`; last, with `--gui` and without `--quiet`, the window until it is closed.
@@ -85,6 +86,9 @@ class SlamApp {
     /// A path of (timestamp, pose) as a trajectory, one pose per timestamp (the first kept).
     static core::TumTrajectory asTrajectory(
         const std::vector<std::pair<double, mrpt::math::TPose2D>>& path);
+
+    /// Where the entries come from: the rawlog (the default), or what the app listens to.
+    virtual std::unique_ptr<core::RawlogEntrySource> openInput();
 
     /// @name Parts of the final scene
     /// @{
