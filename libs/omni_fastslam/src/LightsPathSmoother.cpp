@@ -174,12 +174,10 @@ class Problem {
         return 2 * m_huber * std::sqrt(s2) - m_huber * m_huber;
     }
 
-    /// Whitened x_k ⊖ x_{k−1} − u_k (the odometry Gaussians are in the frame of x_{k−1}).
-    Eigen::Vector3d odometryResidual(size_t k) const
-    {
-        return odometryResidual(k, nullptr, nullptr);
-    }
-    Eigen::Vector3d odometryResidual(size_t k, Eigen::Matrix3d* J_prev, Eigen::Matrix3d* J) const
+    /** Whitened x_k ⊖ x_{k−1} − u_k (the odometry Gaussians are in the frame of x_{k−1}), and
+     *  its Jacobians where asked for. */
+    Eigen::Vector3d odometryResidual(size_t k, Eigen::Matrix3d* J_prev = nullptr,
+                                     Eigen::Matrix3d* J = nullptr) const
     {
         const TPose2D& a = poses[k - 1];
         const TPose2D& b = poses[k];
