@@ -84,9 +84,9 @@ int main(int argc, char** argv)
             return 0;
         }
         if (!(rate.getValue() > 0 && std::isfinite(rate.getValue())))
-            throw core::UsageError(app + ": --rate must be > 0 (see " + app + " --help)");
+            throw core::UsageError("--rate must be > 0 (see " + app + " --help)");
         if (!(giveUp.getValue() >= 0 && std::isfinite(giveUp.getValue())))
-            throw core::UsageError(app + ": --give-up-after must be >= 0 (see " + app + " --help)");
+            throw core::UsageError("--give-up-after must be >= 0 (see " + app + " --help)");
 
         multirobot::registerAllClasses_multirobot();  // the classes a team rawlog may hold
         const auto readings = readingsOf(rawlog.getValue(), robot.getValue());

@@ -117,6 +117,13 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
             frame = e.observations;
             return true;
         }
+        if (e.time_barrier) {  // nothing more at the pending frame's time
+            if (m_pending && m_pending_is_step && haveOdometry() && m_pending_time <= e.timestamp) {
+                emitPending(actions, frame);
+                return true;
+            }
+            continue;
+        }
         if (!e.observation) continue;
         // format #2: a new timestamp closes the pending frame
         const bool ready = m_pending && m_pending_is_step && haveOdometry() &&

@@ -41,16 +41,23 @@ CSensoryFrame frame()
 /// Observations handed out from memory, as team::TeamListener hands them out.
 class ObservationList : public mrpt_vslam::core::RawlogEntrySource {
   public:
-    std::vector<CObservation::Ptr> observations;
+    std::vector<CObservation::Ptr> observations;  ///< nullptr: a time barrier after the previous
     bool next(mrpt_vslam::core::TRawlogEntry& e) override
     {
         if (m_next == observations.size()) return false;
         e = {};
-        e.observation = observations[m_next];
-        e.timestamp = e.observation->timestamp;
-        e.index = m_next++;
+        e.index = m_next;
+        if (!observations[m_next]) {
+            e.time_barrier = true;
+            e.timestamp = observations.at(m_next - 1)->timestamp;
+        } else {
+            e.observation = observations[m_next];
+            e.timestamp = e.observation->timestamp;
+        }
+        m_next++;
         return true;
     }
+    size_t read() const { return m_next; }
     const mrpt_vslam::core::TRawlogSummary& summary() const override { return m_summary; }
     const std::string& file() const override { return m_name; }
 
@@ -142,7 +149,7 @@ TEST(ActionFrameSource, OdometryWithoutAFrameIsComposedIntoTheNextStep)
 TEST(ActionFrameSource, ARobotWithoutOdometryYetStandsStillWhenAsked)
 {
     const auto waiting = teamSteps(false);
-    ASSERT_EQ(waiting.size(), 2u);  // t = 3 and 4
+    ASSERT_EQ(waiting.size(), 2u);              // t = 3 and 4
     EXPECT_NEAR(waiting[0].first, 1.0, 1e-12);  // R1 from t = 1
     EXPECT_NEAR(waiting[0].second, 0.0, 1e-12);
     EXPECT_NEAR(waiting[1].first, 0.5, 1e-12);
@@ -156,4 +163,28 @@ TEST(ActionFrameSource, ARobotWithoutOdometryYetStandsStillWhenAsked)
     EXPECT_NEAR(standing[1].second, 0.0, 1e-12);
     EXPECT_NEAR(standing[2].second, 0.0, 1e-12);  // its first reading
     EXPECT_NEAR(standing[3].second, 1.0, 1e-12);
+}
+
+// A live source's time barrier closes the frame at once; without it the frame waits for the
+// next timestamp. The steps are the same.
+TEST(ActionFrameSource, ATimeBarrierClosesTheFrame)
+{
+    ObservationList list;
+    for (int t = 1; t <= 3; t++) {
+        list.observations.push_back(odometry("", t, 0.5 * t));
+        list.observations.push_back(bearings("", t));
+        list.observations.push_back(nullptr);
+    }
+    ActionFrameSource source(list, {ObservationSelector::of<CObservationBearingRange>("")},
+                             CActionRobotMovement2D::TMotionModelOptions());
+    CActionCollection::Ptr acts;
+    CSensoryFrame::Ptr sf;
+    for (size_t step = 1; step <= 3; step++) {
+        ASSERT_TRUE(source.next(acts, sf));
+        EXPECT_EQ(list.read(), 3 * step);  // up to the barrier, not beyond
+        EXPECT_EQ(sf->size(), 1u);
+        EXPECT_NEAR(acts->getBestMovementEstimation()->poseChange->getMeanVal().x(),
+                    step == 1 ? 0.0 : 0.5, 1e-12);
+    }
+    EXPECT_FALSE(source.next(acts, sf));
 }

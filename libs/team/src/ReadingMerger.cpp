@@ -106,6 +106,16 @@ std::optional<ReadingMerger::TReleased> ReadingMerger::next(double now)
     return out;
 }
 
+bool ReadingMerger::settled(mrpt::Clock::time_point t) const
+{
+    for (size_t r = 0; r < m_state.size(); r++) {
+        const auto& s = m_state[r];
+        if (!s.queue.empty() && s.queue.front().observation->timestamp <= t) return false;
+        if (!s.finished && !s.silent && s.watermark <= t) return false;
+    }
+    return true;
+}
+
 bool ReadingMerger::done() const
 {
     return std::all_of(m_state.begin(), m_state.end(),

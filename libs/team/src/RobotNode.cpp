@@ -1,3 +1,4 @@
+#include <mrpt/core/format.h>
 #include <mrpt_vslam/team/RobotNode.h>
 #include <mrpt_vslam/team/TeamMessage.h>
 
@@ -114,7 +115,7 @@ RobotNode::TStats RobotNode::play(const std::vector<mrpt::obs::CObservation::Ptr
         now = wallClockNow();
         if (m_options.give_up_after_s > 0 && now - lastWord > m_options.give_up_after_s)
             throw std::runtime_error(m_endpoint + ": no word from the mapper for " +
-                                     std::to_string(m_options.give_up_after_s) + " s");
+                                     mrpt::format("%g", m_options.give_up_after_s) + " s");
         if (!m_options.quiet && welcomed && now - lastLine >= 1) {
             lastLine = now;
             std::fprintf(stderr, "\r%s: %zu of %zu readings sent, %zu acknowledged",

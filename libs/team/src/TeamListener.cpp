@@ -37,7 +37,15 @@ struct TeamListener::Impl {
         }
         lastMessage = wallClockNow();
         receiver = std::thread([this] {
-            while (!stopping) receive(0.05);
+            try {
+                while (!stopping) receive(0.05);
+            } catch (const std::exception& e) {  // next() reports it
+                {
+                    const std::lock_guard lock(mutex);
+                    failure = e.what();
+                }
+                arrived.notify_one();
+            }
         });
     }
     ~Impl() { stop(); }
@@ -69,7 +77,11 @@ struct TeamListener::Impl {
     bool timedOut = false;
     /// Readings handed out and not yet in a finished step: (robot, sent time).
     std::vector<std::pair<size_t, double>> unfused;
+    /// The time of the last time barrier handed out, and whether it was the last entry.
+    mrpt::Clock::time_point barrierAt = INVALID_TIMESTAMP;
+    bool lastWasBarrier = false;
     std::atomic<bool> stopping{false};
+    std::string failure;   ///< what stopped the receiving thread
     std::thread receiver;  ///< takes and acknowledges messages while the filter runs
 
     void send(size_t robot, const TTeamMessage& m)
@@ -194,6 +206,7 @@ bool TeamListener::next(core::TRawlogEntry& entry)
     auto& d = *m_impl;
     std::unique_lock lock(d.mutex);
     for (;;) {
+        if (!d.failure.empty()) throw std::runtime_error(d.endpoint + ": " + d.failure);
         const double now = wallClockNow();
         if (auto r = d.merger.next(now)) {
             entry = core::TRawlogEntry();
@@ -205,6 +218,18 @@ bool TeamListener::next(core::TRawlogEntry& entry)
                 d.stats[r->robot].late_until = mrpt::Clock::toDouble(entry.timestamp);
             }
             d.unfused.emplace_back(r->robot, r->sent_time);
+            d.lastWasBarrier = false;
+            return true;
+        }
+        // the stream's time is complete: its step need not wait for a later reading
+        const auto t = d.merger.streamTime();
+        if (t != INVALID_TIMESTAMP && t != d.barrierAt && d.merger.settled(t)) {
+            entry = core::TRawlogEntry();
+            entry.time_barrier = true;
+            entry.timestamp = t;
+            entry.index = d.entries++;
+            d.barrierAt = t;
+            d.lastWasBarrier = true;
             return true;
         }
         if (d.merger.done()) {
@@ -235,9 +260,10 @@ void TeamListener::stepFinished()
     auto& d = *m_impl;
     const std::lock_guard lock(d.mutex);
     const double now = wallClockNow();
-    // the last reading handed out opened the next step, unless the data ended
+    // the last reading handed out opened the next step, unless the data ended or a time barrier
+    // closed the step
     const size_t fused =
-        d.ended ? d.unfused.size() : d.unfused.size() - (d.unfused.empty() ? 0 : 1);
+        d.ended || d.lastWasBarrier || d.unfused.empty() ? d.unfused.size() : d.unfused.size() - 1;
     for (size_t i = 0; i < fused; i++)
         d.stats[d.unfused[i].first].latencies.push_back(now - d.unfused[i].second);
     d.unfused.erase(d.unfused.begin(), d.unfused.begin() + static_cast<std::ptrdiff_t>(fused));

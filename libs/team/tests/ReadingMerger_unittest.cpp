@@ -143,3 +143,20 @@ TEST(ReadingMerger, WaitsTheJoinWindowForARobotNotHeardYet)
     merger.finish(1);
     EXPECT_TRUE(merger.done());
 }
+
+// settled(t): no reading at or before t can still come on time.
+TEST(ReadingMerger, IsSettledOnceEveryWatermarkHasPassed)
+{
+    ReadingMerger merger({"R1", "R2"}, 1.0, 10.0);
+    merger.add(0, reading(1, "R1"), at(2), 0, 0);
+    EXPECT_FALSE(merger.settled(at(1)));  // R1's reading waits, R2 not heard of
+    merger.add(1, reading(1, "R2"), at(1.5), 0, 0);
+    ASSERT_TRUE(merger.next(0));
+    EXPECT_FALSE(merger.settled(at(1)));  // R2's reading at 1 still waits
+    ASSERT_TRUE(merger.next(0));
+    EXPECT_TRUE(merger.settled(at(1)));
+    EXPECT_FALSE(merger.settled(at(1.5)));  // R2 may send a reading at 1.5
+    merger.finish(1);
+    EXPECT_TRUE(merger.settled(at(1.5)));
+    EXPECT_FALSE(merger.settled(at(2)));  // R1 may send one at 2
+}

@@ -23,7 +23,8 @@ namespace mrpt_vslam::core {
  *  - format #2 (observation-only): `CObservationOdometry` readings give the odometry, and every
  *    group of observations with the same timestamp that holds one matching `steps` becomes a
  *    frame, with a `CActionRobotMovement2D` built from the odometry increment since the previous
- *    frame and `motion_model`. Frames before every robot's first odometry reading are dropped
+ *    frame and `motion_model` (a live source's time barrier closes the frame as a new
+ *    timestamp does). Frames before every robot's first odometry reading are dropped
  *    (with standStillUntilOdometry(): only those before any robot's; a robot without odometry
  *    yet stands still).
  *

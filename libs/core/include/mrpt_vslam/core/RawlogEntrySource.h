@@ -23,7 +23,8 @@ enum class RawlogFormat {
 /** One step of a rawlog. Exactly one of the groups is set:
  *  `actions` and/or `observations` (format #1: an action collection with the sensory frame that
  *  follows it; either may be missing at the ends or in odd files), `observation` (format #2),
- *  or `other` (any other serializable object the file holds). */
+ *  or `other` (any other serializable object the file holds); or, from a live source only,
+ *  none: a time barrier (`time_barrier`). */
 struct TRawlogEntry {
     mrpt::obs::CActionCollection::Ptr actions;
     mrpt::obs::CSensoryFrame::Ptr observations;
@@ -33,6 +34,10 @@ struct TRawlogEntry {
      *  INVALID_TIMESTAMP if none has one. */
     mrpt::Clock::time_point timestamp = INVALID_TIMESTAMP;
     size_t index = 0;  ///< 0-based number of this entry among those next() returned
+    /** No object: the source gives no more entries at or before `timestamp` (a live source
+     *  knows it from the robots' watermarks), so the step of that time need not wait for a
+     *  later entry. */
+    bool time_barrier = false;
 };
 
 /** What a rawlog holds, to tell the user what was found when it does not fit the app. */
@@ -69,7 +74,7 @@ class RawlogEntrySource {
     /// The rawlog file, or the address the readings arrive at.
     virtual const std::string& file() const = 0;
     /** Called after each filter step: every entry returned before the last one is in a finished
-     *  step (the last one opened the next step). */
+     *  step (the last one opened the next step, unless it was a time barrier). */
     virtual void stepFinished() {}
 };
 

@@ -64,6 +64,9 @@ class ReadingMerger {
 
     /// Every robot finished and every reading went out.
     bool done() const;
+    /** No reading at or before `t` can still go out on time: every robot's watermark has passed
+     *  it, or the robot finished or is silent (its readings would be late, stamped after it). */
+    bool settled(mrpt::Clock::time_point t) const;
     bool finished(size_t robot) const { return m_state[robot].finished; }
     /// The time the merged stream has reached (INVALID_TIMESTAMP before the first reading).
     mrpt::Clock::time_point streamTime() const { return m_stream_time; }

@@ -14,7 +14,10 @@ namespace mrpt_vslam::team {
  *  A robot's readings are taken in sequence only (a gap is sent again by its node, a repeat is
  *  dropped), so none is lost or taken twice across a node's restarts.
  *  The data end when every robot has sent its last reading, or when no message has come for
- *  `idle_timeout_s` (the robots not finished then are named in statsJson()). A thread of its own
+ *  `idle_timeout_s` (the robots not finished then are named in statsJson()). Once the robots'
+ *  watermarks show that no more readings of the stream's time can come on time, it hands out a
+ *  time barrier (core::TRawlogEntry::time_barrier), so that the step of that time is made at once
+ *  rather than when a later reading arrives. A thread of its own
  *  takes and acknowledges the messages while the filter runs, until the data end.
  *  Usage: `TeamListener in("tcp://0.0.0.0:5555", {"R1", "R2"}, {});` then
  *  `ActionFrameSource steps(in, ...);`
