@@ -124,18 +124,22 @@ TEST_F(TeamOnline, RealTeamGivesTheOfflineRun)
                             {"R1", "R2", "R3"}, 40, 2);
 }
 
-// R2's node killed 4 s into a run at 10 times real time and started again 3 s later: the mapper
-// goes on without R2 after its reorder window, takes R2's backlog once it is back (late) and
-// finishes with all 600 readings of each robot; after R2's late readings both paths are within
+// R2's node killed after 50 readings of a run at 10 times real time and started again 3 s later:
+// the mapper goes on without R2 after its reorder window, takes R2's backlog once it is back (late)
+// and finishes with all 600 readings of each robot; after R2's late readings both paths are within
 // 0.35 m RMS of the truth (offline 0.06-0.08 m; a robot lost would be metres off; the filter
 // went on for a while with R2 standing still, and then with R1 while R2 caught up).
 TEST_F(TeamOnline, ANodeKilledAndRestartedLosesNoReading)
 {
     const std::string at = address(3);
-    const TCommandResult live =
-        run(mapper("office-team-2.ini", kTeam2, at, "gap") + node(kTeam2, "R1", at, 10) + " & " +
-            node(kTeam2, "R2", at, 10) + " & n=$!; sleep 4; kill -9 $n; sleep 3; " +
-            node(kTeam2, "R2", at, 10) + "; wait $m");
+    // R2's node is killed once its progress line shows 50 readings sent (however slow the machine
+    // is to start it)
+    const std::string progress = scratch->file("r2-progress.log");
+    const TCommandResult live = run(
+        mapper("office-team-2.ini", kTeam2, at, "gap") + node(kTeam2, "R1", at, 10) + " & " + kBin +
+        "/vslam-robot-node " + kTeam2 + ".rawlog --robot R2 --connect " + at + " --rate 10 2> " +
+        progress + " & n=$!; until grep -qE \"R2: ([5-9][0-9]|[0-9]{3}) of\" " + progress +
+        "; do sleep 0.1; done; kill -9 $n; sleep 3; " + node(kTeam2, "R2", at, 10) + "; wait $m");
     ASSERT_EQ(live.exit_code, 0) << live.out
                                  << mrpt_vslam::test::readBytes(scratch->file("gap.log"));
     const auto link = teamLink("gap");
