@@ -43,7 +43,8 @@ RobotNode::TStats RobotNode::play(const std::vector<mrpt::obs::CObservation::Ptr
     size_t acked = 0, nextToSend = 0;
     double wallStart = 0;  // the pace: reading time t goes at wallStart + (t - dataStart) / rate
     double dataStart = 0;
-    double lastWord = wallClockNow(), lastProgress = lastWord, lastHello = -1e9, lastLine = 0;
+    double lastWord = wallClockNow(), lastProgress = lastWord, lastLine = 0;
+    double lastHello = -1e9, lastEnd = -1e9;
     const auto timeOf = [&](size_t i) { return mrpt::Clock::toDouble(readings[i]->timestamp); };
     const auto dueAt = [&](size_t i) {
         return wallStart + (timeOf(i) - dataStart) / m_options.rate;
@@ -70,12 +71,12 @@ RobotNode::TStats RobotNode::play(const std::vector<mrpt::obs::CObservation::Ptr
                 stats.sent++;
                 nextToSend++;
             }
-            if (nextToSend == n && acked == n && now - lastProgress > m_options.resend_after_s) {
+            if (nextToSend == n && acked == n && now - lastEnd > m_options.resend_after_s) {
                 TTeamMessage end;  // said again until the mapper is done
                 end.type = TTeamMessage::Type::End;
                 end.seq = n;
                 send(end);
-                lastProgress = now;
+                lastEnd = now;
             }
             if (acked < nextToSend && now - lastProgress > m_options.resend_after_s) {
                 nextToSend = acked;  // go back to the first reading not acknowledged

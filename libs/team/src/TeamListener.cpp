@@ -7,7 +7,6 @@
 #include <condition_variable>
 #include <cstdio>
 #include <iterator>
-#include <map>
 #include <mutex>
 #include <numeric>
 #include <set>
