@@ -47,6 +47,11 @@ mrpt::obs::CActionRobotMovement2D::TMotionModelOptions ActionFrameSource::loadMo
     return model;
 }
 
+bool ActionFrameSource::pendingIsStep() const
+{
+    return m_pending && m_pending_is_step && haveOdometry();
+}
+
 bool ActionFrameSource::haveOdometry() const
 {
     if (m_stand_still_until_odometry)
@@ -118,7 +123,7 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
             return true;
         }
         if (e.time_barrier) {  // nothing more at the pending frame's time
-            if (m_pending && m_pending_is_step && haveOdometry() && m_pending_time <= e.timestamp) {
+            if (pendingIsStep() && m_pending_time <= e.timestamp) {
                 emitPending(actions, frame);
                 return true;
             }
@@ -126,8 +131,7 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
         }
         if (!e.observation) continue;
         // format #2: a new timestamp closes the pending frame
-        const bool ready = m_pending && m_pending_is_step && haveOdometry() &&
-                           e.observation->timestamp != m_pending_time;
+        const bool ready = pendingIsStep() && e.observation->timestamp != m_pending_time;
         if (m_pending && e.observation->timestamp != m_pending_time && !ready) m_pending.reset();
         if (ready) emitPending(actions, frame);
         if (const auto odo =
@@ -153,7 +157,7 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
         }
         if (ready) return true;
     }
-    if (m_pending && m_pending_is_step && haveOdometry()) {
+    if (pendingIsStep()) {
         emitPending(actions, frame);
         return true;
     }

@@ -55,6 +55,8 @@ class ActionFrameSource {
     /// The pending format-#2 frame as a step, built from the odometry since the last step.
     void emitPending(mrpt::obs::CActionCollection::Ptr& actions,
                      mrpt::obs::CSensoryFrame::Ptr& frame);
+    /// Whether the pending format-#2 frame makes a step once closed.
+    bool pendingIsStep() const;
     /// Whether every robot has had an odometry reading.
     bool haveOdometry() const;
     /// `later`'s odometry after m_carried's, robot by robot (CPosePDFGaussian composition).
