@@ -73,8 +73,8 @@ void SlamApp::run()
         core::ProgressReporter progress(name, 0, args.quiet);
         startRun(out);
         core::ActionFrameSource source(*input, stepObservations(), m_motionModel, odometryLabels());
-        // live, a robot that joins late stands still until then
-        if (!args.listen.empty()) source.standStillUntilOdometry();
+        // live, a robot with no reading since the last step (late, silent, behind) stands still
+        if (!args.listen.empty()) source.standStillWithoutOdometry();
         mrpt::obs::CActionCollection::Ptr actions;
         mrpt::obs::CSensoryFrame::Ptr frame;
         while (source.next(actions, frame)) {

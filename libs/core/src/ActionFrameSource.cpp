@@ -1,9 +1,11 @@
 #include <mrpt/core/bits_math.h>
+#include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/UsageError.h>
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -20,7 +22,8 @@ ActionFrameSource::ActionFrameSource(
       m_motion_model(motion_model),
       m_odometry_labels(std::move(odometry_labels)),
       m_odometry(std::max<size_t>(1, m_odometry_labels.size())),
-      m_odometry_at_last_step(m_odometry.size())
+      m_odometry_at_last_step(m_odometry.size()),
+      m_odometry_since_last_step(m_odometry.size(), false)
 {
 }
 
@@ -47,6 +50,12 @@ mrpt::obs::CActionRobotMovement2D::TMotionModelOptions ActionFrameSource::loadMo
     return model;
 }
 
+bool ActionFrameSource::standsStill(const mrpt::obs::CActionRobotMovement2D& odometry)
+{
+    const auto* g = dynamic_cast<const mrpt::poses::CPosePDFGaussian*>(odometry.poseChange.get());
+    return g && g->mean == mrpt::poses::CPose2D() && g->cov.asEigen().isZero(0);
+}
+
 bool ActionFrameSource::pendingIsStep() const
 {
     return m_pending && m_pending_is_step && haveOdometry();
@@ -54,7 +63,7 @@ bool ActionFrameSource::pendingIsStep() const
 
 bool ActionFrameSource::haveOdometry() const
 {
-    if (m_stand_still_until_odometry)
+    if (m_stand_still_without_odometry)
         return std::any_of(m_odometry_at_last_step.begin(), m_odometry_at_last_step.end(),
                            [](const auto& o) { return o.has_value(); });
     return std::all_of(m_odometry_at_last_step.begin(), m_odometry_at_last_step.end(),
@@ -68,11 +77,13 @@ void ActionFrameSource::emitPending(mrpt::obs::CActionCollection::Ptr& actions,
     for (size_t k = 0; k < m_odometry.size(); k++) {
         mrpt::obs::CActionRobotMovement2D move;
         move.timestamp = m_pending_time;
-        const bool moved = m_odometry[k].has_value();  // else standing still until it has
-        move.computeFromOdometry(
-            moved ? *m_odometry[k] - *m_odometry_at_last_step[k] : mrpt::poses::CPose2D(),
-            m_motion_model);
-        m_odometry_at_last_step[k] = m_odometry[k];
+        if (m_stand_still_without_odometry && !m_odometry_since_last_step[k]) {
+            move.poseChange = mrpt::poses::CPosePDFGaussian::Create();  // zero mean and covariance
+        } else {
+            move.computeFromOdometry(*m_odometry[k] - *m_odometry_at_last_step[k], m_motion_model);
+            m_odometry_at_last_step[k] = m_odometry[k];
+        }
+        m_odometry_since_last_step[k] = false;
         actions->insert(move);
     }
     frame = m_pending;
@@ -141,6 +152,7 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
             const size_t k = static_cast<size_t>(it - m_odometry_labels.begin());  // 0 if none
             if (m_odometry_labels.empty() || it != m_odometry_labels.end()) {
                 m_odometry[k] = odo->odometry;
+                m_odometry_since_last_step[k] = true;
                 if (!m_odometry_at_last_step[k]) m_odometry_at_last_step[k] = odo->odometry;
             }
         } else {

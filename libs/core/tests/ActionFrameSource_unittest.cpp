@@ -84,28 +84,34 @@ CObservation::Ptr bearings(const std::string& label, double t)
     return o;
 }
 
-/// The steps of a team whose R2 sends its first odometry at t = 3: per step, (R1 x, R2 x).
-std::vector<std::pair<double, double>> teamSteps(bool stand_still)
+/// A robot's motion in one step: the mean x of its increment, and whether it stands still.
+struct TMotion {
+    double x;
+    bool still;
+};
+
+/// The steps of a team whose R2 sends its first odometry at t = 3 and none at t = 5: per step,
+/// (R1, R2).
+std::vector<std::pair<TMotion, TMotion>> teamSteps(bool stand_still)
 {
     ObservationList list;
-    for (int t = 1; t <= 4; t++) {
+    for (int t = 1; t <= 6; t++) {
         list.observations.push_back(odometry("R1_ODOM", t, 0.5 * t));
-        if (t >= 3) list.observations.push_back(odometry("R2_ODOM", t, 10.0 + t));
+        if (t >= 3 && t != 5) list.observations.push_back(odometry("R2_ODOM", t, 10.0 + t));
         list.observations.push_back(bearings("R1_RB", t));
     }
     ActionFrameSource source(list, {ObservationSelector::of<CObservationBearingRange>("")},
                              CActionRobotMovement2D::TMotionModelOptions(), {"R1_ODOM", "R2_ODOM"});
-    if (stand_still) source.standStillUntilOdometry();
-    std::vector<std::pair<double, double>> steps;
+    if (stand_still) source.standStillWithoutOdometry();
+    std::vector<std::pair<TMotion, TMotion>> steps;
     CActionCollection::Ptr acts;
     CSensoryFrame::Ptr sf;
     while (source.next(acts, sf)) {
-        const auto x = [&](size_t k) {
-            return dynamic_cast<const CActionRobotMovement2D&>(*acts->get(k))
-                .poseChange->getMeanVal()
-                .x();
+        const auto motion = [&](size_t k) {
+            const auto& move = dynamic_cast<const CActionRobotMovement2D&>(*acts->get(k));
+            return TMotion{move.poseChange->getMeanVal().x(), ActionFrameSource::standsStill(move)};
         };
-        steps.emplace_back(x(0), x(1));
+        steps.emplace_back(motion(0), motion(1));
     }
     return steps;
 }
@@ -143,26 +149,33 @@ TEST(ActionFrameSource, OdometryWithoutAFrameIsComposedIntoTheNextStep)
     EXPECT_NEAR(steps[1].mean.x(), 0.5, 1e-12);
 }
 
-// Format #2 with a robot whose odometry comes late: by default the steps wait for every robot's
-// first odometry; with standStillUntilOdometry() the others go on and the late robot stands
-// still until its first reading, its increments counted from there.
-TEST(ActionFrameSource, ARobotWithoutOdometryYetStandsStillWhenAsked)
+// Format #2 with a robot whose odometry comes late and misses a step: by default the steps wait
+// for every robot's first odometry, and a robot without a new reading moves by a zero increment
+// with the motion model's noise; with standStillWithoutOdometry() the others go on and a robot
+// without a reading since the last step stands exactly still, its increment counted from its
+// last reading.
+TEST(ActionFrameSource, ARobotWithoutOdometryStandsStillWhenAsked)
 {
     const auto waiting = teamSteps(false);
-    ASSERT_EQ(waiting.size(), 2u);              // t = 3 and 4
-    EXPECT_NEAR(waiting[0].first, 1.0, 1e-12);  // R1 from t = 1
-    EXPECT_NEAR(waiting[0].second, 0.0, 1e-12);
-    EXPECT_NEAR(waiting[1].first, 0.5, 1e-12);
-    EXPECT_NEAR(waiting[1].second, 1.0, 1e-12);
+    ASSERT_EQ(waiting.size(), 4u);                // t = 3 to 6
+    EXPECT_NEAR(waiting[0].first.x, 1.0, 1e-12);  // R1 from t = 1
+    EXPECT_NEAR(waiting[0].second.x, 0.0, 1e-12);
+    EXPECT_NEAR(waiting[1].second.x, 1.0, 1e-12);
+    EXPECT_NEAR(waiting[2].second.x, 0.0, 1e-12);  // t = 5: no reading, a noisy zero
+    EXPECT_NEAR(waiting[3].second.x, 2.0, 1e-12);  // t = 6: from t = 4
+    for (const auto& [r1, r2] : waiting) EXPECT_FALSE(r1.still || r2.still);
+
     const auto standing = teamSteps(true);
-    ASSERT_EQ(standing.size(), 4u);  // t = 1 to 4
-    EXPECT_NEAR(standing[0].first, 0.0, 1e-12);
-    for (const auto& [r1, r2] : {standing[1], standing[2], standing[3]})
-        EXPECT_NEAR(r1, 0.5, 1e-12);
-    EXPECT_NEAR(standing[0].second, 0.0, 1e-12);
-    EXPECT_NEAR(standing[1].second, 0.0, 1e-12);
-    EXPECT_NEAR(standing[2].second, 0.0, 1e-12);  // its first reading
-    EXPECT_NEAR(standing[3].second, 1.0, 1e-12);
+    ASSERT_EQ(standing.size(), 6u);  // t = 1 to 6
+    EXPECT_NEAR(standing[0].first.x, 0.0, 1e-12);
+    for (size_t i = 1; i < 6; i++) EXPECT_NEAR(standing[i].first.x, 0.5, 1e-12);
+    for (const auto& [r1, r2] : standing) EXPECT_FALSE(r1.still);
+    const std::vector<double> r2_x = {0, 0, 0, 1, 0, 2};  // t = 3: its first reading
+    const std::vector<bool> r2_still = {true, true, false, false, true, false};
+    for (size_t i = 0; i < 6; i++) {
+        EXPECT_NEAR(standing[i].second.x, r2_x[i], 1e-12) << "step " << i;
+        EXPECT_EQ(standing[i].second.still, r2_still[i]) << "step " << i;
+    }
 }
 
 // A live source's time barrier closes the frame at once; without it the frame waits for the

@@ -7,6 +7,7 @@
 #include <mrpt/obs/CObservationVisualLandmarks.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/system/string_utils.h>
+#include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
@@ -521,6 +522,8 @@ void CMultiRobotVisualSLAM::runStep(
             observation ? robotReadingsOf(k, *observation) : std::vector<TRobotReading>();
         lastStepStats.robot_readings += readings.size();
         if (m_observer) m_observer->onRobotStep(m_steps + 1, k, motion, z, readings);
+        if (z.empty() && readings.empty() && core::ActionFrameSource::standsStill(*odo))
+            continue;  // no reading of this robot since the last step (a live team)
         if (optimal && !(z.empty() && readings.empty())) {
             proposeAndFuse(k, motion, z, readings);
         } else {

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 #include <mrpt/bayes/CParticleFilter.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
 #include <mrpt_vslam/multirobot/LandmarkIdentityTally.h>
@@ -168,6 +170,47 @@ TEST(CMultiRobotVisualSLAM, PathNodesHoldTheCorrespondencesOfTheParticlesMap)
             EXPECT_EQ(TLandmarkIdentityTally::of(history, p.map).landmarks_with_identity,
                       p.map.size());
         }
+    }
+}
+
+// A robot whose step action stands still (no reading since the last step, in a live team) and
+// that has nothing to fuse keeps every particle's pose exactly; the same steps as noisy zero
+// increments spread them.
+TEST(CMultiRobotVisualSLAM, ARobotThatStandsStillWithoutReadingsKeepsItsPoses)
+{
+    for (const bool still : {true, false}) {
+        SCOPED_TRACE(still ? "standing still" : "zero increments");
+        SyntheticTeamWorld world(SyntheticTeamWorld::TParams{});
+        CMultiRobotVisualSLAM filter(CVisualLandmarksMap(), 20, 5);
+        filter.options.initial_std_xy = filter.options.initial_std_phi = 0;
+        filter.reset(world.startPoses(), world.time);
+        auto pf = standardFilter();
+        mrpt::obs::CActionCollection acts, team_acts;
+        mrpt::obs::CSensoryFrame sf, r1_only;
+        for (int i = 0; i < 5; i++) {
+            world.step(acts, sf);
+            team_acts.clear();
+            team_acts.insert(*acts.get(0));
+            mrpt::obs::CActionRobotMovement2D r2;
+            if (still)
+                r2.poseChange = mrpt::poses::CPosePDFGaussian::Create();
+            else
+                r2.computeFromOdometry(mrpt::poses::CPose2D(),
+                                       mrpt::obs::CActionRobotMovement2D::TMotionModelOptions());
+            team_acts.insert(r2);
+            r1_only.clear();
+            r1_only.insert(sf.getObservationByIndex(0));
+            pf.executeOn(filter, &team_acts, &r1_only);
+        }
+        const auto start = world.startPoses();
+        size_t r1_moved = 0, r2_moved = 0;
+        for (const auto& particle : filter.m_particles) {
+            r1_moved += !(particle.d->poses[0] == start[0]);
+            r2_moved += !(particle.d->poses[1] == start[1]);
+        }
+        EXPECT_EQ(r1_moved, filter.m_particles.size());
+        EXPECT_EQ(r2_moved, still ? 0u : filter.m_particles.size());
+        EXPECT_EQ(CMultiRobotVisualSLAM::pathOf(*filter.m_particles[0].d, 1).size(), 6u);
     }
 }
 

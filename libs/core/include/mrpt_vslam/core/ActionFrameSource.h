@@ -25,8 +25,7 @@ namespace mrpt_vslam::core {
  *    frame, with a `CActionRobotMovement2D` built from the odometry increment since the previous
  *    frame and `motion_model` (a live source's time barrier closes the frame as a new
  *    timestamp does). Frames before every robot's first odometry reading are dropped
- *    (with standStillUntilOdometry(): only those before any robot's; a robot without odometry
- *    yet stands still).
+ *    (with standStillWithoutOdometry(): only those before any robot's).
  *
  *  Usage: `ActionFrameSource src(reader, {ObservationSelector::of<CObservationImage>("")},
  *  motion);` then `while (src.next(acts, sf)) ...`.
@@ -43,9 +42,17 @@ class ActionFrameSource {
     static mrpt::obs::CActionRobotMovement2D::TMotionModelOptions loadMotionModel(
         const mrpt::config::CConfigFileBase& cfg, const std::string& section);
 
-    /** Format #2: a robot whose odometry has not arrived yet (one that joins a team late) stands
-     *  still in the steps until it does, instead of holding every step back. */
-    void standStillUntilOdometry() { m_stand_still_until_odometry = true; }
+    /** Format #2, a live team: a robot with no odometry reading since the last step (one that
+     *  joins late, has gone silent, or whose readings are behind the others') stands exactly
+     *  still in the step (see standsStill()) instead of holding every step back; its increment
+     *  goes into its next step with a reading. */
+    void standStillWithoutOdometry() { m_stand_still_without_odometry = true; }
+
+    /** Whether `odometry` says the robot has not moved, with certainty (zero increment, zero
+     *  covariance): a robot with no odometry since the last step, under
+     *  standStillWithoutOdometry(). A filter leaves such a robot where it is, unless it has
+     *  readings to fuse. */
+    static bool standsStill(const mrpt::obs::CActionRobotMovement2D& odometry);
 
     /** The next step. \return false at the end of the rawlog. Throws std::runtime_error naming
      *  the rawlog for an action collection without odometry. */
@@ -57,7 +64,7 @@ class ActionFrameSource {
                      mrpt::obs::CSensoryFrame::Ptr& frame);
     /// Whether the pending format-#2 frame makes a step once closed.
     bool pendingIsStep() const;
-    /// Whether every robot has had an odometry reading.
+    /// Whether every robot has had an odometry reading (standStillWithoutOdometry(): any robot).
     bool haveOdometry() const;
     /// `later`'s odometry after m_carried's, robot by robot (CPosePDFGaussian composition).
     mrpt::obs::CActionCollection::Ptr afterCarried(const mrpt::obs::CActionCollection& later) const;
@@ -68,11 +75,12 @@ class ActionFrameSource {
     std::vector<std::string> m_odometry_labels;  ///< empty: one robot, any label
     /// Per robot: the latest reading and the one at the last step.
     std::vector<std::optional<mrpt::poses::CPose2D>> m_odometry, m_odometry_at_last_step;
-    mrpt::obs::CActionCollection::Ptr m_carried;  ///< format #1 odometry not yet in a step
-    mrpt::obs::CSensoryFrame::Ptr m_pending;      ///< format #2 frame being assembled
+    std::vector<bool> m_odometry_since_last_step;  ///< per robot
+    mrpt::obs::CActionCollection::Ptr m_carried;   ///< format #1 odometry not yet in a step
+    mrpt::obs::CSensoryFrame::Ptr m_pending;       ///< format #2 frame being assembled
     mrpt::Clock::time_point m_pending_time;
     bool m_pending_is_step = false;
-    bool m_stand_still_until_odometry = false;
+    bool m_stand_still_without_odometry = false;
 };
 
 }  // namespace mrpt_vslam::core
