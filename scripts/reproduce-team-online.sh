@@ -114,8 +114,8 @@ for team in "${TEAMS[@]}"; do
   echo "$name $prefix $rate" >> "$OUT/live-runs.txt"
 done
 
-KILL_AT="$KILL_AT" GAP="$GAP" python3 - "$OUT" > "$OUT/tables.md" <<'EOF_PY'
-import glob, json, math, os, statistics, sys
+BIN="$BIN" KILL_AT="$KILL_AT" GAP="$GAP" python3 - "$OUT" > "$OUT/tables.md" <<'EOF_PY'
+import glob, json, os, statistics, subprocess, sys
 out = sys.argv[1]
 
 def run(name):
@@ -155,21 +155,14 @@ for name, prefix, rate in sorted(runs, key=lambda r: (r[0], int(r[2]))):
           f"| {max(r['latency_p95_s'] for r in robots):.3f} |")
 
 def rmse_after(run_dir, robot, prefix, after):
-    gt = {}
-    for l in open(f"{prefix}.groundtruth_{robot}.tum"):
-        if l.strip() and not l.startswith("#"):
-            v = l.split()
-            gt[f"{float(v[0]):.2f}"] = (float(v[1]), float(v[2]))
-    e = []
-    for l in open(f"{out}/{run_dir}/estimated_path_{robot}.tum"):
-        if not l.strip() or l.startswith("#"):
-            continue
-        v = l.split()
-        t = float(v[0])
-        if t > after and f"{t:.2f}" in gt:
-            g = gt[f"{t:.2f}"]
-            e.append((float(v[1]) - g[0]) ** 2 + (float(v[2]) - g[1]) ** 2)
-    return math.sqrt(sum(e) / len(e)), len(e)
+    """Position RMSE of one robot's path after time `after` (vslam-eval --after)."""
+    ev = f"{out}/eval-after/{run_dir}-{after:.6f}"
+    if not os.path.exists(f"{ev}/metrics.json"):
+        subprocess.run([f"{os.environ['BIN']}/vslam-eval", f"{out}/{run_dir}", "--ground-truth",
+                        prefix, "--after", repr(after), "--out", ev],
+                       check=True, stdout=subprocess.DEVNULL)
+    e = json.load(open(f"{ev}/metrics.json"))["robots"][robot]["estimate"]
+    return e["ate_rmse_m"], e["matched_poses"]
 
 gaps = [run(f"office-team-2-gap-seed{k}") for k in range(1, 7)]
 prefix = gaps[0]["ground_truth"]

@@ -147,6 +147,18 @@ TEST(VslamEval, LooseFilesGiveTheKnownOffset)
     expectNonEmptyPng(out / "errors.png");
     expectNonEmptyPng(out / "landmark_errors.png");
     EXPECT_FALSE(fs::exists(out / "metrics.json.tmp"));
+
+    // --after: the poses later than t = 504.05 s only (504.1 to 505.9)
+    const auto after = dir / "after";
+    ASSERT_EQ(runEval("--estimate " + (dir / "est.tum").string() + " --ground-truth " +
+                      (dir / "gt.tum").string() + " --after 504.05 --out " + after.string())
+                  .exit_code,
+              0);
+    const auto ja = readJson(after / "metrics.json");
+    EXPECT_EQ(ja["estimate"]["poses"].get<int>(), 19);
+    EXPECT_EQ(ja["estimate"]["matched_poses"].get<int>(), 19);
+    EXPECT_NEAR(ja["options"]["after_s"].get<double>(), 504.05, 1e-9);
+    EXPECT_FALSE(j["options"].contains("after_s"));
 }
 
 TEST(VslamEval, RunFolderWithRobotsAndRunJson)

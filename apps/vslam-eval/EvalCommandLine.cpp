@@ -3,6 +3,7 @@
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt_vslam/core/Version.h>
 
+#include <limits>
 #include <stdexcept>
 
 namespace mrpt_vslam::eval {
@@ -68,6 +69,11 @@ std::optional<core::TEvalParams> parseEvalCommandLine(int argc, char** argv)
     TCLAP::ValueArg<double> heading("", "heading-threshold-deg",
                                     "Threshold of the share of frames with a small heading error",
                                     false, 5.0, "DEG", cmd);
+    TCLAP::ValueArg<double> after(
+        "", "after",
+        "Evaluate only the estimated poses later than this time [s] (e.g. after a gap in a live "
+        "run's stream; run.json's results.team_link.robots.<ROBOT>.late_until)",
+        false, -std::numeric_limits<double>::infinity(), "T", cmd);
     TCLAP::SwitchArg align("", "align",
                            "Plot the SE(2)-aligned estimate (metrics.json always has both)", cmd);
     if (!cmd.parse(argc, argv)) {
@@ -87,6 +93,7 @@ std::optional<core::TEvalParams> parseEvalCommandLine(int argc, char** argv)
     p.landmark_cutoff = cutoff.getValue();
     p.time_tolerance = tolerance.getValue();
     p.heading_threshold_deg = heading.getValue();
+    p.after = after.getValue();
     p.align = align.getValue();
     return p;
 }

@@ -99,6 +99,7 @@ void writeMetricsJson(const TEvalResult& result, const TEvalInputs& inputs,
                {{"time_tolerance_s", params.time_tolerance},
                 {"heading_threshold_deg", params.heading_threshold_deg},
                 {"landmark_cutoff_m", params.landmark_cutoff}}}};
+    if (std::isfinite(params.after)) j["options"]["after_s"] = params.after;
     if (result.robots.size() == 1 && result.robots[0].files.robot.empty()) {
         j.update(robotBlock(result.robots[0]));
     } else {

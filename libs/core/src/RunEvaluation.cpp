@@ -2,6 +2,7 @@
 #include <mrpt_vslam/core/MetricsJson.h>
 #include <mrpt_vslam/core/RunEvaluation.h>
 
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 
@@ -18,6 +19,7 @@ TTrajectoryResult evaluatePath(const std::string& file, const TumTrajectory& gro
     TTrajectoryMetricsOptions opts;
     opts.time_tolerance = params.time_tolerance;
     opts.heading_threshold = mrpt::DEG2RAD(params.heading_threshold_deg);
+    opts.after = params.after;
     try {
         r.unaligned = evaluateTrajectory(r.path, ground_truth, opts);
         opts.align_se2 = true;
@@ -55,6 +57,7 @@ TEvalResult evaluateRunFolder(const TEvalParams& params)
 {
     if (!(params.landmark_cutoff > 0)) throw std::runtime_error("--landmark-cutoff: must be > 0");
     if (!(params.time_tolerance >= 0)) throw std::runtime_error("--time-tolerance: must be >= 0");
+    if (std::isnan(params.after)) throw std::runtime_error("--after: must be a time [s]");
     if (!(params.heading_threshold_deg > 0))
         throw std::runtime_error("--heading-threshold-deg: must be > 0");
     const auto inputs = resolveInputs(params);

@@ -86,32 +86,40 @@ TTrajectoryMetrics evaluateTrajectory(const TumTrajectory& estimate,
                                       const TumTrajectory& ground_truth,
                                       const TTrajectoryMetricsOptions& options)
 {
-    const auto pairs = associateByTime(estimate, ground_truth, options.time_tolerance);
+    TumTrajectory later;  // the estimate after options.after
+    for (size_t i = 0; i < estimate.size(); i++)
+        if (estimate.timestamps[i] > options.after)
+            later.push_back(estimate.timestamps[i], estimate.poses[i]);
+    if (later.empty())
+        throw std::runtime_error(
+            std::isfinite(options.after)
+                ? mrpt::format("no estimated pose after t = %.3f s", options.after)
+                : std::string("no estimated pose"));
+    const auto pairs = associateByTime(later, ground_truth, options.time_tolerance);
     if (pairs.empty() ||
-        static_cast<double>(pairs.size()) < options.min_matched_share * estimate.size())
+        static_cast<double>(pairs.size()) < options.min_matched_share * later.size())
         throw std::runtime_error(mrpt::format(
             "%zu of %zu estimated poses have a ground-truth pose within %g s (at least %.0f %% "
             "must): the estimate and the ground truth hardly overlap in time",
-            pairs.size(), estimate.size(), options.time_tolerance,
-            100 * options.min_matched_share));
+            pairs.size(), later.size(), options.time_tolerance, 100 * options.min_matched_share));
     TTrajectoryMetrics m;
-    m.estimate_poses = estimate.size();
+    m.estimate_poses = later.size();
     m.ground_truth_poses = ground_truth.size();
     if (options.align_se2 && pairs.size() >= 2) {
         std::vector<mrpt::math::TPoint2D> a, b;
         for (const auto& [i, j] : pairs) {
-            a.emplace_back(estimate.poses[i].x, estimate.poses[i].y);
+            a.emplace_back(later.poses[i].x, later.poses[i].y);
             b.emplace_back(ground_truth.poses[j].x, ground_truth.poses[j].y);
         }
         m.alignment = alignSE2(a, b);
     }
     size_t under = 0;
     for (const auto& [i, j] : pairs) {
-        const auto est = applySE2(m.alignment, estimate.poses[i]);
+        const auto est = applySE2(m.alignment, later.poses[i]);
         const auto& gt = ground_truth.poses[j];
         const double dx = est.x - gt.x, dy = est.y - gt.y, dz = est.z - gt.z;
         const double dYaw = mrpt::math::wrapToPi(est.yaw - gt.yaw);
-        m.timestamps.push_back(estimate.timestamps[i]);
+        m.timestamps.push_back(later.timestamps[i]);
         m.position_errors.push_back(std::sqrt(dx * dx + dy * dy + dz * dz));
         m.heading_errors.push_back(dYaw);
         if (std::abs(dYaw) <= options.heading_threshold) under++;

@@ -66,6 +66,24 @@ TEST(TrajectoryMetrics, ConstantOffsetGivesThatAte)
     EXPECT_NEAR(a.alignment.y, 0.4, 1e-9);
 }
 
+// `after`: only the poses later than that time count; the earlier ones (here 1 m off) do not.
+TEST(TrajectoryMetrics, OnlyPosesAfterTheGivenTimeCount)
+{
+    const auto gt = makeGroundTruth();
+    auto est = gt;
+    for (size_t i = 0; i < est.size(); i++) est.poses[i].x += est.timestamps[i] <= 102 ? 1.0 : 0.1;
+    TTrajectoryMetricsOptions opts;
+    opts.after = 102;
+    const auto m = evaluateTrajectory(est, gt, opts);
+    EXPECT_EQ(m.estimate_poses, 29u);  // t = 102.1 to 104.9
+    EXPECT_EQ(m.matchedPoses(), 29u);
+    EXPECT_GT(m.timestamps.front(), 102);
+    EXPECT_NEAR(m.ate_max, 0.1, 1e-9);
+    EXPECT_NEAR(evaluateTrajectory(est, gt).ate_max, 1.0, 1e-9);  // all poses by default
+    opts.after = 105;
+    EXPECT_THROW(evaluateTrajectory(est, gt, opts), std::runtime_error);  // none left
+}
+
 TEST(TrajectoryMetrics, RigidlyMovedCopyAlignsToZero)
 {
     const auto gt = makeGroundTruth();

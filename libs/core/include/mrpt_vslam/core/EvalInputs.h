@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@ struct TEvalParams {
     double landmark_cutoff = 1.5;  ///< [m]
     double time_tolerance = 0.05;  ///< [s]
     double heading_threshold_deg = 5;  ///< [deg]
+    /// [s] only the estimated poses later than this (--after; default: all)
+    double after = -std::numeric_limits<double>::infinity();
     bool align = false;  ///< plots show the SE(2)-aligned estimate (the JSON always has both)
 };
 

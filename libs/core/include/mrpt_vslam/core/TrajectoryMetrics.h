@@ -7,6 +7,7 @@
 #include <mrpt_vslam/core/TumTrajectory.h>
 
 #include <Eigen/Core>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -17,6 +18,8 @@ struct TTrajectoryMetricsOptions {
     double time_tolerance = 0.05;                   ///< [s] max |t_est - t_gt| of a matched pair
     double heading_threshold = mrpt::DEG2RAD(5.0);  ///< [rad] for heading_share_under_threshold
     bool align_se2 = false;  ///< first align the estimate to the ground truth (alignSE2())
+    /// [s] only the estimate's poses later than this (e.g. after a gap in a live run)
+    double after = -std::numeric_limits<double>::infinity();
     /** Fewer matched estimate poses than this share of the estimate's is an error: the estimate
      *  and the ground truth hardly overlap in time (e.g. another dataset's ground truth). */
     double min_matched_share = 0.5;
