@@ -27,17 +27,23 @@ double wrapAngle(double a)
 
 BearingMeasurementModel::BearingMeasurementModel(const mrpt::poses::CPose3D& sensor_in_robot,
                                                  TMeasurementModelKind kind)
-    : m_kind(kind)
+    : m_sensor_in_robot(sensorPoseFor(sensor_in_robot, kind)), m_kind(kind)
 {
-    setSensorInRobot(sensor_in_robot);
+}
+
+mrpt::poses::CPose3D BearingMeasurementModel::sensorPoseFor(
+    const mrpt::poses::CPose3D& sensor_in_robot, TMeasurementModelKind kind)
+{
+    // Planar: only the sensor's (x, y, yaw) on the robot count; it looks horizontally.
+    return kind == TMeasurementModelKind::Planar
+               ? mrpt::poses::CPose3D(sensor_in_robot.x(), sensor_in_robot.y(), 0,
+                                      sensor_in_robot.yaw(), 0, 0)
+               : sensor_in_robot;
 }
 
 void BearingMeasurementModel::setSensorInRobot(const mrpt::poses::CPose3D& sensor_in_robot)
 {
-    // Planar: only the sensor's (x, y, yaw) on the robot count; it looks horizontally.
-    m_sensor_in_robot = isPlanar() ? mrpt::poses::CPose3D(sensor_in_robot.x(), sensor_in_robot.y(),
-                                                          0, sensor_in_robot.yaw(), 0, 0)
-                                   : sensor_in_robot;
+    m_sensor_in_robot = sensorPoseFor(sensor_in_robot, m_kind);
 }
 
 mrpt::poses::CPose3D BearingMeasurementModel::cameraInMap(
@@ -51,28 +57,55 @@ mrpt::poses::CPose3D BearingMeasurementModel::cameraInMap(
 BearingMeasurementModel::Vector2 BearingMeasurementModel::predict(
     const Vector3& landmark_in_map, const mrpt::math::TPose2D& robot_in_map) const
 {
-    if (isPlanar()) return predictPlanar(landmark_in_map, robot_in_map).z;
-    const Eigen::Matrix3d Rz = rotationZ(robot_in_map.phi);
-    const Eigen::Matrix3d& Rs = m_sensor_in_robot.getRotationMatrix().asEigen();
-    const Vector3 t_s = m_sensor_in_robot.m_coords.asEigen();
-    const Vector3 landmark_in_robot =
-        Rz.transpose() * (landmark_in_map - Vector3(robot_in_map.x, robot_in_map.y, 0));
-    // Eq. M2: d = R_s^T (R_z^T (m − p) − t_s)
-    return anglesOfDirection(Rs.transpose() * (landmark_in_robot - t_s));
+    return atPose(robot_in_map).predict(landmark_in_map);
 }
 
 BearingMeasurementModel::TPrediction BearingMeasurementModel::predictWithJacobians(
     const Vector3& landmark_in_map, const mrpt::math::TPose2D& robot_in_map) const
 {
-    if (isPlanar()) return predictPlanar(landmark_in_map, robot_in_map);
+    return atPose(robot_in_map).predictWithJacobians(landmark_in_map);
+}
+
+BearingMeasurementModel::AtPose::AtPose(const BearingMeasurementModel& model,
+                                        const mrpt::math::TPose2D& robot_in_map)
+    : m_planar(model.isPlanar()), m_robot(robot_in_map)
+{
+    const auto& sensor = model.m_sensor_in_robot;
+    if (m_planar) {
+        m_c = std::cos(robot_in_map.phi);
+        m_s = std::sin(robot_in_map.phi);
+        m_tx = sensor.x();
+        m_ty = sensor.y();
+        // Eq. P1: t_c = (x, y) + R(yaw) t_s, ψ = yaw + yaw_s
+        m_t_c = {robot_in_map.x + m_c * m_tx - m_s * m_ty,
+                 robot_in_map.y + m_s * m_tx + m_c * m_ty};
+        m_psi = robot_in_map.phi + sensor.yaw();
+        return;
+    }
+    m_Rz = rotationZ(robot_in_map.phi);
+    m_Rs = sensor.getRotationMatrix().asEigen();
+    m_RsT = m_Rs.transpose();
+    m_t_s = sensor.m_coords.asEigen();
+}
+
+BearingMeasurementModel::Vector2 BearingMeasurementModel::AtPose::predict(
+    const Vector3& landmark_in_map) const
+{
+    if (m_planar) return predictPlanar(landmark_in_map).z;
+    const Vector3 landmark_in_robot =
+        m_Rz.transpose() * (landmark_in_map - Vector3(m_robot.x, m_robot.y, 0));
+    // Eq. M2: d = R_s^T (R_z^T (m − p) − t_s)
+    return anglesOfDirection(m_Rs.transpose() * (landmark_in_robot - m_t_s));
+}
+
+BearingMeasurementModel::TPrediction BearingMeasurementModel::AtPose::predictWithJacobians(
+    const Vector3& landmark_in_map) const
+{
+    if (m_planar) return predictPlanar(landmark_in_map);
     TPrediction out;
-    const Eigen::Matrix3d Rz = rotationZ(robot_in_map.phi);
-    const Eigen::Matrix3d RsT = m_sensor_in_robot.getRotationMatrix().asEigen().transpose();
-    const Vector3 t_s = m_sensor_in_robot.m_coords.asEigen();
     // q: landmark in the robot frame; d: landmark in the camera frame (Eq. M2)
-    const Vector3 q =
-        Rz.transpose() * (landmark_in_map - Vector3(robot_in_map.x, robot_in_map.y, 0));
-    const Vector3 d = RsT * (q - t_s);
+    const Vector3 q = m_Rz.transpose() * (landmark_in_map - Vector3(m_robot.x, m_robot.y, 0));
+    const Vector3 d = m_RsT * (q - m_t_s);
     out.point_in_camera = d;
     out.z = anglesOfDirection(d);
 
@@ -87,28 +120,24 @@ BearingMeasurementModel::TPrediction BearingMeasurementModel::predictWithJacobia
         d.x() * d.z() / (rho * r2), d.y() * d.z() / (rho * r2), -rho / r2;
 
     // ∂d/∂m = R_s^T R_z^T
-    out.H_m = dz_dd * RsT * Rz.transpose();
+    out.H_m = dz_dd * m_RsT * m_Rz.transpose();
 
     // ∂q/∂(x, y, yaw) = [−R_z^T e_x, −R_z^T e_y, (q_y, −q_x, 0)]
     Eigen::Matrix3d dq_dx;
-    dq_dx.col(0) = -Rz.transpose().col(0);
-    dq_dx.col(1) = -Rz.transpose().col(1);
+    dq_dx.col(0) = -m_Rz.transpose().col(0);
+    dq_dx.col(1) = -m_Rz.transpose().col(1);
     dq_dx.col(2) = Vector3(q.y(), -q.x(), 0);
-    out.H_x = dz_dd * RsT * dq_dx;
+    out.H_x = dz_dd * m_RsT * dq_dx;
     out.valid = true;
     return out;
 }
 
-BearingMeasurementModel::TPrediction BearingMeasurementModel::predictPlanar(
-    const Vector3& landmark_in_map, const mrpt::math::TPose2D& robot_in_map) const
+BearingMeasurementModel::TPrediction BearingMeasurementModel::AtPose::predictPlanar(
+    const Vector3& landmark_in_map) const
 {
     TPrediction out;
-    const double c = std::cos(robot_in_map.phi), s = std::sin(robot_in_map.phi);
-    const double tx = m_sensor_in_robot.x(), ty = m_sensor_in_robot.y();
-    // Eq. P1: t_c = (x, y) + R(yaw) t_s, ψ = yaw + yaw_s
-    const Eigen::Vector2d t_c(robot_in_map.x + c * tx - s * ty, robot_in_map.y + s * tx + c * ty);
-    const double psi = robot_in_map.phi + m_sensor_in_robot.yaw();
-    const Eigen::Vector2d delta = landmark_in_map.head<2>() - t_c;
+    const double c = m_c, s = m_s, tx = m_tx, ty = m_ty, psi = m_psi;
+    const Eigen::Vector2d delta = landmark_in_map.head<2>() - m_t_c;
     const double r2 = delta.squaredNorm();
     // the landmark in the sensor frame (horizontal)
     out.point_in_camera = Vector3(std::cos(psi) * delta.x() + std::sin(psi) * delta.y(),

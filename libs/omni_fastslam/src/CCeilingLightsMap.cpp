@@ -124,9 +124,11 @@ double CCeilingLightsMap::internal_computeObservationLikelihood(
     // Unseen landmarks inside the perceptual range: 1 − p_in each (Alg. 4 line 21)
     if (likelihoodOptions.p_in > 0) {
         const double log_miss = std::log(1 - likelihoodOptions.p_in);
+        const auto model = measurementModel();
+        const auto at = model.atPose(robot);
         for (size_t j = 0; j < m_landmarks.size(); j++)
             if (!seen[j] && usesForWeight(m_landmarks[j]) &&
-                isInPerceptualRange(m_landmarks[j].mean, robot))
+                isInPerceptualRange(m_landmarks[j].mean, robot, at))
                 log_lik += log_miss;
     }
     return log_lik;

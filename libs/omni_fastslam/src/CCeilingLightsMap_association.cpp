@@ -120,9 +120,16 @@ bool CCeilingLightsMap::isInPerceptualRange(const Eigen::Vector3d& point_in_map,
                                             const mrpt::math::TPose2D& robot_in_map) const
 {
     const auto model = measurementModel();
-    if (!couldBeObserved(model.predict(point_in_map, robot_in_map))) return false;
+    return isInPerceptualRange(point_in_map, robot_in_map, model.atPose(robot_in_map));
+}
+
+bool CCeilingLightsMap::isInPerceptualRange(const Eigen::Vector3d& point_in_map,
+                                            const mrpt::math::TPose2D& robot_in_map,
+                                            const BearingMeasurementModel::AtPose& at) const
+{
+    if (!couldBeObserved(at.predict(point_in_map))) return false;
     if (sensorOptions.max_horizontal_distance <= 0) return true;
-    const Eigen::Vector3d camera = model.rayOriginInMap(robot_in_map);
+    const Eigen::Vector3d camera = measurementModel().rayOriginInMap(robot_in_map);
     return (point_in_map - camera).head<2>().norm() <= sensorOptions.max_horizontal_distance;
 }
 
@@ -137,10 +144,11 @@ Eigen::MatrixXd CCeilingLightsMap::landmarkLogLikelihoods(
     const std::vector<TBearingMeasurement>& z, const mrpt::math::TPose2D& robot_in_map) const
 {
     const auto model = measurementModel();
+    const auto at = model.atPose(robot_in_map);
     Eigen::MatrixXd out(z.size(), m_landmarks.size());
     for (size_t j = 0; j < m_landmarks.size(); j++) {
         const auto& lm = m_landmarks[j];
-        const auto pred = model.predictWithJacobians(lm.mean, robot_in_map);  // Alg. 2 lines 2-4
+        const auto pred = at.predictWithJacobians(lm.mean);  // Alg. 2 lines 2-4
         const Eigen::Matrix2d HSH = pred.H_m * lm.cov * pred.H_m.transpose();
         for (size_t l = 0; l < z.size(); l++) {
             if (!pred.valid) {

@@ -35,13 +35,15 @@ double CCeilingLightsMap::updateLandmarks(const std::vector<TBearingMeasurement>
     }
 
     const double log_miss = std::log(1 - likelihoodOptions.p_in);
+    const auto model = measurementModel();
+    const auto at = model.atPose(robot_in_map);
     double log_w = 0;  // Alg. 4 line 1: w = 1
     for (size_t j = 0; j < m_landmarks.size(); j++) {
         auto& lm = m_landmarks[j];
         const int l = measurement_of_landmark[j];
         if (l < 0) {
             // Alg. 4 lines 19-24: unchanged Gaussian; counter −1 inside the perceptual range
-            if (isInPerceptualRange(lm.mean, robot_in_map)) {
+            if (isInPerceptualRange(lm.mean, robot_in_map, at)) {
                 lm.counter--;
                 if (usesForWeight(lm)) log_w += log_miss;
             }
@@ -50,7 +52,7 @@ double CCeilingLightsMap::updateLandmarks(const std::vector<TBearingMeasurement>
         Eigen::Vector2d nu;
         Eigen::Matrix2d S;
         BearingMeasurementModel::Matrix23 H_x;
-        if (!ekfUpdate(lm, z[l], robot_in_map, nu, S, H_x)) continue;
+        if (!ekfUpdate(lm, z[l], at, nu, S, H_x)) continue;
         lm.counter += static_cast<int>(insertionOptions.hit_increment);
         if (horizontalDistance(robot_in_map, lm.mean) < insertionOptions.d_min)
             lm.consecutive_close++;
@@ -64,11 +66,11 @@ double CCeilingLightsMap::updateLandmarks(const std::vector<TBearingMeasurement>
 }
 
 bool CCeilingLightsMap::ekfUpdate(TLightLandmark& lm, const TBearingMeasurement& m,
-                                  const mrpt::math::TPose2D& robot_in_map,
+                                  const BearingMeasurementModel::AtPose& at,
                                   Eigen::Vector2d& innovation, Eigen::Matrix2d& S,
                                   BearingMeasurementModel::Matrix23& H_x) const
 {
-    const auto pred = measurementModel().predictWithJacobians(lm.mean, robot_in_map);  // 4-5
+    const auto pred = at.predictWithJacobians(lm.mean);  // lines 4-5
     if (!pred.valid) return false;
     // line 6: Q̃ = Q + H_m Σ H_mᵀ
     S = m.Q + pred.H_m * lm.cov * pred.H_m.transpose();
@@ -89,11 +91,13 @@ void CCeilingLightsMap::addCandidateObservation(TCandidateLight& cand,
                                                 const TCandidateObservation& obs) const
 {
     const auto model = measurementModel();
-    // log p(z_i | point, x_i) and the squared Mahalanobis distance of one measurement
-    auto term = [this, &model](const Eigen::Vector3d& point, const TCandidateObservation& o,
-                               double& mahalanobis2) {
-        const Eigen::Vector2d nu = BearingMeasurementModel::innovation(
-            o.measurement.z, model.predict(point, o.robot_in_map));
+    using AtPose = BearingMeasurementModel::AtPose;
+    // log p(z_i | point, x_i) and the squared Mahalanobis distance of one measurement, `at` the
+    // model at x_i
+    auto term = [this](const Eigen::Vector3d& point, const TCandidateObservation& o,
+                       const AtPose& at, double& mahalanobis2) {
+        const Eigen::Vector2d nu =
+            BearingMeasurementModel::innovation(o.measurement.z, at.predict(point));
         mahalanobis2 = nu.dot(o.measurement.Q.inverse() * nu);
         return measurementLogLikelihood(nu, o.measurement.Q);
     };
@@ -104,17 +108,19 @@ void CCeilingLightsMap::addCandidateObservation(TCandidateLight& cand,
         xs.erase(std::remove_if(xs.begin(), xs.end(),
                                 [&](const auto& x) { return x.step_first == oldest.step; }),
                  xs.end());
+        const AtPose at_oldest = model.atPose(oldest.robot_in_map);
         for (auto& x : xs) {
             double m2;
-            x.sum_log_prob -= term(x.point, oldest, m2);
+            x.sum_log_prob -= term(x.point, oldest, at_oldest, m2);
             x.sum_mahalanobis2 -= m2;
         }
         cand.observations.erase(cand.observations.begin());
     }
 
+    const AtPose at_obs = model.atPose(obs.robot_in_map);
     for (auto& x : cand.cross_points) {
         double m2;
-        x.sum_log_prob += term(x.point, obs, m2);
+        x.sum_log_prob += term(x.point, obs, at_obs, m2);
         x.sum_mahalanobis2 += m2;
     }
 
@@ -122,6 +128,9 @@ void CCeilingLightsMap::addCandidateObservation(TCandidateLight& cand,
     const Eigen::Vector3d origin = model.rayOriginInMap(obs.robot_in_map);
     const Eigen::Vector3d dir = model.rayDirectionInMap(obs.measurement.z, obs.robot_in_map);
     cand.observations.push_back(obs);
+    std::vector<AtPose> at_each;  // the model at each observation's pose
+    at_each.reserve(cand.observations.size());
+    for (const auto& o : cand.observations) at_each.push_back(model.atPose(o.robot_in_map));
     for (size_t i = 0; i + 1 < cand.observations.size(); i++) {
         const auto& earlier = cand.observations[i];
         const Eigen::Vector3d o1 = model.rayOriginInMap(earlier.robot_in_map);
@@ -137,9 +146,9 @@ void CCeilingLightsMap::addCandidateObservation(TCandidateLight& cand,
         // test (b): in front of both cameras and above them (spherical) or in front of both
         // bearing lines (planar), within max_cross_point_range
         x.in_front = crossPointInFront(rx, o1, origin, crossPointLimits());
-        for (const auto& o : cand.observations) {
+        for (size_t k = 0; k < cand.observations.size(); k++) {
             double m2;
-            x.sum_log_prob += term(x.point, o, m2);
+            x.sum_log_prob += term(x.point, cand.observations[k], at_each[k], m2);
             x.sum_mahalanobis2 += m2;
         }
         cand.cross_points.push_back(x);
@@ -163,6 +172,9 @@ void CCeilingLightsMap::updateDepthInterval(TCandidateLight& cand) const
                             : kUnlimitedDepth;
     cand.depth_min = s_hi;
     cand.depth_max = s_lo;
+    std::vector<BearingMeasurementModel::AtPose> at_each;  // the model at each earlier pose
+    for (size_t k = 0; k + 1 < cand.observations.size(); k++)
+        at_each.push_back(model.atPose(cand.observations[k].robot_in_map));
     bool any = false;
     for (int i = 0; i < kSamples; i++) {
         // geometric spacing: the azimuths change fastest near the robot
@@ -171,8 +183,8 @@ void CCeilingLightsMap::updateDepthInterval(TCandidateLight& cand) const
         bool agrees = true;
         for (size_t k = 0; agrees && k + 1 < cand.observations.size(); k++) {
             const auto& o = cand.observations[k];
-            const Eigen::Vector2d nu = BearingMeasurementModel::innovation(
-                o.measurement.z, model.predict(point, o.robot_in_map));
+            const Eigen::Vector2d nu =
+                BearingMeasurementModel::innovation(o.measurement.z, at_each[k].predict(point));
             agrees = nu.dot(o.measurement.Q.inverse() * nu) < insertionOptions.p_new_mahalanobis2;
         }
         if (!agrees) continue;
@@ -248,8 +260,9 @@ bool CCeilingLightsMap::tryPromote(const TCandidateLight& cand)
         Eigen::Vector2d nu;
         Eigen::Matrix2d S;
         BearingMeasurementModel::Matrix23 H_x;
+        const auto model = measurementModel();
         for (const auto& o : cand.observations)
-            ekfUpdate(lm, o.measurement, o.robot_in_map, nu, S, H_x);
+            ekfUpdate(lm, o.measurement, model.atPose(o.robot_in_map), nu, S, H_x);
     }
     return true;
 }

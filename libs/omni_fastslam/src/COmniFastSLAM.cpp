@@ -169,13 +169,14 @@ TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
 
     // x̂_t (R_t comes from the caller)
     const TPose2D x_hat = p.robot_in_map + motion.mean;
+    const auto at_x_hat = model.atPose(x_hat);
     const Eigen::Matrix3d R_inv = R.inverse();
     const double p_new_mahalanobis2 = map.insertionOptions.p_new_mahalanobis2;
 
     // Alg. 2: φ_{l,j} for every measurement and landmark
     Eigen::MatrixXd log_phi = Eigen::MatrixXd::Constant(z.size(), lms.size(), -kInf);
     for (size_t j = 0; j < lms.size(); j++) {
-        const auto pred = model.predictWithJacobians(lms[j].mean, x_hat);  // lines 2-4
+        const auto pred = at_x_hat.predictWithJacobians(lms[j].mean);  // lines 2-4
         if (!pred.valid || !map.couldBeObserved(pred.z, options.prediction_margin)) continue;
         const Eigen::Matrix2d HmSHm = pred.H_m * lms[j].cov * pred.H_m.transpose();
         const Eigen::Matrix2d HxRHx = pred.H_x * R * pred.H_x.transpose();

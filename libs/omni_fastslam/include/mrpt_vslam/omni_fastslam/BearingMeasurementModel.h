@@ -76,6 +76,30 @@ class BearingMeasurementModel {
     TPrediction predictWithJacobians(const Vector3& landmark_in_map,
                                      const mrpt::math::TPose2D& robot_in_map) const;
 
+    /** The model at one robot pose, for predicting many landmarks from it: what depends on the
+     *  pose alone (R_z(yaw); planar: t_c and ψ) is computed once. Its predictions equal
+     *  predict() and predictWithJacobians() at that pose bit for bit. */
+    class AtPose {
+      public:
+        AtPose(const BearingMeasurementModel& model, const mrpt::math::TPose2D& robot_in_map);
+        Vector2 predict(const Vector3& landmark_in_map) const;
+        TPrediction predictWithJacobians(const Vector3& landmark_in_map) const;
+
+      private:
+        TPrediction predictPlanar(const Vector3& landmark_in_map) const;
+
+        bool m_planar;
+        mrpt::math::TPose2D m_robot;
+        Eigen::Matrix3d m_Rz, m_Rs, m_RsT;  ///< spherical: R_z(yaw), the sensor's R_s and R_sᵀ
+        Vector3 m_t_s;                      ///< spherical: the sensor's position on the robot
+        double m_c = 1, m_s = 0, m_tx = 0, m_ty = 0, m_psi = 0;  ///< planar: Eq. P1's terms
+        Eigen::Vector2d m_t_c = Eigen::Vector2d::Zero();         ///< planar: Eq. P1
+    };
+    AtPose atPose(const mrpt::math::TPose2D& robot_in_map) const
+    {
+        return AtPose(*this, robot_in_map);
+    }
+
     /// Camera centre in the map frame [m]: the origin of every measurement ray.
     Vector3 rayOriginInMap(const mrpt::math::TPose2D& robot_in_map) const;
     /// Unit direction, in the map frame, of the ray of measurement z taken from robot_in_map.
@@ -94,11 +118,12 @@ class BearingMeasurementModel {
     static Vector2 anglesOfYawPitch(double yaw, double pitch);
 
   private:
+    /// The sensor pose as the model uses it (planar: its x, y and yaw only).
+    static mrpt::poses::CPose3D sensorPoseFor(const mrpt::poses::CPose3D& sensor_in_robot,
+                                              TMeasurementModelKind kind);
+
     mrpt::poses::CPose3D m_sensor_in_robot{0, 0, 1.8, 0, 0, 0};
     TMeasurementModelKind m_kind = TMeasurementModelKind::Spherical;
-
-    TPrediction predictPlanar(const Vector3& landmark_in_map,
-                              const mrpt::math::TPose2D& robot_in_map) const;
 };
 
 }  // namespace mrpt_vslam::omni_fastslam

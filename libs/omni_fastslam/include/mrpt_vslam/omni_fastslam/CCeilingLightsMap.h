@@ -176,6 +176,10 @@ class CCeilingLightsMap : public mrpt::maps::CMetricMap {
     /// Whether a point is inside the perceptual range of the camera at robot_in_map.
     bool isInPerceptualRange(const Eigen::Vector3d& point_in_map,
                              const mrpt::math::TPose2D& robot_in_map) const;
+    /// The same with the model at the robot's pose (`at` = measurementModel() at robot_in_map).
+    bool isInPerceptualRange(const Eigen::Vector3d& point_in_map,
+                             const mrpt::math::TPose2D& robot_in_map,
+                             const BearingMeasurementModel::AtPose& at) const;
     /// @}
 
     /// @name Data association (Sec. III-C)
@@ -291,7 +295,7 @@ class CCeilingLightsMap : public mrpt::maps::CMetricMap {
      *  nothing) where the prediction is undefined; else the innovation, its covariance Q̃ and
      *  H_x at the prior mean. */
     bool ekfUpdate(TLightLandmark& lm, const TBearingMeasurement& m,
-                   const mrpt::math::TPose2D& robot_in_map, Eigen::Vector2d& innovation,
+                   const BearingMeasurementModel::AtPose& at, Eigen::Vector2d& innovation,
                    Eigen::Matrix2d& S, BearingMeasurementModel::Matrix23& H_x) const;
 };
 
