@@ -185,9 +185,10 @@ BearingMeasurementModel::Vector2 BearingMeasurementModel::anglesOfDirection(
     const Vector3& direction_in_camera)
 {
     const Vector3& d = direction_in_camera;
-    const double rho = std::hypot(d.x(), d.y());
-    // Eq. M3
-    const double phi = rho * rho < kMinAxisDistance2 ? 0.0 : std::atan2(d.y(), d.x());
+    // Eq. M3 (metre-scale directions: no overflow for std::hypot to guard against)
+    const double rho2 = d.x() * d.x() + d.y() * d.y();
+    const double rho = std::sqrt(rho2);
+    const double phi = rho2 < kMinAxisDistance2 ? 0.0 : std::atan2(d.y(), d.x());
     return {phi, std::atan2(rho, d.z())};
 }
 
