@@ -201,8 +201,20 @@ void CMultiRobotVisualSLAM::reset(const std::vector<TPose2D>& start_poses, doubl
         d.correspondences.clear();
     }
     m_steps = 0;
+    m_poolSizeAtPrune = m_poolKeptAtPrune = 0;
     if (m_observer)
         m_observer->onReset(start_poses, options.initial_std_xy, options.initial_std_phi);
+}
+
+void CMultiRobotVisualSLAM::performSubstitution(const std::vector<size_t>& indx)
+{
+    ParticleFilterDataImpl::performSubstitution(indx);
+    const size_t pool_size = m_template.descriptorPool().size();
+    if (pool_size - m_poolSizeAtPrune < std::max<size_t>(m_poolKeptAtPrune, 32)) return;
+    std::vector<uint32_t> held;
+    for (const auto& p : m_particles) p.d->map.landmarks().addIdsTo(held);
+    m_poolKeptAtPrune = m_template.sharedDescriptorPool()->forgetAllBut(held);
+    m_poolSizeAtPrune = pool_size;
 }
 
 std::vector<std::pair<double, TPose2D>> CMultiRobotVisualSLAM::pathOf(const TTeamParticle& p,
@@ -535,11 +547,12 @@ void CMultiRobotVisualSLAM::runStep(
         if (options.resample_per_robot && k + 1 < K && ESS() < pf_options.BETA)
             performResampling(pf_options);
     }
-    for (auto& p : m_particles) {
-        p.d->path = core::newPathNode<TTeamStep>(
-            timestamp, TTeamStep{p.d->poses, std::move(p.d->correspondences)}, p.d->path);
-        p.d->correspondences.clear();
-    }
+    core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
+        auto& d = *m_particles[i].d;
+        d.path = core::newPathNode<TTeamStep>(
+            timestamp, TTeamStep{d.poses, std::move(d.correspondences)}, d.path);
+        d.correspondences.clear();
+    });
     m_steps++;
 }
 

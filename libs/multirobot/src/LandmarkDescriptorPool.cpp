@@ -78,6 +78,25 @@ void LandmarkDescriptorPool::addWithId(uint32_t id, const TDescriptor& descripto
     index(id);
 }
 
+size_t LandmarkDescriptorPool::forgetAllBut(const std::vector<uint32_t>& held)
+{
+    const auto isHeld = [&](uint32_t id) {
+        return id / 32 < held.size() && (held[id / 32] >> (id % 32) & 1u);
+    };
+    std::vector<bool> identity(m_used.size(), false);
+    for (const auto& [key, id] : m_identities) identity[id] = true;
+    size_t searchable = 0;
+    for (auto it = m_grid.begin(); it != m_grid.end();) {
+        auto& ids = it->second;
+        ids.erase(std::remove_if(ids.begin(), ids.end(),
+                                 [&](uint32_t id) { return !isHeld(id) && !identity[id]; }),
+                  ids.end());
+        searchable += ids.size();
+        it = ids.empty() ? m_grid.erase(it) : std::next(it);
+    }
+    return searchable;
+}
+
 float LandmarkDescriptorPool::squaredDistance(const TDescriptor& a, const TDescriptor& b)
 {
     float e = 0;

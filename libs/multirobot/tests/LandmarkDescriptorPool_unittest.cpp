@@ -94,3 +94,43 @@ TEST(LandmarkDescriptorPool, IdsAndErrors)
     EXPECT_THROW(LandmarkDescriptorPool(0.0), std::invalid_argument);
     EXPECT_FLOAT_EQ(LandmarkDescriptorPool::squaredDistance(d, d), 0.0f);
 }
+
+// Landmarks no map holds are taken out of the search, except those of identities; the
+// candidates are then those of before among the kept ids, in the same order.
+TEST(LandmarkDescriptorPool, ForgottenLandmarksAreNoLongerCandidates)
+{
+    std::mt19937 gen(9);
+    std::uniform_real_distribution<double> u(-5, 5);
+    LandmarkDescriptorPool pool(0.5);
+    const auto d = randomDescriptor(gen);
+    for (int i = 0; i < 300; i++) pool.add(d, {u(gen), u(gen), 0});
+    pool.setLandmarkOfIdentity(42, 7);
+    std::vector<uint32_t> held;
+    for (uint32_t id = 0; id < 300; id++)
+        if (id != 7 && gen() % 3 == 0) {  // 7: held by no map, kept by its identity
+            held.resize(std::max<size_t>(held.size(), id / 32 + 1), 0);
+            held[id / 32] |= 1u << (id % 32);
+        }
+    const auto isHeld = [&](uint32_t id) {
+        return id / 32 < held.size() && (held[id / 32] >> (id % 32) & 1u);
+    };
+    std::vector<TLandmarkCandidate> before;
+    pool.findCandidates({0, 0, 0}, 20, d, 0, before);
+    ASSERT_EQ(before.size(), 300u);
+
+    size_t kept = 0;
+    for (uint32_t id = 0; id < 300; id++) kept += (isHeld(id) || id == 7) ? 1 : 0;
+    EXPECT_EQ(pool.forgetAllBut(held), kept);
+    std::vector<TLandmarkCandidate> after;
+    pool.findCandidates({0, 0, 0}, 20, d, 0, after);
+    std::vector<uint32_t> expected, got;
+    for (const auto& c : before)
+        if (isHeld(c.id) || c.id == 7) expected.push_back(c.id);
+    for (const auto& c : after) got.push_back(c.id);
+    EXPECT_EQ(got, expected);
+    EXPECT_GT(expected.size(), 50u);
+    EXPECT_LT(expected.size(), 150u);
+    // forgetting is for the search only: descriptors and positions stay
+    EXPECT_TRUE(pool.contains(0) && pool.contains(299));
+    EXPECT_EQ(pool.descriptor(1), d);
+}

@@ -50,6 +50,14 @@ TEST(LandmarkStore, MatchesAStdMapUnderRandomInsertsUpdatesAndErases)
     std::vector<uint32_t> expected;
     for (const auto& [id, x] : reference) expected.push_back(id);
     EXPECT_EQ(ids, expected);
+
+    // the bit set of held ids, ORed into one that holds other ids already
+    std::vector<uint32_t> held{1u << 5};
+    store.addIdsTo(held);
+    for (uint32_t id = 0; id < 32 * held.size(); id++)
+        EXPECT_EQ(held[id / 32] >> (id % 32) & 1u, (reference.count(id) || id == 5) ? 1u : 0u)
+            << id;
+    EXPECT_LE(held.size(), (450 + 31) / 32);
 }
 
 TEST(LandmarkStore, CopiesShareBlocksUntilOneIsWritten)

@@ -163,6 +163,12 @@ class CMultiRobotVisualSLAM
     /// outlive its use by the filter.
     void setStepObserver(TStepObserver* observer) { m_observer = observer; }
 
+    /** Resampling (core::ParticleFilterDataImpl), then, once as many landmarks were created
+     *  since the last time as the pool's search then kept, the landmarks of the particles
+     *  that died taken out of the pool's search (LandmarkDescriptorPool::forgetAllBut()):
+     *  they can match no particle, and spurious ones pile up by the thousand on long runs. */
+    void performSubstitution(const std::vector<size_t>& indx) override;
+
   protected:
     void prediction_and_update_pfStandardProposal(
         const mrpt::obs::CActionCollection* action, const mrpt::obs::CSensoryFrame* observation,
@@ -207,6 +213,8 @@ class CMultiRobotVisualSLAM
     TStepObserver* m_observer = nullptr;  ///< setStepObserver()
 
     CVisualLandmarksMap m_template;  ///< empty; shares the particles' descriptor pool
+    /// Pool size at the last performSubstitution() that pruned it, and ids it kept then
+    size_t m_poolSizeAtPrune = 0, m_poolKeptAtPrune = 0;
     mrpt::random::CRandomGenerator m_rng;
 };
 

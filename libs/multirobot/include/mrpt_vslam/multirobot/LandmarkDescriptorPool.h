@@ -55,6 +55,13 @@ class LandmarkDescriptorPool {
     void findCandidates(const Eigen::Vector3d& center, double radius, const TDescriptor& query,
                         double max_E, std::vector<TLandmarkCandidate>& out) const;
 
+    /** Takes the landmarks that no map holds any more out of findCandidates(): every id whose
+     *  bit is clear in `held` (a bit set of ids as LandmarkStore::addIdsTo() makes), except the
+     *  landmarks of identities. Valid where a landmark no map holds never comes back (the
+     *  particle filter: its particles only create landmarks with new ids). Returns how many
+     *  landmarks the search still holds. */
+    size_t forgetAllBut(const std::vector<uint32_t>& held);
+
     /// The landmark the first reading of this identity started (known correspondences), if any.
     std::optional<uint32_t> landmarkOfIdentity(int64_t identity) const;
     /// Records that landmark `id` stands for `identity` (the first one recorded stays).

@@ -56,6 +56,15 @@ class LandmarkStore {
                     f(static_cast<uint32_t>(b * kBlockSize + i), m_blocks[b]->items[i]);
         }
     }
+    /** ORs this store's ids into `held`, a bit set of ids (bit id % 32 of word id / 32; the
+     *  set grows to cover every id held). */
+    void addIdsTo(std::vector<uint32_t>& held) const
+    {
+        static_assert(kBlockSize == 32, "one word of `held` per block");
+        if (held.size() < m_blocks.size()) held.resize(m_blocks.size(), 0);
+        for (size_t b = 0; b < m_blocks.size(); b++)
+            if (m_blocks[b]) held[b] |= m_blocks[b]->present;
+    }
     /// Blocks this store holds alone (not shared with any copy): for tests and statistics.
     size_t unsharedBlocks() const;
 
