@@ -128,7 +128,7 @@ double CCeilingLightsMap::internal_computeObservationLikelihood(
         const auto at = model.atPose(robot);
         for (size_t j = 0; j < m_landmarks.size(); j++)
             if (!seen[j] && usesForWeight(m_landmarks[j]) &&
-                isInPerceptualRange(m_landmarks[j].mean, robot, at))
+                isInPerceptualRange(m_landmarks[j].mean, at))
                 log_lik += log_miss;
     }
     return log_lik;

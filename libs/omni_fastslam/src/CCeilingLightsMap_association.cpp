@@ -120,16 +120,15 @@ bool CCeilingLightsMap::isInPerceptualRange(const Eigen::Vector3d& point_in_map,
                                             const mrpt::math::TPose2D& robot_in_map) const
 {
     const auto model = measurementModel();
-    return isInPerceptualRange(point_in_map, robot_in_map, model.atPose(robot_in_map));
+    return isInPerceptualRange(point_in_map, model.atPose(robot_in_map));
 }
 
 bool CCeilingLightsMap::isInPerceptualRange(const Eigen::Vector3d& point_in_map,
-                                            const mrpt::math::TPose2D& robot_in_map,
                                             const BearingMeasurementModel::AtPose& at) const
 {
     if (!couldBeObserved(at.predict(point_in_map))) return false;
     if (sensorOptions.max_horizontal_distance <= 0) return true;
-    const Eigen::Vector3d camera = measurementModel().rayOriginInMap(robot_in_map);
+    const Eigen::Vector3d camera = measurementModel().rayOriginInMap(at.robot());
     return (point_in_map - camera).head<2>().norm() <= sensorOptions.max_horizontal_distance;
 }
 

@@ -43,7 +43,7 @@ double CCeilingLightsMap::updateLandmarks(const std::vector<TBearingMeasurement>
         const int l = measurement_of_landmark[j];
         if (l < 0) {
             // Alg. 4 lines 19-24: unchanged Gaussian; counter −1 inside the perceptual range
-            if (isInPerceptualRange(lm.mean, robot_in_map, at)) {
+            if (isInPerceptualRange(lm.mean, at)) {
                 lm.counter--;
                 if (usesForWeight(lm)) log_w += log_miss;
             }

@@ -84,6 +84,7 @@ class BearingMeasurementModel {
         AtPose(const BearingMeasurementModel& model, const mrpt::math::TPose2D& robot_in_map);
         Vector2 predict(const Vector3& landmark_in_map) const;
         TPrediction predictWithJacobians(const Vector3& landmark_in_map) const;
+        const mrpt::math::TPose2D& robot() const { return m_robot; }
 
       private:
         TPrediction predictPlanar(const Vector3& landmark_in_map) const;

@@ -176,9 +176,8 @@ class CCeilingLightsMap : public mrpt::maps::CMetricMap {
     /// Whether a point is inside the perceptual range of the camera at robot_in_map.
     bool isInPerceptualRange(const Eigen::Vector3d& point_in_map,
                              const mrpt::math::TPose2D& robot_in_map) const;
-    /// The same with the model at the robot's pose (`at` = measurementModel() at robot_in_map).
+    /// The same with the model at the robot's pose (`at` = measurementModel().atPose()).
     bool isInPerceptualRange(const Eigen::Vector3d& point_in_map,
-                             const mrpt::math::TPose2D& robot_in_map,
                              const BearingMeasurementModel::AtPose& at) const;
     /// @}
 
