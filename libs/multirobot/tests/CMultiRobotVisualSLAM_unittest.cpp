@@ -105,6 +105,45 @@ TEST(CMultiRobotVisualSLAM, ResamplingAfterEachRobotResetsWeightsBetweenRobots)
     }
 }
 
+// Resampling takes the landmarks of the particles that died out of the pool's search: after a
+// resampling onto one particle, the search finds that particle's landmarks and no other.
+TEST(CMultiRobotVisualSLAM, ResamplingLeavesOnlyHeldLandmarksInThePoolsSearch)
+{
+    SyntheticTeamWorld::TParams wp;
+    wp.landmarks = 300;
+    SyntheticTeamWorld world(wp);
+    CMultiRobotVisualSLAM filter(CVisualLandmarksMap(), 20, 7);
+    filter.reset(world.startPoses(), world.time);
+    auto pf = standardFilter();
+    pf.m_options.BETA = 0;  // never resample
+    mrpt::obs::CActionCollection acts;
+    mrpt::obs::CSensoryFrame sf;
+    for (int i = 0; i < 6; i++) {
+        world.step(acts, sf);
+        pf.executeOn(filter, &acts, &sf);
+    }
+    const auto searchable = [&] {
+        const auto& pool = filter.m_particles[0].d->map.descriptorPool();
+        std::vector<TLandmarkCandidate> all;
+        pool.findCandidates(Eigen::Vector3d::Zero(), 1e6, pool.descriptor(0), 1e9, all);
+        std::vector<uint32_t> ids;
+        for (const auto& c : all) ids.push_back(c.id);
+        std::sort(ids.begin(), ids.end());
+        return ids;
+    };
+    const size_t pool_size = filter.m_particles[0].d->map.descriptorPool().size();
+    ASSERT_EQ(searchable().size(), pool_size);
+    // particle 3 alone loses its landmarks seen fewer than 3 times
+    ASSERT_GT(filter.m_particles[3].d->map.removeLandmarksSeenLessThan(3), 0u);
+    filter.performSubstitution(std::vector<size_t>(filter.particlesCount(), 3));
+    std::vector<uint32_t> held;
+    filter.m_particles[0].d->map.landmarks().forEach(
+        [&](uint32_t id, const TVisualLandmark&) { held.push_back(id); });
+    EXPECT_EQ(searchable(), held);
+    EXPECT_LT(held.size(), pool_size);
+    EXPECT_GE(pool_size, 32u) << "too few landmarks for the search to be pruned";
+}
+
 // Each path node holds its step's correspondences, which resampling (here after every robot)
 // carries with the map they were fused into: a particle's history has one entry per fusion into
 // its map, by the robot that made it. The step observer hears of every robot of every step.
