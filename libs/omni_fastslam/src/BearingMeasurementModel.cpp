@@ -83,8 +83,7 @@ BearingMeasurementModel::AtPose::AtPose(const BearingMeasurementModel& model,
         return;
     }
     m_Rz = rotationZ(robot_in_map.phi);
-    m_Rs = sensor.getRotationMatrix().asEigen();
-    m_RsT = m_Rs.transpose();
+    m_RsT = sensor.getRotationMatrix().asEigen().transpose();
     m_t_s = sensor.m_coords.asEigen();
 }
 
@@ -95,7 +94,7 @@ BearingMeasurementModel::Vector2 BearingMeasurementModel::AtPose::predict(
     const Vector3 landmark_in_robot =
         m_Rz.transpose() * (landmark_in_map - Vector3(m_robot.x, m_robot.y, 0));
     // Eq. M2: d = R_s^T (R_z^T (m − p) − t_s)
-    return anglesOfDirection(m_Rs.transpose() * (landmark_in_robot - m_t_s));
+    return anglesOfDirection(m_RsT * (landmark_in_robot - m_t_s));
 }
 
 BearingMeasurementModel::TPrediction BearingMeasurementModel::AtPose::predictWithJacobians(

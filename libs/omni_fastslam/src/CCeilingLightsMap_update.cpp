@@ -117,20 +117,19 @@ void CCeilingLightsMap::addCandidateObservation(TCandidateLight& cand,
         cand.observations.erase(cand.observations.begin());
     }
 
-    const AtPose at_obs = model.atPose(obs.robot_in_map);
+    cand.observations.push_back(obs);
+    std::vector<AtPose> at_each;  // the model at each observation's pose, obs's last
+    at_each.reserve(cand.observations.size());
+    for (const auto& o : cand.observations) at_each.push_back(model.atPose(o.robot_in_map));
     for (auto& x : cand.cross_points) {
         double m2;
-        x.sum_log_prob += term(x.point, obs, at_obs, m2);
+        x.sum_log_prob += term(x.point, obs, at_each.back(), m2);
         x.sum_mahalanobis2 += m2;
     }
 
     // Cross-points of the new measurement with each earlier one (Sec. III-F(1), Fig. 3)
     const Eigen::Vector3d origin = model.rayOriginInMap(obs.robot_in_map);
     const Eigen::Vector3d dir = model.rayDirectionInMap(obs.measurement.z, obs.robot_in_map);
-    cand.observations.push_back(obs);
-    std::vector<AtPose> at_each;  // the model at each observation's pose
-    at_each.reserve(cand.observations.size());
-    for (const auto& o : cand.observations) at_each.push_back(model.atPose(o.robot_in_map));
     for (size_t i = 0; i + 1 < cand.observations.size(); i++) {
         const auto& earlier = cand.observations[i];
         const Eigen::Vector3d o1 = model.rayOriginInMap(earlier.robot_in_map);

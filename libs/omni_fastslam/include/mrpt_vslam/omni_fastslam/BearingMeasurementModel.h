@@ -91,8 +91,8 @@ class BearingMeasurementModel {
 
         bool m_planar;
         mrpt::math::TPose2D m_robot;
-        Eigen::Matrix3d m_Rz, m_Rs, m_RsT;  ///< spherical: R_z(yaw), the sensor's R_s and R_sᵀ
-        Vector3 m_t_s;                      ///< spherical: the sensor's position on the robot
+        Eigen::Matrix3d m_Rz, m_RsT;  ///< spherical: R_z(yaw) and the sensor's R_sᵀ
+        Vector3 m_t_s;                ///< spherical: the sensor's position on the robot
         double m_c = 1, m_s = 0, m_tx = 0, m_ty = 0, m_psi = 0;  ///< planar: Eq. P1's terms
         Eigen::Vector2d m_t_c = Eigen::Vector2d::Zero();         ///< planar: Eq. P1
     };
