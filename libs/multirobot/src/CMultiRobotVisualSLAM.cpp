@@ -365,7 +365,8 @@ void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandma
         const TPlanarTransform pose(p.d->poses[k]);
         std::vector<TMapMeasurement> in_map(n);
         for (size_t j = 0; j < n; j++) in_map[j] = toMapFrame(z[j], pose);
-        const auto r = p.d->map.fuseFrame(z, in_map, candidates, static_cast<unsigned>(k), false);
+        const auto r = p.d->map.fuseFrame(z, in_map, candidates, static_cast<unsigned>(k),
+                                          CVisualLandmarksMap::TFrameAssociation::OneByOne);
         std::copy(r.begin(), r.end(), fused.begin() + static_cast<std::ptrdiff_t>(i * n));
         // line 44 and line 11: the product over the team
         for (size_t j = 0; j < n; j++) addLogWeight(p, r[j].log_w);

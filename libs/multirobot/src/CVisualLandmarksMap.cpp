@@ -14,6 +14,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <tuple>
 
 using mrpt_vslam::multirobot::CVisualLandmarksMap;
 
@@ -182,6 +183,48 @@ std::vector<std::optional<CVisualLandmarksMap::TAssociation>> CVisualLandmarksMa
     return out;
 }
 
+std::vector<std::optional<CVisualLandmarksMap::TAssociation>>
+CVisualLandmarksMap::associateNearestFirst(
+    const std::vector<TLandmarkMeasurement>& z, const std::vector<TMapMeasurement>& in_map,
+    const std::vector<TMeasurementCandidates>& candidates) const
+{
+    if (z.size() != in_map.size() || z.size() != candidates.size())
+        throw std::invalid_argument("associateNearestFirst(): one point and candidate list each");
+    std::vector<std::optional<TAssociation>> out(z.size());
+    std::vector<bool> decided(z.size(), false);
+    std::vector<uint32_t> taken;
+    struct TPair {
+        float E;
+        TAssociation a;
+        size_t point;
+    };
+    std::vector<TPair> pairs;
+    for (size_t j = 0; j < z.size(); j++) {
+        if (insertionOptions.associate_by_identity && z[j].identity >= 0) {
+            out[j] = associate(in_map[j], candidates[j], nullptr, z[j].identity);
+            decided[j] = true;
+            if (out[j]) taken.push_back(out[j]->id);
+            continue;
+        }
+        for (const auto& c : candidates[j].candidates) {
+            if (!m_store.find(c.id)) continue;
+            const TAssociation a = evaluate(in_map[j], c.id);
+            if (a.D <= insertionOptions.D0) pairs.push_back({c.E, a, j});  // Alg. 1 line 27
+        }
+    }
+    std::sort(pairs.begin(), pairs.end(), [](const TPair& x, const TPair& y) {
+        return std::tie(x.E, x.a.D, x.point, x.a.id) < std::tie(y.E, y.a.D, y.point, y.a.id);
+    });
+    for (const TPair& p : pairs) {
+        if (decided[p.point] || std::find(taken.begin(), taken.end(), p.a.id) != taken.end())
+            continue;
+        out[p.point] = p.a;
+        decided[p.point] = true;
+        taken.push_back(p.a.id);
+    }
+    return out;
+}
+
 TFusionResult CVisualLandmarksMap::fuse(const TLandmarkMeasurement& m,
                                         const TMapMeasurement& in_map,
                                         TMeasurementCandidates& candidates, unsigned robot)
@@ -234,15 +277,18 @@ TFusionResult CVisualLandmarksMap::fuseAs(const TLandmarkMeasurement& m,
 
 std::vector<TFusionResult> CVisualLandmarksMap::fuseFrame(
     const std::vector<TLandmarkMeasurement>& z, const std::vector<TMapMeasurement>& in_map,
-    std::vector<TMeasurementCandidates>& candidates, unsigned robot, bool distinct)
+    std::vector<TMeasurementCandidates>& candidates, unsigned robot, TFrameAssociation rule)
 {
     std::vector<TFusionResult> results(z.size());
-    if (insertionOptions.joint_association) {
-        const auto assoc = associateJointly(in_map, candidates);
+    if (insertionOptions.joint_association || rule == TFrameAssociation::DistinctNearestFirst) {
+        const auto assoc = insertionOptions.joint_association
+                               ? associateJointly(in_map, candidates)
+                               : associateNearestFirst(z, in_map, candidates);
         for (size_t j = 0; j < z.size(); j++)
             results[j] = fuseAs(z[j], in_map[j], candidates[j], robot, assoc[j]);
         return results;
     }
+    const bool distinct = rule == TFrameAssociation::DistinctInOrder;
     std::vector<uint32_t> taken;
     for (size_t j = 0; j < z.size(); j++) {
         const auto a =

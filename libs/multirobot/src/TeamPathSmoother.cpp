@@ -25,6 +25,7 @@ void TeamPathSmoother::TOptions::loadFromConfigFile(const mrpt::config::CConfigF
     MRPT_LOAD_CONFIG_VAR(map_along_path, bool, cfg, section);
     MRPT_LOAD_CONFIG_VAR(D0, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(min_seen_fraction, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(nearest_pair_first, bool, cfg, section);
     MRPT_LOAD_CONFIG_VAR(smooth_paths, bool, cfg, section);
     const int roundCount = cfg.read_int(section, "rounds", static_cast<int>(rounds));
     // each round maps and solves the whole run again; a few converge
@@ -57,6 +58,7 @@ void TeamPathSmoother::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase&
     cfg.write(section, "map_along_path", map_along_path);
     cfg.write(section, "D0", D0);
     cfg.write(section, "min_seen_fraction", min_seen_fraction);
+    cfg.write(section, "nearest_pair_first", nearest_pair_first);
     cfg.write(section, "smooth_paths", smooth_paths);
     cfg.write(section, "rounds", rounds);
     cfg.write(section, "huber", huber);
@@ -126,7 +128,10 @@ CVisualLandmarksMap TeamPathSmoother::mapAlong(const TTeamPath& path, TFrameIds*
             candidates[j] = map.findCandidates(f.z[j], in_map[j]);
         }
         const auto fused =
-            map.fuseFrame(f.z, in_map, candidates, static_cast<unsigned>(f.robot), true);
+            map.fuseFrame(f.z, in_map, candidates, static_cast<unsigned>(f.robot),
+                          options.nearest_pair_first
+                              ? CVisualLandmarksMap::TFrameAssociation::DistinctNearestFirst
+                              : CVisualLandmarksMap::TFrameAssociation::DistinctInOrder);
         if (ids) {
             ids->emplace_back();
             for (const auto& r : fused) ids->back().push_back(r.id);

@@ -13,6 +13,7 @@
 #include <functional>
 #include <limits>
 #include <random>
+#include <tuple>
 
 using namespace mrpt_vslam::multirobot;
 
@@ -118,7 +119,10 @@ TEST(CVisualLandmarksMap, AFrameTakesALandmarkOnceWhenDistinct)
             in_map.push_back(toMapFrame(m, {0, 0, 0}));
             candidates.push_back(map.findCandidates(m, in_map.back()));
         }
-        const auto r = map.fuseFrame(z, in_map, candidates, 0, distinct);
+        const auto r =
+            map.fuseFrame(z, in_map, candidates, 0,
+                          distinct ? CVisualLandmarksMap::TFrameAssociation::DistinctInOrder
+                                   : CVisualLandmarksMap::TFrameAssociation::OneByOne);
         ASSERT_EQ(r.size(), 2u);
         EXPECT_FALSE(r[0].created);
         EXPECT_EQ(r[0].id, a);
@@ -351,6 +355,103 @@ TEST(CVisualLandmarksMap, JointAssociationMatchesBruteForce)
             sum += joint[j]->log_likelihood;
         }
         EXPECT_NEAR(sum, best, 1e-9) << "trial " << trial;
+    }
+}
+
+TEST(CVisualLandmarksMap, NearestFirstGivesALandmarkToItsNearestReading)
+{
+    // Post A mapped; in one frame a reading of a post not yet mapped, 0.25 m from A, comes
+    // before A's own reading (σ 0.1 m, both inside A's gate). One by one the first takes A and
+    // A's reading starts a landmark; nearest first, A's reading takes A and the other starts one.
+    CVisualLandmarksMap map;
+    map.insertionOptions.E0 = 4;
+    const uint32_t a = map.addLandmark(landmarkAt({2, 0, 1}, 0.01), unitDescriptor(1));
+    const std::vector<TLandmarkMeasurement> z{measurement({2, 0.25, 1}, 0.1, 1),
+                                              measurement({2, 0.05, 1}, 0.1, 1)};
+    const auto f = frameOf(map, z);
+    std::vector<uint32_t> taken;
+    const auto first = map.associate(f.in_map[0], f.candidates[0], &taken);
+    ASSERT_TRUE(first);
+    EXPECT_EQ(first->id, a) << "the other post's reading is inside A's gate";
+
+    const auto nearest = map.associateNearestFirst(z, f.in_map, f.candidates);
+    ASSERT_EQ(nearest.size(), 2u);
+    EXPECT_FALSE(nearest[0]);
+    ASSERT_TRUE(nearest[1]);
+    EXPECT_EQ(nearest[1]->id, a);
+    const auto direct = map.evaluate(f.in_map[1], a);
+    EXPECT_DOUBLE_EQ(nearest[1]->D, direct.D);
+    EXPECT_DOUBLE_EQ(nearest[1]->log_likelihood, direct.log_likelihood);
+
+    auto candidates = f.candidates;
+    const auto in_order = CVisualLandmarksMap(map).fuseFrame(
+        z, f.in_map, candidates, 0, CVisualLandmarksMap::TFrameAssociation::DistinctInOrder);
+    EXPECT_EQ(in_order[0].id, a);
+    EXPECT_TRUE(in_order[1].created);
+    candidates = f.candidates;
+    const auto fused = map.fuseFrame(z, f.in_map, candidates, 0,
+                                     CVisualLandmarksMap::TFrameAssociation::DistinctNearestFirst);
+    EXPECT_TRUE(fused[0].created);
+    EXPECT_EQ(fused[1].id, a);
+    EXPECT_FALSE(fused[1].created);
+}
+
+TEST(CVisualLandmarksMap, NearestFirstMatchesRepeatedArgmin)
+{
+    // Random frames of 1-5 points among 1-6 landmarks with 3 descriptors: against the rule
+    // spelled out, the pair of smallest (E, D) among the points and landmarks left, inside the
+    // gates, made one at a time; one point alone is associated as associate() does.
+    std::mt19937 gen(11);
+    std::uniform_real_distribution<double> u(-0.4, 0.4);
+    for (int trial = 0; trial < 300; trial++) {
+        CVisualLandmarksMap map;
+        map.insertionOptions.E0 = 1.2;
+        const int n_landmarks = 1 + trial % 6, n_points = 1 + (trial / 6) % 5;
+        std::vector<uint32_t> ids;
+        for (int l = 0; l < n_landmarks; l++)
+            ids.push_back(map.addLandmark(landmarkAt({2 + u(gen), u(gen), 1}, 0.03),
+                                          unitDescriptor(1 + l % 3)));
+        std::vector<TLandmarkMeasurement> z;
+        for (int j = 0; j < n_points; j++)
+            z.push_back(measurement({2 + u(gen), u(gen), 1 + 0.1 * u(gen)}, 0.1, 1 + j % 3));
+        const auto f = frameOf(map, z);
+
+        std::vector<std::optional<uint32_t>> expected(z.size());
+        std::vector<bool> point_left(z.size(), true), landmark_left(ids.size(), true);
+        for (;;) {
+            std::optional<std::tuple<float, double, size_t, size_t>> best;
+            for (size_t j = 0; j < z.size(); j++)
+                for (size_t l = 0; l < ids.size(); l++) {
+                    if (!point_left[j] || !landmark_left[l]) continue;
+                    const float E = LandmarkDescriptorPool::squaredDistance(
+                        z[j].d, map.descriptorPool().descriptor(ids[l]));
+                    const double D = map.evaluate(f.in_map[j], ids[l]).D;
+                    if (E > map.insertionOptions.E0 || D > map.insertionOptions.D0) continue;
+                    const auto pair = std::make_tuple(E, D, j, l);
+                    if (!best || pair < *best) best = pair;
+                }
+            if (!best) break;
+            const auto [E, D, j, l] = *best;
+            expected[j] = ids[l];
+            point_left[j] = false;
+            landmark_left[l] = false;
+        }
+
+        const auto nearest = map.associateNearestFirst(z, f.in_map, f.candidates);
+        ASSERT_EQ(nearest.size(), z.size());
+        for (size_t j = 0; j < z.size(); j++) {
+            EXPECT_EQ(nearest[j].has_value(), expected[j].has_value()) << "trial " << trial;
+            if (nearest[j] && expected[j]) {
+                EXPECT_EQ(nearest[j]->id, *expected[j]);
+            }
+        }
+        if (z.size() == 1) {
+            const auto one = map.associate(f.in_map[0], f.candidates[0]);
+            EXPECT_EQ(one.has_value(), nearest[0].has_value());
+            if (one && nearest[0]) {
+                EXPECT_EQ(one->id, nearest[0]->id);
+            }
+        }
     }
 }
 

@@ -136,6 +136,16 @@ class CVisualLandmarksMap : public mrpt::maps::CMetricMap {
     std::vector<std::optional<TAssociation>> associateJointly(
         const std::vector<TMapMeasurement>& m,
         const std::vector<TMeasurementCandidates>& candidates) const;
+    /** The associations of all points `z` of one frame and robot (`in_map`, `candidates`:
+     *  one per point) to distinct landmarks, nearest pair first (global nearest neighbour,
+     *  ours): a point with an identity (associate_by_identity) takes its landmark, as
+     *  associate(); then, over every other pair inside the gates (D ≤ D0, E ≤ E0), the pair
+     *  of smallest E, among equal E of smallest D, is made, its point and landmark leave the
+     *  rest, and so on. A point left without a pair gets nullopt (a new landmark). For one
+     *  point it is associate(). Returns one entry per point. */
+    std::vector<std::optional<TAssociation>> associateNearestFirst(
+        const std::vector<TLandmarkMeasurement>& z, const std::vector<TMapMeasurement>& in_map,
+        const std::vector<TMeasurementCandidates>& candidates) const;
     /// D and log N(v; 0, Z) of the measurement against landmark `id` of this map, ungated.
     TAssociation evaluate(const TMapMeasurement& m, uint32_t id) const;
     /// The landmark with this id (nullptr if this map does not hold it).
@@ -157,16 +167,20 @@ class CVisualLandmarksMap : public mrpt::maps::CMetricMap {
     TFusionResult fuseAs(const TLandmarkMeasurement& m, const TMapMeasurement& in_map,
                          TMeasurementCandidates& candidates, unsigned robot,
                          const std::optional<TAssociation>& a);
-    /** Alg. 1 lines 18-46 for the measurements of one frame of one robot: fuse() each, or
-     *  with joint_association fuseAs() the associations of associateJointly(). `candidates`
-     *  (one per measurement) are searched before the frame is fused, so two points of one
-     *  frame never become one landmark; with `distinct`, a landmark one point of the frame
-     *  updated is not offered to the next ones either (the optimal proposal's rule).
-     *  Returns one result per measurement. */
+    /// How fuseFrame() associates the points of a frame when joint_association is off.
+    enum class TFrameAssociation {
+        OneByOne,              ///< fuse() each point in turn
+        DistinctInOrder,       ///< in turn, a landmark taken by a point not offered to the next
+        DistinctNearestFirst,  ///< associateNearestFirst()
+    };
+    /** Alg. 1 lines 18-46 for the measurements of one frame of one robot: with
+     *  joint_association fuseAs() the associations of associateJointly(), else as `rule`
+     *  says. `candidates` (one per measurement) are searched before the frame is fused, so
+     *  two points of one frame never become one landmark. Returns one result per measurement. */
     std::vector<TFusionResult> fuseFrame(const std::vector<TLandmarkMeasurement>& z,
                                          const std::vector<TMapMeasurement>& in_map,
                                          std::vector<TMeasurementCandidates>& candidates,
-                                         unsigned robot, bool distinct);
+                                         unsigned robot, TFrameAssociation rule);
     /// Moves landmarks to other ids, (from, to) each (see LandmarkStore::renumber()).
     void renumberLandmarks(const std::vector<std::pair<uint32_t, uint32_t>>& from_to)
     {

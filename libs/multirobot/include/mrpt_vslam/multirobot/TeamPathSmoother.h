@@ -35,6 +35,12 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
         /// (a landmark takes at most one measurement per frame; minTimesSeen()).
         double D0 = 30;
         double min_seen_fraction = 0;
+        /// Mapping along a path, the points of a frame take distinct landmarks: false, in the
+        /// order of the points (the nearest first, as the filter takes them); true, nearest
+        /// pair first (CVisualLandmarksMap::associateNearestFirst()). True made fewer
+        /// duplicates on the simulated range-bearing rawlogs, false smaller errors on MRCLAM
+        /// (doc/multirobot.md §3).
+        bool nearest_pair_first = false;
         /// smoothPaths() as the result (needs map_along_path): rounds of mapping along the
         /// path and least squares, and the Huber threshold [σ] of its readings (0: none).
         bool smooth_paths = false;
@@ -74,7 +80,8 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
     /** The map of every measurement fused since reset(), made again along the final path of
      *  particle `p` (mapping with known poses): frame by frame in the order of the run, each
      *  robot's measurements at that particle's pose of the step, fused by
-     *  CVisualLandmarksMap::fuseFrame() (distinct landmarks per frame) with the filter's
+     *  CVisualLandmarksMap::fuseFrame() (distinct landmarks per frame, in the order of
+     *  options.nearest_pair_first) with the filter's
      *  insertion options but D0 = options.D0; then the landmarks seen fewer than
      *  minTimesSeen() times are removed. The poses do not move, so a wrong
      *  association here costs the map only, not the paths, and the gate can be wider than
