@@ -146,6 +146,43 @@ TEST(TeamPathSmoother, MinSeenFractionRemovesTheLandmarksReadInFewerFrames)
     EXPECT_EQ(keptCounts(1), (Counts{100}));
 }
 
+// Post A read alone, then in one frame a reading of post B (not yet mapped, 0.25 m from A,
+// inside A's gate) before A's own reading. In the order of the readings B's takes A and A's
+// starts a landmark of its own; nearest pair first, each landmark gets the readings of one post.
+TEST(TeamPathSmoother, NearestPairFirstGivesEachLandmarkTheReadingsOfOnePost)
+{
+    TeamPathSmoother smoother(CVisualLandmarksMap{});
+    const std::vector<mrpt::math::TPose2D> start{{0, 0, 0}};
+    smoother.onReset(start, 0, 0);
+    auto reading = [](const Eigen::Vector3d& z, int64_t post) {
+        TLandmarkMeasurement m;
+        m.z = z;
+        m.R = Eigen::Matrix3d::Identity() * 0.01;
+        m.track_id = post;
+        return m;
+    };
+    const std::vector<std::vector<TLandmarkMeasurement>> frames{
+        {reading({2, 0, 0}, 0)}, {reading({2, 0.25, 0}, 1), reading({2, 0.05, 0}, 0)}};
+    TTeamParticle p;
+    p.path = std::make_shared<const TTeamPathNode>(0, TTeamStep{start, {}}, nullptr);
+    for (size_t step = 1; step <= frames.size(); step++) {
+        smoother.onRobotStep(step, 0, mrpt_vslam::core::TOdometryGaussian(), frames[step - 1], {});
+        p.path = std::make_shared<const TTeamPathNode>(static_cast<double>(step),
+                                                       TTeamStep{start, {}}, p.path);
+    }
+    for (const bool nearest : {false, true}) {
+        smoother.options.nearest_pair_first = nearest;
+        std::vector<TCorrespondence> c;
+        EXPECT_EQ(smoother.mapAlongPath(p, &c).size(), 2u);
+        ASSERT_EQ(c.size(), 3u);
+        std::map<uint32_t, std::set<int64_t>> posts;
+        for (const auto& r : c) posts[r.landmark].insert(r.track_id);
+        const auto mixed = std::count_if(posts.begin(), posts.end(),
+                                         [](const auto& l) { return l.second.size() > 1; });
+        EXPECT_EQ(mixed, nearest ? 0 : 1) << "nearest_pair_first = " << nearest;
+    }
+}
+
 // reanchorAfterGaps() through smoothPaths(), from particles whose paths are the true ones: R2
 // sees nothing for 15 s; its part after that gap, displaced by 0.4 m and 20 deg, is put back
 // onto its odometry, and the true paths are left alone. (With descriptors least squares alone
@@ -216,6 +253,7 @@ TEST(TeamPathSmoother, OptionsLoadFromTheirSectionAndRejectImpossibleValues)
 map_along_path = true
 D0 = 20
 min_seen_fraction = 0.05
+nearest_pair_first = true
 smooth_paths = true
 rounds = 3
 huber = 2
@@ -229,6 +267,7 @@ reanchor_gain = 0.2
     EXPECT_TRUE(o.map_along_path);
     EXPECT_EQ(o.D0, 20);
     EXPECT_EQ(o.min_seen_fraction, 0.05);
+    EXPECT_TRUE(o.nearest_pair_first);
     EXPECT_TRUE(o.smooth_paths);
     EXPECT_EQ(o.rounds, 3u);
     EXPECT_EQ(o.huber, 2);
@@ -245,6 +284,7 @@ reanchor_gain = 0.2
     EXPECT_EQ(back.rounds, 3u);
     EXPECT_EQ(back.reanchor_gain, 0.2);
     EXPECT_TRUE(back.smooth_paths);
+    EXPECT_TRUE(back.nearest_pair_first);
 
     EXPECT_EQ(errorOf(""), "") << "the defaults are valid";
     EXPECT_NE(errorOf("D0 = 0").find("[TeamPathSmoother] D0: must be > 0"), std::string::npos);
