@@ -265,6 +265,26 @@ TFrame frameOf(const CVisualLandmarksMap& map, const std::vector<TLandmarkMeasur
     }
     return f;
 }
+
+/// `n_landmarks` landmarks (σ 0.03 m) and `n_points` points (σ 0.1 m) within 0.4 m of (2, 0, 1)
+/// in `map`, their descriptors cycling through `descriptors` of them.
+struct TRandomScene {
+    std::vector<uint32_t> ids;
+    std::vector<TLandmarkMeasurement> z;
+};
+TRandomScene randomScene(CVisualLandmarksMap& map, std::mt19937& gen, int n_landmarks, int n_points,
+                         int descriptors)
+{
+    std::uniform_real_distribution<double> u(-0.4, 0.4);
+    TRandomScene scene;
+    for (int l = 0; l < n_landmarks; l++)
+        scene.ids.push_back(map.addLandmark(landmarkAt({2 + u(gen), u(gen), 1}, 0.03),
+                                            unitDescriptor(1 + l % descriptors)));
+    for (int j = 0; j < n_points; j++)
+        scene.z.push_back(
+            measurement({2 + u(gen), u(gen), 1 + 0.1 * u(gen)}, 0.1, 1 + j % descriptors));
+    return scene;
+}
 }  // namespace
 
 TEST(CVisualLandmarksMap, JointAssociationKeepsTwoNearbyLandmarksApart)
@@ -302,19 +322,12 @@ TEST(CVisualLandmarksMap, JointAssociationMatchesBruteForce)
     // of log N(v; 0, Z) over gated pairs plus log p0 per new landmark, each landmark used once;
     // checked against enumerating every such assignment.
     std::mt19937 gen(7);
-    std::uniform_real_distribution<double> u(-0.4, 0.4);
     for (int trial = 0; trial < 300; trial++) {
         CVisualLandmarksMap map;
         map.insertionOptions.E0 = 4;
         map.insertionOptions.p0 = 20 * (1 + trial % 3);
         const int n_landmarks = 1 + trial % 5, n_points = 1 + (trial / 5) % 4;
-        std::vector<uint32_t> ids;
-        for (int l = 0; l < n_landmarks; l++)
-            ids.push_back(
-                map.addLandmark(landmarkAt({2 + u(gen), u(gen), 1}, 0.03), unitDescriptor(1)));
-        std::vector<TLandmarkMeasurement> z;
-        for (int j = 0; j < n_points; j++)
-            z.push_back(measurement({2 + u(gen), u(gen), 1 + 0.1 * u(gen)}, 0.1, 1));
+        const auto [ids, z] = randomScene(map, gen, n_landmarks, n_points, 1);
         const auto f = frameOf(map, z);
 
         // brute force: every landmark (or none) for each point, no landmark twice
@@ -402,18 +415,11 @@ TEST(CVisualLandmarksMap, NearestFirstMatchesRepeatedArgmin)
     // spelled out, the pair of smallest (E, D) among the points and landmarks left, inside the
     // gates, made one at a time; one point alone is associated as associate() does.
     std::mt19937 gen(11);
-    std::uniform_real_distribution<double> u(-0.4, 0.4);
     for (int trial = 0; trial < 300; trial++) {
         CVisualLandmarksMap map;
         map.insertionOptions.E0 = 1.2;
         const int n_landmarks = 1 + trial % 6, n_points = 1 + (trial / 6) % 5;
-        std::vector<uint32_t> ids;
-        for (int l = 0; l < n_landmarks; l++)
-            ids.push_back(map.addLandmark(landmarkAt({2 + u(gen), u(gen), 1}, 0.03),
-                                          unitDescriptor(1 + l % 3)));
-        std::vector<TLandmarkMeasurement> z;
-        for (int j = 0; j < n_points; j++)
-            z.push_back(measurement({2 + u(gen), u(gen), 1 + 0.1 * u(gen)}, 0.1, 1 + j % 3));
+        const auto [ids, z] = randomScene(map, gen, n_landmarks, n_points, 3);
         const auto f = frameOf(map, z);
 
         std::vector<std::optional<uint32_t>> expected(z.size());
