@@ -80,8 +80,8 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
     /** The map of every measurement fused since reset(), made again along the final path of
      *  particle `p` (mapping with known poses): frame by frame in the order of the run, each
      *  robot's measurements at that particle's pose of the step, fused by
-     *  CVisualLandmarksMap::fuseFrame() (distinct landmarks per frame, in the order of
-     *  options.nearest_pair_first) with the filter's
+     *  CVisualLandmarksMap::fuseFrame() (distinct landmarks per frame, in the order
+     *  options.nearest_pair_first chooses) with the filter's
      *  insertion options but D0 = options.D0; then the landmarks seen fewer than
      *  minTimesSeen() times are removed. The poses do not move, so a wrong
      *  association here costs the map only, not the paths, and the gate can be wider than
