@@ -58,9 +58,11 @@ Eigen::Vector3d drawGaussian(mrpt::random::CRandomGenerator& rng, const Eigen::M
     return L * n;
 }
 
-std::vector<Eigen::Vector3d> drawStandardNormals(mrpt::random::CRandomGenerator& rng, size_t count)
+const std::vector<Eigen::Vector3d>& drawStandardNormals(mrpt::random::CRandomGenerator& rng,
+                                                        size_t count,
+                                                        std::vector<Eigen::Vector3d>& n)
 {
-    std::vector<Eigen::Vector3d> n(count);
+    n.resize(count);
     for (auto& v : n)
         for (int i = 0; i < 3; i++) v[i] = rng.drawGaussian1D_normalized();
     return n;

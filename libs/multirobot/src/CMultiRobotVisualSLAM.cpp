@@ -188,7 +188,7 @@ void CMultiRobotVisualSLAM::reset(const std::vector<TPose2D>& start_poses, doubl
     for (auto& p : m_particles) {
         p.log_w = 0;
         auto& d = *p.d;
-        d.poses = start_poses;
+        d.poses = teamPoses(start_poses);
         for (size_t k = 1; k < d.poses.size(); k++) {
             d.poses[k].x += options.initial_std_xy * m_rng.drawGaussian1D_normalized();
             d.poses[k].y += options.initial_std_xy * m_rng.drawGaussian1D_normalized();
@@ -198,7 +198,7 @@ void CMultiRobotVisualSLAM::reset(const std::vector<TPose2D>& start_poses, doubl
         d.path = core::newPathNode<TTeamStep>(timestamp, TTeamStep{d.poses, {}}, nullptr);
         d.map = m_template;
         d.accumulated_log_w = 0;
-        d.correspondences.clear();
+        d.correspondences.resize(0);
     }
     m_steps = 0;
     m_poolSizeAtPrune = m_poolKeptAtPrune = 0;
@@ -294,7 +294,7 @@ void CMultiRobotVisualSLAM::weighRobotReadings(size_t k, const std::vector<TRobo
 
 void CMultiRobotVisualSLAM::sampleMotion(size_t k, const core::TOdometryGaussian& motion)
 {
-    const auto noise = core::drawStandardNormals(m_rng, m_particles.size());
+    const auto& noise = core::drawStandardNormals(m_rng, m_particles.size(), m_noise);
     core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
         auto& pose = m_particles[i].d->poses[k];  // Alg. 1 line 18, p(x_t | x_{t-1}, u_t)
         const Eigen::Vector3d dx = motion.L * noise[i];
@@ -413,7 +413,7 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussi
     const size_t n = z.size();
     std::vector<std::optional<CVisualLandmarksMap::TAssociation>> assoc(m_particles.size() * n);
     std::vector<double> log_w(m_particles.size(), 0);
-    const auto noise = core::drawStandardNormals(m_rng, m_particles.size());
+    const auto& noise = core::drawStandardNormals(m_rng, m_particles.size(), m_noise);
     const bool joint = m_template.insertionOptions.joint_association;
     core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
         auto& p = *m_particles[i].d;
@@ -550,9 +550,9 @@ void CMultiRobotVisualSLAM::runStep(
     }
     core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
         auto& d = *m_particles[i].d;
-        d.path = core::newPathNode<TTeamStep>(
-            timestamp, TTeamStep{d.poses, std::move(d.correspondences)}, d.path);
-        d.correspondences.clear();
+        d.path =
+            core::newPathNode<TTeamStep>(timestamp, TTeamStep{d.poses, d.correspondences}, d.path);
+        d.correspondences.resize(0);  // keeps its storage for the next step
     });
     m_steps++;
 }

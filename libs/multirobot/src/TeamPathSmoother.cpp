@@ -99,7 +99,7 @@ TeamPathSmoother::TTeamPath TeamPathSmoother::recordedPathOf(const TTeamParticle
 {
     TTeamPath path;
     for (const TTeamPathNode* n = p.path.get(); n; n = n->previous.get())
-        path.push_back(n->state.poses);
+        path.emplace_back(n->state.poses.begin(), n->state.poses.end());
     std::reverse(path.begin(), path.end());
     if (path.size() != m_motions.size() + 1)
         throw std::logic_error(

@@ -41,11 +41,14 @@ TEST(LandmarkIdentityTally, CountsAHandWorkedHistory)
 TEST(LandmarkIdentityTally, HistoryOfAParticleIsOldestFirst)
 {
     TTeamParticle p;
-    const std::vector<mrpt::math::TPose2D> poses(1);
-    p.path = std::make_shared<const TTeamPathNode>(0.0, TTeamStep{poses, {}}, nullptr);
-    p.path = std::make_shared<const TTeamPathNode>(1.0, TTeamStep{poses, {{0, 5, 1}, {0, 6, 2}}},
-                                                   p.path);
-    p.path = std::make_shared<const TTeamPathNode>(2.0, TTeamStep{poses, {{0, 5, 3}}}, p.path);
+    const auto step = [](std::vector<TCorrespondence> correspondences) {
+        TTeamStep s{TTeamPoses(1), {}};
+        for (const auto& c : correspondences) s.correspondences.push_back(c);
+        return s;
+    };
+    p.path = std::make_shared<const TTeamPathNode>(0.0, step({}), nullptr);
+    p.path = std::make_shared<const TTeamPathNode>(1.0, step({{0, 5, 1}, {0, 6, 2}}), p.path);
+    p.path = std::make_shared<const TTeamPathNode>(2.0, step({{0, 5, 3}}), p.path);
     const auto h = TLandmarkIdentityTally::historyOf(p);
     ASSERT_EQ(h.size(), 3u);
     EXPECT_EQ(h[0].track_id, 1);

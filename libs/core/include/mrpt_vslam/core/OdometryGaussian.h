@@ -42,9 +42,12 @@ struct TOdometryGaussian {
 /// A sample of N(0, L Lᵀ) from `rng` (three normal draws, in order).
 Eigen::Vector3d drawGaussian(mrpt::random::CRandomGenerator& rng, const Eigen::Matrix3d& L);
 
-/** `count` samples of N(0, I₃) from `rng`, drawn as `count` calls of drawGaussian() would: a
- *  filter draws its particles' noise before updating them in parallel, and L * n[i] equals the
- *  i-th drawGaussian(rng, L) of a serial loop bit for bit. */
-std::vector<Eigen::Vector3d> drawStandardNormals(mrpt::random::CRandomGenerator& rng, size_t count);
+/** `count` samples of N(0, I₃) from `rng` into `n` (resized to `count`; a filter keeps it from
+ *  step to step), drawn as `count` calls of drawGaussian() would: a filter draws its particles'
+ *  noise before updating them in parallel, and L * n[i] equals the i-th drawGaussian(rng, L) of
+ *  a serial loop bit for bit. Returns `n`. */
+const std::vector<Eigen::Vector3d>& drawStandardNormals(mrpt::random::CRandomGenerator& rng,
+                                                        size_t count,
+                                                        std::vector<Eigen::Vector3d>& n);
 
 }  // namespace mrpt_vslam::core

@@ -216,6 +216,7 @@ class CMultiRobotVisualSLAM
     /// Pool size at the last performSubstitution() that pruned it, and ids it kept then
     size_t m_poolSizeAtPrune = 0, m_poolKeptAtPrune = 0;
     mrpt::random::CRandomGenerator m_rng;
+    std::vector<Eigen::Vector3d> m_noise;  ///< the step's normal draws, one per particle
 };
 
 }  // namespace mrpt_vslam::multirobot

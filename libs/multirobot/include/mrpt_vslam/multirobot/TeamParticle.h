@@ -1,9 +1,11 @@
 #pragma once
 
+#include <mrpt/containers/vector_with_small_size_optimization.h>
 #include <mrpt/math/TPose2D.h>
 #include <mrpt_vslam/core/PathNode.h>
 #include <mrpt_vslam/multirobot/CVisualLandmarksMap.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -19,25 +21,40 @@ struct TCorrespondence {
     int64_t track_id = -1;
 };
 
+/** The team's poses, one per robot. Teams of up to 4 and steps of up to 8 correspondences are
+ *  kept inline: every particle writes both each step, and resampling frees them by the
+ *  thousand, so they go through no allocator. */
+using TTeamPoses = mrpt::containers::vector_with_small_size_optimization<mrpt::math::TPose2D, 4>;
+using TStepCorrespondences =
+    mrpt::containers::vector_with_small_size_optimization<TCorrespondence, 8>;
+
+/// `poses` as TTeamPoses.
+inline TTeamPoses teamPoses(const std::vector<mrpt::math::TPose2D>& poses)
+{
+    TTeamPoses p(poses.size());
+    std::copy(poses.begin(), poses.end(), p.begin());
+    return p;
+}
+
 /** One step of a particle's history: the team's poses and the step's correspondences, robot by
  *  robot in the order they were fused. */
 struct TTeamStep {
-    std::vector<mrpt::math::TPose2D> poses;  ///< one per robot
-    std::vector<TCorrespondence> correspondences;
+    TTeamPoses poses;  ///< one per robot
+    TStepCorrespondences correspondences;
 };
 using TTeamPathNode = core::TPathNode<TTeamStep>;
 
 /** One particle of the team filter (Gil et al. 2010, Eq. 5 and Table 1): the K robot poses, their
  *  paths and the map they share. */
 struct TTeamParticle {
-    std::vector<mrpt::math::TPose2D> poses;     ///< x_t,<1:K>
+    TTeamPoses poses;                           ///< x_t,<1:K>
     std::shared_ptr<const TTeamPathNode> path;  ///< newest first
     CVisualLandmarksMap map;
     /// Σ_t log ω_t of Eq. 14, kept through resampling: the best particle has the largest.
     double accumulated_log_w = 0;
     /// The correspondences of the step in progress, moved into its path node when it ends
     /// (resampling between robots copies them with the map they were fused into).
-    std::vector<TCorrespondence> correspondences;
+    TStepCorrespondences correspondences;
 };
 
 }  // namespace mrpt_vslam::multirobot

@@ -170,6 +170,7 @@ class COmniFastSLAM
                  bool fastslam2, const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf);
 
     mrpt::random::CRandomGenerator m_rng;
+    std::vector<Eigen::Vector3d> m_noise;  ///< the step's normal draws, one per particle
     TStepObserver* m_observer = nullptr;
 };
 
