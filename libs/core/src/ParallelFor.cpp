@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <exception>
 #include <limits>
@@ -12,9 +13,11 @@
 namespace mrpt_vslam::core {
 namespace {
 
-/** Worker threads that sleep between loops (a filter runs a few loops per step; spinning
- *  workers would take the cores from other jobs and from each other when the machine is
- *  busy). One loop at a time; a loop started inside a loop's body runs serially. */
+/** Worker threads that wait for the next loop a short while (kSpin) and then sleep: a filter
+ *  runs a few loops per step with a little serial work between them, and waking a sleeping
+ *  thread costs the caller a system call; workers spinning for longer would take the cores
+ *  from other jobs when the machine is busy. One loop at a time; a loop started inside a
+ *  loop's body runs serially. */
 class WorkerPool {
   public:
     static WorkerPool& instance()
@@ -53,17 +56,32 @@ class WorkerPool {
         }
         m_wake.notify_all();
         work();
+        spinWhile([this] { return m_active.load(std::memory_order_relaxed) != 0; });
         std::unique_lock<std::mutex> lock(m_mutex);
         m_done.wait(lock, [this] { return m_active == 0; });
         if (m_failure) std::rethrow_exception(m_failure);
     }
 
   private:
+    static constexpr std::chrono::microseconds kSpin{100};
+
+    /// Calls `busy` until it is false or kSpin has passed.
+    template <class Busy>
+    static void spinWhile(Busy&& busy)
+    {
+        const auto until = std::chrono::steady_clock::now() + kSpin;
+        for (unsigned i = 1; busy(); i++)
+            if (i % 64 == 0 && std::chrono::steady_clock::now() > until) return;
+    }
+
     void serve(size_t id)
     {
         uint64_t seen = 0;
         std::unique_lock<std::mutex> lock(m_mutex);
         for (;;) {
+            lock.unlock();
+            spinWhile([&] { return m_generation.load(std::memory_order_relaxed) == seen; });
+            lock.lock();
             m_wake.wait(lock, [&] { return m_stop || m_generation != seen; });
             if (m_stop) return;
             seen = m_generation;
@@ -105,9 +123,10 @@ class WorkerPool {
     std::condition_variable m_wake, m_done;
     std::vector<std::thread> m_workers;
     bool m_stop = false;
-    uint64_t m_generation = 0;
+    std::atomic<uint64_t> m_generation{0};
     const std::function<void(size_t)>* m_body = nullptr;
-    size_t m_count = 0, m_chunk = 1, m_participants = 0, m_active = 0;
+    size_t m_count = 0, m_chunk = 1, m_participants = 0;
+    std::atomic<size_t> m_active{0};
     std::atomic<size_t> m_next{0};
     size_t m_failed_index = 0;
     std::exception_ptr m_failure;
