@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 #include <mrpt/bayes/CParticleFilterData.h>
+#include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/core/ParticleFilterDataImpl.h>
 #include <mrpt_vslam/core/PathNode.h>
 
@@ -75,4 +76,28 @@ TEST(ParticleFilterDataImpl, BestParticleHasTheLargestAccumulatedLogWeight)
     f.performSubstitution({2, 2, 0, 1});
     for (const auto& p : f.m_particles) EXPECT_EQ(p.log_w, 0);
     EXPECT_DOUBLE_EQ(f.bestParticle().accumulated_log_w, -0.7);
+}
+
+// ESS() and normalizeWeights() are MRPT's, without its dynamic_cast per particle: the same
+// values bit for bit on random weights.
+TEST(ParticleFilterDataImpl, EssAndNormalizationAreMrpts)
+{
+    using TMrpt = mrpt::bayes::CParticleFilterDataImpl<TFilter, TBase::CParticleList>;
+    mrpt::random::CRandomGenerator rng(7);
+    for (const size_t n : {1, 2, 17, 500}) {
+        TFilter ours, theirs;
+        for (TFilter* f : {&ours, &theirs}) f->m_particles.resize(n);
+        for (size_t i = 0; i < n; i++) {
+            ours.m_particles[i].log_w = theirs.m_particles[i].log_w = rng.drawUniform(-30.0, 5.0);
+            for (TFilter* f : {&ours, &theirs}) f->m_particles[i].d.reset(new TWeighted);
+        }
+        EXPECT_EQ(ours.ESS(), theirs.TMrpt::ESS()) << n;
+        double our_max = 0, their_max = 0;
+        EXPECT_EQ(ours.normalizeWeights(&our_max), theirs.TMrpt::normalizeWeights(&their_max));
+        EXPECT_EQ(our_max, their_max);
+        for (size_t i = 0; i < n; i++)
+            EXPECT_EQ(ours.m_particles[i].log_w, theirs.m_particles[i].log_w);
+        EXPECT_EQ(ours.ESS(), theirs.TMrpt::ESS()) << n;
+    }
+    EXPECT_EQ(TFilter().normalizeWeights(), 0);
 }

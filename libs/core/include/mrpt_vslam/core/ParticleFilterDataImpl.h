@@ -4,6 +4,7 @@
 #include <mrpt_vslam/core/ParallelFor.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace mrpt_vslam::core {
@@ -15,8 +16,10 @@ namespace mrpt_vslam::core {
  *  `out_particle_count` particles, 0 by default, which is how CParticleFilter::executeOn calls
  *  it: the resampled copies keep their parents' weights, so every later step weighs the set by
  *  its old weights a second time. Resampling always goes through performSubstitution(), so this
- *  class sets every log-weight to 0 there. Use it in place of CParticleFilterDataImpl; derived
- *  filters run their per-particle loops on m_threads. */
+ *  class sets every log-weight to 0 there. It reaches the particles by static_cast where MRPT
+ *  2.5's CRTP helper dynamic_casts on every access (twice per particle in ESS(), which the
+ *  filters call after each robot, and in normalizeWeights()). Use it in place of
+ *  CParticleFilterDataImpl; derived filters run their per-particle loops on m_threads. */
 template <class Derived, class ParticleList>
 class ParticleFilterDataImpl : public mrpt::bayes::CParticleFilterDataImpl<Derived, ParticleList> {
   public:
@@ -27,7 +30,33 @@ class ParticleFilterDataImpl : public mrpt::bayes::CParticleFilterDataImpl<Deriv
     void performSubstitution(const std::vector<size_t>& indx) override
     {
         mrpt::bayes::CParticleFilterDataImpl<Derived, ParticleList>::performSubstitution(indx);
-        for (auto& p : static_cast<Derived*>(this)->m_particles) p.log_w = 0;
+        for (auto& p : particles()) p.log_w = 0;
+    }
+
+    /// Subtracts the largest log-weight from all; returns max / min weight: MRPT's.
+    double normalizeWeights(double* out_max_log_w = nullptr) override
+    {
+        if (particles().empty()) return 0;
+        double min_w = particles().front().log_w, max_w = min_w;
+        for (const auto& p : particles()) {
+            max_w = std::max(max_w, p.log_w);
+            min_w = std::min(min_w, p.log_w);
+        }
+        for (auto& p : particles()) p.log_w -= max_w;
+        if (out_max_log_w) *out_max_log_w = max_w;
+        return std::exp(max_w - min_w);
+    }
+
+    /// N_eff = 1 / (M Σ w̃ᵢ²), w̃ the normalized weights: MRPT's, to the last bit.
+    double ESS() const override
+    {
+        std::vector<double> w;
+        w.reserve(particles().size());
+        double sum = 0;
+        for (const auto& p : particles()) sum += w.emplace_back(std::exp(p.log_w));
+        double cum = 0;
+        for (const double wi : w) cum += (wi / sum) * (wi / sum);
+        return cum == 0 ? 0 : 1.0 / (static_cast<double>(w.size()) * cum);
     }
 
     /// Multiplies a particle's weight by exp(log_w) and adds log_w to the sum Σ_t log ω_t it
@@ -42,15 +71,17 @@ class ParticleFilterDataImpl : public mrpt::bayes::CParticleFilterDataImpl<Deriv
     /// The particle with the largest accumulated log-weight Σ_t log ω_t (the first of equals).
     const auto& bestParticle() const
     {
-        const auto& particles = static_cast<const Derived*>(this)->m_particles;
-        const auto best =
-            std::max_element(particles.begin(), particles.end(), [](const auto& a, const auto& b) {
+        const auto best = std::max_element(
+            particles().begin(), particles().end(), [](const auto& a, const auto& b) {
                 return a.d->accumulated_log_w < b.d->accumulated_log_w;
             });
         return *best->d;
     }
 
   protected:
+    ParticleList& particles() { return static_cast<Derived*>(this)->m_particles; }
+    const ParticleList& particles() const { return static_cast<const Derived*>(this)->m_particles; }
+
     unsigned m_threads = resolveThreadCount(0);  ///< setThreadCount()
 };
 
