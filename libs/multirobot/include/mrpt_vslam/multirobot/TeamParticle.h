@@ -52,7 +52,7 @@ struct TTeamParticle {
     CVisualLandmarksMap map;
     /// Σ_t log ω_t of Eq. 14, kept through resampling: the best particle has the largest.
     double accumulated_log_w = 0;
-    /// The correspondences of the step in progress, moved into its path node when it ends
+    /// The correspondences of the step in progress, copied into its path node when it ends
     /// (resampling between robots copies them with the map they were fused into).
     TStepCorrespondences correspondences;
 };
