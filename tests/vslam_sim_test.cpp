@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <mrpt_vslam/test/RawlogInfo.h>
 #include <mrpt_vslam/test/RunCommand.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -14,15 +15,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kWorkDir = fs::temp_directory_path() / "mrpt_vslam_vslam_sim_test";
-
 using TRun = mrpt_vslam::test::TCommandResult;
 
 /// Runs a shell command, capturing stdout + stderr.
 TRun runCommand(const std::string& command)
 {
-    fs::create_directories(kWorkDir);
-    return mrpt_vslam::test::runCommand(command, kWorkDir / "command.log");
+    return mrpt_vslam::test::runCommand(command,
+                                        mrpt_vslam::test::processScratchFolder() / "command.log");
 }
 
 TRun runSim(const std::string& args)
@@ -48,7 +47,7 @@ using mrpt_vslam::test::TRawlogInfo;
 std::string shortHall()
 {
     static const std::string prefix = [] {
-        const fs::path dir = kWorkDir / "short";
+        const fs::path dir = mrpt_vslam::test::processScratchFolder() / "short";
         fs::remove_all(dir);
         const TRun r =
             runSim("sports-hall --seed 4 --frames 12 --quiet --out " + (dir / "hall").string());
@@ -64,7 +63,7 @@ std::string shortHall()
 std::string shortOffice()
 {
     static const std::string prefix = [] {
-        const fs::path dir = kWorkDir / "office";
+        const fs::path dir = mrpt_vslam::test::processScratchFolder() / "office";
         fs::remove_all(dir);
         const TRun r = runSim("office-team --robots 2 --seed 4 --frames 3 --quiet --out " +
                               (dir / "office").string());
@@ -157,7 +156,7 @@ TEST(VslamSim, StockRawlogEditReadsTheOfficeTeamRawlog)
 
 TEST(VslamSim, OfficeTeamWithoutImagesAndWithThreeRobots)
 {
-    const fs::path dir = kWorkDir / "office3";
+    const fs::path dir = mrpt_vslam::test::processScratchFolder() / "office3";
     fs::remove_all(dir);
     const TRun r =
         runSim("office-team --robots 3 --frames 4 --no-images --out " + (dir / "office").string());
@@ -170,8 +169,9 @@ TEST(VslamSim, OfficeTeamWithoutImagesAndWithThreeRobots)
 
 TEST(VslamSim, ProgressGoesToStderrUnlessQuiet)
 {
-    const TRun r = runSim("sports-hall --frames 3 --no-images --out " +
-                          (kWorkDir / "progress" / "hall").string());
+    const TRun r =
+        runSim("sports-hall --frames 3 --no-images --out " +
+               (mrpt_vslam::test::processScratchFolder() / "progress" / "hall").string());
     EXPECT_EQ(r.exit_code, 0) << r.out;
     EXPECT_NE(r.out.find("frame 3/3"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("3 frames"), std::string::npos) << r.out;
@@ -179,7 +179,8 @@ TEST(VslamSim, ProgressGoesToStderrUnlessQuiet)
 
 TEST(VslamSim, BadArgumentsFailWithOneLineErrorAndCode2)
 {
-    const std::string out = " --out " + (kWorkDir / "bad" / "x").string();
+    const std::string out =
+        " --out " + (mrpt_vslam::test::processScratchFolder() / "bad" / "x").string();
     for (const std::string& args :
          {std::string("gym") + out, std::string("sports-hall"), "sports-hall --frames 0" + out,
           "sports-hall --seed abc" + out, "sports-hall --set Lights.radiuss=0.3" + out,
@@ -195,13 +196,13 @@ TEST(VslamSim, BadArgumentsFailWithOneLineErrorAndCode2)
         EXPECT_EQ(lineCount(r.out), 1) << args << "\n" << r.out;
         EXPECT_EQ(r.out.rfind("vslam-sim: error: ", 0), 0u) << args << "\n" << r.out;
     }
-    EXPECT_FALSE(fs::exists(kWorkDir / "bad" / "x.rawlog"));
-    EXPECT_FALSE(fs::exists(kWorkDir / "bad" / "x.rawlog.tmp"));
+    EXPECT_FALSE(fs::exists(mrpt_vslam::test::processScratchFolder() / "bad" / "x.rawlog"));
+    EXPECT_FALSE(fs::exists(mrpt_vslam::test::processScratchFolder() / "bad" / "x.rawlog.tmp"));
 }
 
 TEST(VslamSim, HardHallVariantReplacesItsKeysOnly)
 {
-    const fs::path dir = kWorkDir / "hard";
+    const fs::path dir = mrpt_vslam::test::processScratchFolder() / "hard";
     fs::remove_all(dir);
     const TRun r = runSim(
         "sports-hall --variant hard --set Lights.height=4.5 --frames 3 "
@@ -227,7 +228,8 @@ TEST(VslamSim, HardHallVariantReplacesItsKeysOnly)
 
 TEST(VslamSim, UnknownScenarioListsTheKnownOnes)
 {
-    const TRun r = runSim("gym --out " + (kWorkDir / "bad" / "y").string());
+    const TRun r =
+        runSim("gym --out " + (mrpt_vslam::test::processScratchFolder() / "bad" / "y").string());
     EXPECT_NE(r.out.find("unknown scenario 'gym' (known: sports-hall, office-team, omni-views)"),
               std::string::npos)
         << r.out;

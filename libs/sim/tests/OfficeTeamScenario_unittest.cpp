@@ -15,6 +15,7 @@
 #include <mrpt_vslam/sim/OfficeTeamScenario.h>
 #include <mrpt_vslam/sim/ScenarioFactory.h>
 #include <mrpt_vslam/test/RunFiles.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
 
 #include <Eigen/LU>
 #include <algorithm>
@@ -66,7 +67,7 @@ const TOfficeModel& shippedModel()
 std::string runTeam(const std::string& dir_name, uint64_t seed, int robots, int frames, bool images,
                     OfficeTeamScenario* scenario_out = nullptr)
 {
-    const fs::path dir = fs::temp_directory_path() / ("mrpt_vslam_office_unittest_" + dir_name);
+    const fs::path dir = mrpt_vslam::test::processScratchFolder() / dir_name;
     fs::remove_all(dir);
     OfficeTeamScenario scenario;
     scenario.loadConfig(test::officeTeamConfig());
@@ -433,8 +434,7 @@ TEST(OfficeTeamScenario, TeamSizeMustFitTheTrajectorySections)
         OfficeTeamScenario s;
         s.loadConfig(test::officeTeamConfig());
         TSimulationOptions opts;
-        opts.out_prefix =
-            (fs::temp_directory_path() / "mrpt_vslam_office_unittest_bad" / "x").string();
+        opts.out_prefix = (mrpt_vslam::test::processScratchFolder() / "bad" / "x").string();
         opts.robots = robots;
         try {
             s.run(opts);

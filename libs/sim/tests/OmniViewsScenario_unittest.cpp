@@ -11,6 +11,7 @@
 #include <mrpt_vslam/sim/OmniViewsScenario.h>
 #include <mrpt_vslam/sim/ScenarioFactory.h>
 #include <mrpt_vslam/test/RunFiles.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
 
 #include <Eigen/LU>
 #include <algorithm>
@@ -47,7 +48,7 @@ const OmniViewsScenario& shipped()
 /// Runs the shipped scenario (created by name) into a fresh directory; returns the prefix.
 std::string runOmni(const std::string& dir_name, uint64_t seed, int frames, bool images)
 {
-    const fs::path dir = fs::temp_directory_path() / ("mrpt_vslam_omni_unittest_" + dir_name);
+    const fs::path dir = mrpt_vslam::test::processScratchFolder() / dir_name;
     fs::remove_all(dir);
     const std::unique_ptr<Scenario> scenario = createScenario("omni-views");
     scenario->loadConfig(mrpt::config::CConfigFile(shippedIni()));

@@ -12,6 +12,7 @@
 #include <mrpt_vslam/sim/ScenarioFactory.h>
 #include <mrpt_vslam/sim/SportsHallScenario.h>
 #include <mrpt_vslam/test/RunFiles.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
 
 #include <filesystem>
 #include <fstream>
@@ -29,7 +30,7 @@ namespace {
 /// Runs the hall for `frames` frames into a fresh directory; returns the output prefix.
 std::string runHall(const std::string& dir_name, uint64_t seed, int frames, bool images = true)
 {
-    const fs::path dir = fs::temp_directory_path() / ("mrpt_vslam_sim_unittest_" + dir_name);
+    const fs::path dir = mrpt_vslam::test::processScratchFolder() / dir_name;
     fs::remove_all(dir);
     auto scenario = createScenario("sports-hall");
     scenario->loadConfig(test::sportsHallConfig());
@@ -143,8 +144,7 @@ TEST(SportsHallScenario, RejectsATeam)
     auto scenario = createScenario("sports-hall");
     scenario->loadConfig(test::sportsHallConfig());
     TSimulationOptions opts;
-    opts.out_prefix =
-        (fs::temp_directory_path() / "mrpt_vslam_sim_unittest_team" / "hall").string();
+    opts.out_prefix = (mrpt_vslam::test::processScratchFolder() / "team" / "hall").string();
     opts.robots = 2;
     EXPECT_THROW(scenario->run(opts), mrpt_vslam::core::UsageError);
     EXPECT_FALSE(fs::exists(opts.out_prefix + ".rawlog.tmp"));

@@ -41,4 +41,11 @@ class ScratchFolder {
     std::filesystem::path m_path;
 };
 
+/// One scratch folder for the whole test process, removed at exit.
+inline const std::filesystem::path& processScratchFolder()
+{
+    static const ScratchFolder folder("mrpt_vslam_test");
+    return folder.path();
+}
+
 }  // namespace mrpt_vslam::test
