@@ -14,7 +14,7 @@ namespace {
 std::shared_ptr<const TNode> chain(int length, std::shared_ptr<const TNode> from = nullptr)
 {
     for (int i = 0; i < length; i++)
-        from = std::make_shared<const TNode>(0.5 * i, i, std::move(from));
+        from = std::make_shared<const TNode>(0.5 * i, std::move(from), i);
     return from;
 }
 }  // namespace

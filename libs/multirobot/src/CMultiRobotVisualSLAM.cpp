@@ -195,7 +195,7 @@ void CMultiRobotVisualSLAM::reset(const std::vector<TPose2D>& start_poses, doubl
             d.poses[k].phi = mrpt::math::wrapToPi(
                 d.poses[k].phi + options.initial_std_phi * m_rng.drawGaussian1D_normalized());
         }
-        d.path = core::newPathNode<TTeamStep>(timestamp, TTeamStep{d.poses, {}}, nullptr);
+        d.path = core::newPathNode<TTeamStep>(timestamp, nullptr, d.poses);
         d.map = m_template;
         d.accumulated_log_w = 0;
         d.correspondences.resize(0);
@@ -550,8 +550,7 @@ void CMultiRobotVisualSLAM::runStep(
     }
     core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
         auto& d = *m_particles[i].d;
-        d.path =
-            core::newPathNode<TTeamStep>(timestamp, TTeamStep{d.poses, d.correspondences}, d.path);
+        d.path = core::newPathNode<TTeamStep>(timestamp, d.path, d.poses, d.correspondences);
         d.correspondences.resize(0);  // keeps its storage for the next step
     });
     m_steps++;

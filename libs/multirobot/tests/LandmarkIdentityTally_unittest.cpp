@@ -46,9 +46,9 @@ TEST(LandmarkIdentityTally, HistoryOfAParticleIsOldestFirst)
         for (const auto& c : correspondences) s.correspondences.push_back(c);
         return s;
     };
-    p.path = std::make_shared<const TTeamPathNode>(0.0, step({}), nullptr);
-    p.path = std::make_shared<const TTeamPathNode>(1.0, step({{0, 5, 1}, {0, 6, 2}}), p.path);
-    p.path = std::make_shared<const TTeamPathNode>(2.0, step({{0, 5, 3}}), p.path);
+    p.path = std::make_shared<const TTeamPathNode>(0.0, nullptr, step({}));
+    p.path = std::make_shared<const TTeamPathNode>(1.0, p.path, step({{0, 5, 1}, {0, 6, 2}}));
+    p.path = std::make_shared<const TTeamPathNode>(2.0, p.path, step({{0, 5, 3}}));
     const auto h = TLandmarkIdentityTally::historyOf(p);
     ASSERT_EQ(h.size(), 3u);
     EXPECT_EQ(h[0].track_id, 1);

@@ -103,8 +103,7 @@ COmniFastSLAM::COmniFastSLAM(const CCeilingLightsMap& map_template, size_t parti
 
 void COmniFastSLAM::reset(const TPose2D& robot_in_map, double timestamp)
 {
-    const auto start = core::newPathNode<TOmniFastSLAMStep>(
-        timestamp, TOmniFastSLAMStep{robot_in_map, {}}, nullptr);
+    const auto start = core::newPathNode<TOmniFastSLAMStep>(timestamp, nullptr, robot_in_map);
     for (auto& p : m_particles) {
         p.log_w = 0;
         p.d->robot_in_map = robot_in_map;
@@ -256,7 +255,7 @@ double COmniFastSLAM::updateParticle(TOmniFastSLAMParticle& p, const TPose2D& x_
     p.map.updateLandmarksType();
 
     p.robot_in_map = x_t;
-    p.path = core::newPathNode<TOmniFastSLAMStep>(timestamp, std::move(step), p.path);
+    p.path = core::newPathNode<TOmniFastSLAMStep>(timestamp, p.path, std::move(step));
     return log_w_inc;
 }
 

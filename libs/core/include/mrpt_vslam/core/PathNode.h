@@ -17,8 +17,10 @@ struct TPathNode {
     State state;
     mutable std::shared_ptr<const TPathNode> previous;  ///< mutable: see the destructor
 
-    TPathNode(double t, State s, std::shared_ptr<const TPathNode> prev)
-        : timestamp(t), state(std::move(s)), previous(std::move(prev))
+    /// The state is built in place from `state_args` (a step is copied once, not per hop).
+    template <class... StateArgs>
+    TPathNode(double t, std::shared_ptr<const TPathNode> prev, StateArgs&&... state_args)
+        : timestamp(t), state{std::forward<StateArgs>(state_args)...}, previous(std::move(prev))
     {
     }
     TPathNode(const TPathNode&) = delete;
@@ -37,13 +39,14 @@ struct TPathNode {
 };
 
 /// A node for the step after `previous`, from the pool of path nodes (resampling releases
-/// them by the thousand each step).
-template <class State>
+/// them by the thousand each step); its state is `State{state_args...}`.
+template <class State, class... StateArgs>
 std::shared_ptr<const TPathNode<State>> newPathNode(
-    double t, State s, std::shared_ptr<const TPathNode<State>> previous)
+    double t, std::shared_ptr<const TPathNode<State>> previous, StateArgs&&... state_args)
 {
     return std::allocate_shared<const TPathNode<State>>(PoolAllocator<TPathNode<State>>(), t,
-                                                        std::move(s), std::move(previous));
+                                                        std::move(previous),
+                                                        std::forward<StateArgs>(state_args)...);
 }
 
 /// The nodes of the path that ends at `newest`, oldest first.

@@ -40,7 +40,7 @@ inline TTeamPoses teamPoses(const std::vector<mrpt::math::TPose2D>& poses)
  *  robot in the order they were fused. */
 struct TTeamStep {
     TTeamPoses poses;  ///< one per robot
-    TStepCorrespondences correspondences;
+    TStepCorrespondences correspondences{};
 };
 using TTeamPathNode = core::TPathNode<TTeamStep>;
 

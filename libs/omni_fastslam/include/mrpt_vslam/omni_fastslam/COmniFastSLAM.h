@@ -29,7 +29,7 @@ struct TOmniFastSLAMStep {
         int64_t landmark_id, hidden_id;
         uint32_t measurement;  ///< index of the measurement in the step's frame
     };
-    std::vector<TCorrespondence> correspondences;
+    std::vector<TCorrespondence> correspondences{};
 };
 using TOmniFastSLAMPathNode = core::TPathNode<TOmniFastSLAMStep>;
 
