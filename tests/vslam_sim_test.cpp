@@ -16,12 +16,12 @@ namespace fs = std::filesystem;
 namespace {
 
 using TRun = mrpt_vslam::test::TCommandResult;
+using mrpt_vslam::test::processScratchFolder;
 
 /// Runs a shell command, capturing stdout + stderr.
 TRun runCommand(const std::string& command)
 {
-    return mrpt_vslam::test::runCommand(command,
-                                        mrpt_vslam::test::processScratchFolder() / "command.log");
+    return mrpt_vslam::test::runCommand(command, processScratchFolder() / "command.log");
 }
 
 TRun runSim(const std::string& args)
@@ -47,7 +47,7 @@ using mrpt_vslam::test::TRawlogInfo;
 std::string shortHall()
 {
     static const std::string prefix = [] {
-        const fs::path dir = mrpt_vslam::test::processScratchFolder() / "short";
+        const fs::path dir = processScratchFolder() / "short";
         fs::remove_all(dir);
         const TRun r =
             runSim("sports-hall --seed 4 --frames 12 --quiet --out " + (dir / "hall").string());
@@ -63,7 +63,7 @@ std::string shortHall()
 std::string shortOffice()
 {
     static const std::string prefix = [] {
-        const fs::path dir = mrpt_vslam::test::processScratchFolder() / "office";
+        const fs::path dir = processScratchFolder() / "office";
         fs::remove_all(dir);
         const TRun r = runSim("office-team --robots 2 --seed 4 --frames 3 --quiet --out " +
                               (dir / "office").string());
@@ -156,7 +156,7 @@ TEST(VslamSim, StockRawlogEditReadsTheOfficeTeamRawlog)
 
 TEST(VslamSim, OfficeTeamWithoutImagesAndWithThreeRobots)
 {
-    const fs::path dir = mrpt_vslam::test::processScratchFolder() / "office3";
+    const fs::path dir = processScratchFolder() / "office3";
     fs::remove_all(dir);
     const TRun r =
         runSim("office-team --robots 3 --frames 4 --no-images --out " + (dir / "office").string());
@@ -169,9 +169,8 @@ TEST(VslamSim, OfficeTeamWithoutImagesAndWithThreeRobots)
 
 TEST(VslamSim, ProgressGoesToStderrUnlessQuiet)
 {
-    const TRun r =
-        runSim("sports-hall --frames 3 --no-images --out " +
-               (mrpt_vslam::test::processScratchFolder() / "progress" / "hall").string());
+    const TRun r = runSim("sports-hall --frames 3 --no-images --out " +
+                          (processScratchFolder() / "progress" / "hall").string());
     EXPECT_EQ(r.exit_code, 0) << r.out;
     EXPECT_NE(r.out.find("frame 3/3"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("3 frames"), std::string::npos) << r.out;
@@ -179,8 +178,7 @@ TEST(VslamSim, ProgressGoesToStderrUnlessQuiet)
 
 TEST(VslamSim, BadArgumentsFailWithOneLineErrorAndCode2)
 {
-    const std::string out =
-        " --out " + (mrpt_vslam::test::processScratchFolder() / "bad" / "x").string();
+    const std::string out = " --out " + (processScratchFolder() / "bad" / "x").string();
     for (const std::string& args :
          {std::string("gym") + out, std::string("sports-hall"), "sports-hall --frames 0" + out,
           "sports-hall --seed abc" + out, "sports-hall --set Lights.radiuss=0.3" + out,
@@ -196,13 +194,13 @@ TEST(VslamSim, BadArgumentsFailWithOneLineErrorAndCode2)
         EXPECT_EQ(lineCount(r.out), 1) << args << "\n" << r.out;
         EXPECT_EQ(r.out.rfind("vslam-sim: error: ", 0), 0u) << args << "\n" << r.out;
     }
-    EXPECT_FALSE(fs::exists(mrpt_vslam::test::processScratchFolder() / "bad" / "x.rawlog"));
-    EXPECT_FALSE(fs::exists(mrpt_vslam::test::processScratchFolder() / "bad" / "x.rawlog.tmp"));
+    EXPECT_FALSE(fs::exists(processScratchFolder() / "bad" / "x.rawlog"));
+    EXPECT_FALSE(fs::exists(processScratchFolder() / "bad" / "x.rawlog.tmp"));
 }
 
 TEST(VslamSim, HardHallVariantReplacesItsKeysOnly)
 {
-    const fs::path dir = mrpt_vslam::test::processScratchFolder() / "hard";
+    const fs::path dir = processScratchFolder() / "hard";
     fs::remove_all(dir);
     const TRun r = runSim(
         "sports-hall --variant hard --set Lights.height=4.5 --frames 3 "
@@ -228,8 +226,7 @@ TEST(VslamSim, HardHallVariantReplacesItsKeysOnly)
 
 TEST(VslamSim, UnknownScenarioListsTheKnownOnes)
 {
-    const TRun r =
-        runSim("gym --out " + (mrpt_vslam::test::processScratchFolder() / "bad" / "y").string());
+    const TRun r = runSim("gym --out " + (processScratchFolder() / "bad" / "y").string());
     EXPECT_NE(r.out.find("unknown scenario 'gym' (known: sports-hall, office-team, omni-views)"),
               std::string::npos)
         << r.out;
