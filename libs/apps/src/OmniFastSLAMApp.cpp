@@ -54,7 +54,7 @@ struct OmniFastSLAMApp::Impl : ParticleFilterApp {
 
     CCeilingLightsMap mapTemplate;
     COmniFastSLAM::TOptions filterOptions;
-    mrpt::slam::TKLDParams kld = COmniFastSLAM::defaultKLDParams();
+    core::TKLDParams kld;
     core::PajdlaBaksteinCamera camera;
     CeilingLightDetector::TOptions detectorOptions;
     std::unique_ptr<CeilingLightDetector> detector;

@@ -1,3 +1,4 @@
+#include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/math/distributions.h>
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt_vslam/core/KLDSampling.h>
@@ -10,7 +11,31 @@
 
 namespace mrpt_vslam::core {
 
-void validateKLDParams(const mrpt::slam::TKLDParams& p)
+void TKLDParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
+                                    const std::string& section)
+{
+    MRPT_LOAD_CONFIG_VAR(KLD_minSampleSize, int, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(KLD_maxSampleSize, int, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(KLD_binSize_XY, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR_DEGREES(KLD_binSize_PHI, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(KLD_delta, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(KLD_epsilon, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(KLD_minSamplesPerBin, double, cfg, section);
+}
+
+void TKLDParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
+                                  const std::string& section) const
+{
+    MRPT_SAVE_CONFIG_VAR(KLD_minSampleSize, cfg, section);
+    MRPT_SAVE_CONFIG_VAR(KLD_maxSampleSize, cfg, section);
+    MRPT_SAVE_CONFIG_VAR(KLD_binSize_XY, cfg, section);
+    MRPT_SAVE_CONFIG_VAR_DEGREES(KLD_binSize_PHI, cfg, section);
+    MRPT_SAVE_CONFIG_VAR(KLD_delta, cfg, section);
+    MRPT_SAVE_CONFIG_VAR(KLD_epsilon, cfg, section);
+    MRPT_SAVE_CONFIG_VAR(KLD_minSamplesPerBin, cfg, section);
+}
+
+void validateKLDParams(const TKLDParams& p)
 {
     const auto require = [](bool ok, const char* what) {
         if (!ok) throw std::invalid_argument(what);
@@ -29,7 +54,7 @@ void validateKLDParams(const mrpt::slam::TKLDParams& p)
             "KLD_minSamplesPerBin must be finite and >= 0");
 }
 
-size_t kldSampleCount(size_t bins, const mrpt::slam::TKLDParams& p)
+size_t kldSampleCount(size_t bins, const TKLDParams& p)
 {
     double n = 0;
     if (bins > 1) {
@@ -43,8 +68,7 @@ size_t kldSampleCount(size_t bins, const mrpt::slam::TKLDParams& p)
 }
 
 std::vector<size_t> kldResample(const std::vector<double>& log_w,
-                                const std::vector<mrpt::math::TPose2D>& poses,
-                                const mrpt::slam::TKLDParams& p,
+                                const std::vector<mrpt::math::TPose2D>& poses, const TKLDParams& p,
                                 mrpt::random::CRandomGenerator& rng)
 {
     if (log_w.empty() || log_w.size() != poses.size())

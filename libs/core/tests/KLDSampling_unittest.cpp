@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt_vslam/core/KLDSampling.h>
 
 #include <cmath>
@@ -9,9 +10,9 @@ using mrpt_vslam::core::kldResample;
 using mrpt_vslam::core::kldSampleCount;
 
 namespace {
-mrpt::slam::TKLDParams params(unsigned min_samples, unsigned max_samples)
+mrpt_vslam::core::TKLDParams params(unsigned min_samples, unsigned max_samples)
 {
-    mrpt::slam::TKLDParams p;
+    mrpt_vslam::core::TKLDParams p;
     p.KLD_binSize_XY = 0.1;
     p.KLD_binSize_PHI = 0.1;
     p.KLD_epsilon = 0.05;
@@ -84,4 +85,30 @@ TEST(KLDSampling, RefusesBadInput)
     auto p = params(1, 10);
     p.KLD_binSize_XY = 0;
     EXPECT_THROW(kldResample({0.0}, {TPose2D()}, p, rng), std::invalid_argument);
+}
+
+// MRPT's [KLD_options] keys, KLD_binSize_PHI in degrees; what is saved loads back the same.
+TEST(KLDSampling, ReadsAndWritesMrptsKeys)
+{
+    mrpt::config::CConfigFileMemory ini(
+        "[KLD_options]\nKLD_binSize_XY = 0.3\nKLD_binSize_PHI = 4\nKLD_delta = 0.02\n"
+        "KLD_epsilon = 0.1\nKLD_minSampleSize = 20\nKLD_maxSampleSize = 500\n"
+        "KLD_minSamplesPerBin = 3\n");
+    mrpt_vslam::core::TKLDParams p;
+    p.loadFromConfigFile(ini, "KLD_options");
+    EXPECT_DOUBLE_EQ(p.KLD_binSize_XY, 0.3);
+    EXPECT_DOUBLE_EQ(p.KLD_binSize_PHI, 4 * M_PI / 180);
+    EXPECT_DOUBLE_EQ(p.KLD_delta, 0.02);
+    EXPECT_DOUBLE_EQ(p.KLD_epsilon, 0.1);
+    EXPECT_EQ(p.KLD_minSampleSize, 20u);
+    EXPECT_EQ(p.KLD_maxSampleSize, 500u);
+    EXPECT_DOUBLE_EQ(p.KLD_minSamplesPerBin, 3);
+
+    mrpt::config::CConfigFileMemory saved;
+    p.saveToConfigFile(saved, "KLD_options");
+    mrpt_vslam::core::TKLDParams q;
+    q.loadFromConfigFile(saved, "KLD_options");
+    EXPECT_NEAR(q.KLD_binSize_PHI, p.KLD_binSize_PHI, 1e-12);
+    EXPECT_EQ(q.KLD_maxSampleSize, p.KLD_maxSampleSize);
+    EXPECT_DOUBLE_EQ(q.KLD_minSamplesPerBin, p.KLD_minSamplesPerBin);
 }

@@ -259,18 +259,6 @@ double COmniFastSLAM::updateParticle(TOmniFastSLAMParticle& p, const TPose2D& x_
     return log_w_inc;
 }
 
-mrpt::slam::TKLDParams COmniFastSLAM::defaultKLDParams()
-{
-    mrpt::slam::TKLDParams p;
-    p.KLD_binSize_XY = 0.1;
-    p.KLD_binSize_PHI = mrpt::DEG2RAD(2.0);
-    p.KLD_epsilon = 0.05;
-    p.KLD_delta = 0.01;
-    p.KLD_minSampleSize = 10;
-    p.KLD_maxSampleSize = 2000;
-    return p;
-}
-
 void COmniFastSLAM::runStep(const mrpt::obs::CActionCollection* action,
                             const mrpt::obs::CSensoryFrame* sf, bool fastslam2,
                             const mrpt::bayes::CParticleFilter::TParticleFilterOptions& pf)

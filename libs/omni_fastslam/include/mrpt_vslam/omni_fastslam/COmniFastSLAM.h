@@ -6,7 +6,7 @@
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPose2D.h>
 #include <mrpt/random/RandomGenerators.h>
-#include <mrpt/slam/TKLDParams.h>
+#include <mrpt_vslam/core/KLDSampling.h>
 #include <mrpt_vslam/core/OdometryGaussian.h>
 #include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/core/ParticleFilterDataImpl.h>
@@ -101,9 +101,8 @@ class COmniFastSLAM
     } options;
 
     /// KLD-sampling (Fox 2003) when CParticleFilter's adaptiveSampleSize is set (ini section
-    /// KLD_options, MRPT's keys); defaultKLDParams() unless changed.
-    mrpt::slam::TKLDParams kld = defaultKLDParams();
-    static mrpt::slam::TKLDParams defaultKLDParams();
+    /// KLD_options, MRPT's keys).
+    core::TKLDParams kld;
 
     /// Per-step counters of the last executed step (all particles).
     struct TStepStats {
