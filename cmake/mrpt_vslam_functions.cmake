@@ -23,13 +23,17 @@ function(mrpt_vslam_set_target_options target)
   endif()
 endfunction()
 
-# mrpt_vslam_add_library(<name> SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
-# Builds the shared library mrpt_vslam_<name> (alias mrpt_vslam::<name>) from libs/<name>,
-# with headers under libs/<name>/include/mrpt_vslam/<name>/.
+# mrpt_vslam_add_library(<name> [STATIC] SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
+# Builds the shared (or, with STATIC, static) library mrpt_vslam_<name> (alias
+# mrpt_vslam::<name>) from libs/<name>, with headers under libs/<name>/include/mrpt_vslam/<name>/.
 function(mrpt_vslam_add_library name)
-  cmake_parse_arguments(A "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  cmake_parse_arguments(A "STATIC" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
   set(target mrpt_vslam_${name})
-  add_library(${target} SHARED ${A_SOURCES})
+  if(A_STATIC)
+    add_library(${target} STATIC ${A_SOURCES})
+  else()
+    add_library(${target} SHARED ${A_SOURCES})
+  endif()
   add_library(mrpt_vslam::${name} ALIAS ${target})
   target_include_directories(${target} PUBLIC
     $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>

@@ -13,3 +13,6 @@ cmake --build "$scratch/build" >/dev/null
 env -u LD_LIBRARY_PATH "$scratch/build/consumer"
 test -f "$scratch/prefix/share/mrpt-vslam/config/omni-fastslam/sports-hall.ini"
 env -u LD_LIBRARY_PATH "$scratch/prefix/bin/omni-fastslam" --version | grep -q omni-fastslam
+# --gui's window module sits beside the project's libraries, where LiveView loads it from
+core_dir="$(dirname "$(find "$scratch/prefix" -name 'libmrpt_vslam_core.so.*' | head -1)")"
+test -f "$core_dir/libmrpt_vslam_liveview.so"
