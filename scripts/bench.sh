@@ -30,18 +30,22 @@ mkdir -p "$OUT" "$(dirname "$RESULTS")"
 # --- whole runs -----------------------------------------------------------------------------
 # whole NAME APP CONFIG RAWLOG [OPTION...] (RAWLOG under datasets/ or $OUT; OPTIONs to the app):
 # RUNS runs with seeds 1..RUNS on one thread and on every core; per thread count one table row
-# with the medians of run.json's total_s and per-step mean, and the data's duration (the span of
-# its ground truth) over the run's
+# with the medians of run.json's total_s, of the process's wall clock (written beside run.json as
+# process_s) and of the per-step mean, and the data's duration (the span of its ground truth)
+# over the run's
 whole() {
-  local name="$1" app="$2" config="$3" rawlog="$4" seed threads
+  local name="$1" app="$2" config="$3" rawlog="$4" seed threads start run_dir
   shift 4
   local data="$DATA"
   [ -f "$data/$rawlog" ] || data="$OUT"
   for threads in $( (echo 1; nproc) | uniq); do
     echo "whole run: $name, $threads thread(s)" >&2
     for seed in $(seq 1 "$RUNS"); do
-      "$BIN/$app" "$CONFIGS/$config" "$data/$rawlog" --out "$OUT/$name-t$threads-seed$seed" \
+      run_dir="$OUT/$name-t$threads-seed$seed"
+      start="$(date +%s.%N)"
+      "$BIN/$app" "$CONFIGS/$config" "$data/$rawlog" --out "$run_dir" \
         --seed "$seed" --threads "$threads" --quiet "$@"
+      echo "$start $(date +%s.%N)" | awk '{ printf "%.3f\n", $2 - $1 }' > "$run_dir/process_s"
     done
     whole_row "$name-t$threads" "$threads" "$config${*:+ $*}" "$rawlog" "$data"
   done
@@ -57,22 +61,25 @@ times = [float(line.split()[0]) for f in glob.glob(f"{data}/{rawlog[:-len('.rawl
 data_s = max(times) - min(times)
 docs = [json.load(open(f"{out}/{name}-seed{s}/run.json")) for s in range(1, int(runs) + 1)]
 total = statistics.median(d["timing"]["total_s"] for d in docs)
+process = statistics.median(float(open(f"{out}/{name}-seed{s}/process_s").read())
+                            for s in range(1, int(runs) + 1))
 step = statistics.median(d["timing"]["per_step_ms"]["mean"] for d in docs)
 steps = docs[0]["timing"]["steps"]
 rt = f"{data_s / total:.0f}×"
-print(f"| `{config}` | `{rawlog}` | {threads} | {steps} | {total:.2f} | {step:.2f} | {rt} |")
+print(f"| `{config}` | `{rawlog}` | {threads} | {steps} | {total:.2f} | {process:.2f} | {step:.2f} | {rt} |")
 EOF_PY
 }
 
 {
   echo "## Whole runs of the shipped configurations"
   echo
-  echo "Wall clock of the app's run (run.json \`timing.total_s\`: reading, filtering, writing) and"
-  echo "the mean time per filter step, each the median of $RUNS run(s) with seeds 1 to $RUNS; real"
-  echo "time: the data's duration (its ground truth's time span; simulated data too) over the run's."
+  echo "Wall clock of the app's run (run.json \`timing.total_s\`: reading, filtering, writing), of"
+  echo "its whole process (process: from start to exit, loading its libraries included) and the mean"
+  echo "time per filter step, each the median of $RUNS run(s) with seeds 1 to $RUNS; real time: the"
+  echo "data's duration (its ground truth's time span; simulated data too) over the run's."
   echo
-  echo "| config | rawlog | threads | steps | run [s] | per step [ms] | real time |"
-  echo "|---|---|---|---|---|---|---|"
+  echo "| config | rawlog | threads | steps | run [s] | process [s] | per step [ms] | real time |"
+  echo "|---|---|---|---|---|---|---|---|"
   whole omni-fastslam omni-fastslam omni-fastslam/sports-hall.ini sports-hall/hall.rawlog
   whole multirobot-2 multirobot-vslam multirobot-vslam/office-team-2.ini office-team/team2.rawlog
   whole multirobot-3 multirobot-vslam multirobot-vslam/office-team-3.ini office-team/team3.rawlog
