@@ -1,7 +1,10 @@
 #include <gtest/gtest.h>
+#include <mrpt_vslam/core/HungarianAssignment.h>
 #include <mrpt_vslam/core/LandmarkMetrics.h>
 
 #include <cmath>
+#include <limits>
+#include <random>
 
 using namespace mrpt_vslam::core;
 
@@ -100,4 +103,34 @@ TEST(LandmarkMetrics, EmptyListsAreHandled)
     const auto noTruth = evaluateLandmarks(truth, {}, 1.0);
     EXPECT_EQ(noTruth.num_false, 2u);
     EXPECT_EQ(noTruth.num_duplicates, 0u);
+}
+
+// The assignment is solved per group of landmarks within the cut-off of each other: on a large
+// random map it must pair exactly as many landmarks, at the same total distance, as one
+// assignment over the whole matrix.
+TEST(LandmarkMetrics, MatchesOneWholeAssignmentOnALargeMap)
+{
+    std::mt19937 gen(11);
+    std::uniform_real_distribution<double> where(0, 30), noise(-0.6, 0.6);
+    std::vector<TLandmark> truth, est;
+    for (int i = 0; i < 400; i++) truth.push_back(lm(i, where(gen), where(gen), where(gen) / 10));
+    for (int j = 0; j < 350; j++) {  // most near a true landmark, some near two, some false
+        const auto& t = truth[static_cast<size_t>(j) % truth.size()].position;
+        est.push_back(j % 7 == 0 ? lm(1000 + j, where(gen), where(gen))
+                                 : lm(1000 + j, t.x + noise(gen), t.y + noise(gen), t.z));
+    }
+    const double cutoff = 0.8;
+    const auto m = evaluateLandmarks(est, truth, cutoff);
+
+    Eigen::MatrixXd cost(truth.size(), est.size());
+    for (size_t i = 0; i < truth.size(); i++)
+        for (size_t j = 0; j < est.size(); j++) {
+            const double d = (est[j].position - truth[i].position).norm();
+            cost(i, j) = d <= cutoff ? d : std::numeric_limits<double>::infinity();
+        }
+    const auto whole = solveHungarianAssignment(cost);
+    EXPECT_EQ(m.num_matched, truth.size() - static_cast<size_t>(whole.unassigned_rows));
+    EXPECT_NEAR(m.error_mean * static_cast<double>(m.num_matched), whole.total_cost, 1e-9);
+    EXPECT_GT(m.num_matched, 250u);  // the instance is not trivial
+    EXPECT_GT(m.num_false, 40u);
 }
