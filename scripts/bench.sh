@@ -74,9 +74,10 @@ EOF_PY
   echo "## Whole runs of the shipped configurations"
   echo
   echo "Wall clock of the app's run (run.json \`timing.total_s\`: reading, filtering, writing), of"
-  echo "its whole process (process: from start to exit, loading its libraries included) and the mean"
-  echo "time per filter step, each the median of $RUNS run(s) with seeds 1 to $RUNS; real time: the"
-  echo "data's duration (its ground truth's time span; simulated data too) over the run's."
+  echo "its whole process (process: from start to exit, with the loading of its libraries and the"
+  echo "evaluation against the ground truth) and the mean time per filter step, each the median of"
+  echo "$RUNS run(s) with seeds 1 to $RUNS; real time: the data's duration (its ground truth's time"
+  echo "span; simulated data too) over the run's."
   echo
   echo "| config | rawlog | threads | steps | run [s] | process [s] | per step [ms] | real time |"
   echo "|---|---|---|---|---|---|---|---|"
