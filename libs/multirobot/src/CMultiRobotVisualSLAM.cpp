@@ -350,52 +350,29 @@ void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandma
 {
     auto candidates = searchCandidates(posesOf(k), 0, 0, z);
     const size_t n = z.size();
-    // A landmark new to the pool gets a provisional id while the particles fuse in parallel,
-    // base + j for measurement j, above every pool id; then the pool hands out the real ids in
-    // particle order, as a serial loop would. Known correspondences look ids up in the pool
-    // as they go, so they run serially.
-    const bool provisional = !m_template.insertionOptions.associate_by_identity;
-    const auto base = static_cast<uint32_t>(m_template.descriptorPool().size());
-    if (provisional)
-        for (size_t j = 0; j < n; j++) candidates[j].new_id = base + static_cast<uint32_t>(j);
+    // Known correspondences look ids up in the pool as they go, so they run serially. Else a
+    // new landmark waits: the particles fuse the rest in parallel, the pool hands out the ids
+    // of the new ones in particle order, as a serial loop would, then they are created.
+    const bool serial = m_template.insertionOptions.associate_by_identity;
     std::vector<TFusionResult> fused(m_particles.size() * n);
     // Alg. 1 lines 18-46, particle by particle so that its landmarks stay in the cache
-    core::parallelFor(m_particles.size(), provisional ? m_threads : 1, [&](size_t i) {
+    core::parallelFor(m_particles.size(), serial ? 1 : m_threads, [&](size_t i) {
         auto& p = m_particles[i];
         const TPlanarTransform pose(p.d->poses[k]);
         std::vector<TMapMeasurement> in_map(n);
         for (size_t j = 0; j < n; j++) in_map[j] = toMapFrame(z[j], pose);
         const auto r = p.d->map.fuseFrame(z, in_map, candidates, static_cast<unsigned>(k),
-                                          CVisualLandmarksMap::TFrameAssociation::OneByOne);
+                                          CVisualLandmarksMap::TFrameAssociation::OneByOne, serial);
         std::copy(r.begin(), r.end(), fused.begin() + static_cast<std::ptrdiff_t>(i * n));
-        // line 44 and line 11: the product over the team
-        for (size_t j = 0; j < n; j++) addLogWeight(p, r[j].log_w);
-    });
-    std::vector<std::optional<uint32_t>> final_id(n);
-    if (provisional)  // the pool's ids, from the first particle that created each landmark
-        for (size_t i = 0; i < m_particles.size(); i++)
-            for (size_t j = 0; j < n; j++) {
-                if (!fused[i * n + j].created || final_id[j]) continue;
-                candidates[j].new_id.reset();
-                const TPlanarTransform pose(m_particles[i].d->poses[k]);
-                final_id[j] =
-                    m_particles[i].d->map.reserveNewId(z[j], toMapFrame(z[j], pose), candidates[j]);
-            }
-    core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
-        auto& d = *m_particles[i].d;
-        std::vector<std::pair<uint32_t, uint32_t>> renumbered;
         for (size_t j = 0; j < n; j++) {
-            TFusionResult& r = fused[i * n + j];
-            if (provisional && r.created) {
-                renumbered.emplace_back(r.id, *final_id[j]);
-                r.id = *final_id[j];
-            }
-            d.correspondences.push_back({static_cast<uint32_t>(k), r.id, z[j].track_id});
+            addLogWeight(p, r[j].log_w);  // line 44 and line 11: the product over the team
+            p.d->correspondences.push_back({static_cast<uint32_t>(k), r[j].id, z[j].track_id});
         }
-        if (!renumbered.empty()) d.map.renumberLandmarks(renumbered);
     });
-    for (const TFusionResult& r : fused)
-        (r.created ? lastStepStats.created : lastStepStats.associated)++;
+    std::vector<bool> created(fused.size());
+    for (size_t i = 0; i < fused.size(); i++) created[i] = fused[i].created;
+    if (!serial) createLandmarks(k, z, candidates, created);
+    for (const bool c : created) (c ? lastStepStats.created : lastStepStats.associated)++;
 }
 
 void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussian& motion,
@@ -485,29 +462,51 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussi
                                      ": proposal covariance is not positive definite");
         const Eigen::Vector3d x = mu + L.factor() * noise[i];
         p.poses[k] = TPose2D(x[0], x[1], mrpt::math::wrapToPi(x[2]));
-    });
 
-    // The ids of new landmarks, in particle order (the pool is shared: one thread)
-    for (size_t i = 0; i < m_particles.size(); i++) {
-        auto& p = *m_particles[i].d;
-        for (size_t j = 0; j < n; j++)
-            if (!assoc[i * n + j] && !candidates[j].new_id)
-                p.map.reserveNewId(z[j], toMapFrame(z[j], TPlanarTransform(p.poses[k])),
-                                   candidates[j]);
-        for (size_t j = 0; j < n; j++)
-            (assoc[i * n + j] ? lastStepStats.associated : lastStepStats.created)++;
-    }
-
-    // The landmarks updated from the sampled pose, with the associations made above
-    core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
-        auto& p = *m_particles[i].d;
+        // The associated landmarks updated from the sampled pose while they are in the cache;
+        // a new landmark waits for its id, and its correspondence with it
         const TPlanarTransform pose(p.poses[k]);
         for (size_t j = 0; j < n; j++) {
-            const TFusionResult r = p.map.fuseAs(z[j], toMapFrame(z[j], pose), candidates[j],
-                                                 static_cast<unsigned>(k), assoc[i * n + j]);
-            p.correspondences.push_back({static_cast<uint32_t>(k), r.id, z[j].track_id});
+            const auto& a = assoc_i[static_cast<std::ptrdiff_t>(j)];
+            if (a)
+                p.map.fuseAs(z[j], toMapFrame(z[j], pose), candidates[j], static_cast<unsigned>(k),
+                             a);
+            p.correspondences.push_back({static_cast<uint32_t>(k), a ? a->id : 0, z[j].track_id});
         }
         addLogWeight(m_particles[i], log_w[i]);  // line 11: the product over the team
+    });
+
+    std::vector<bool> created(assoc.size());
+    for (size_t i = 0; i < assoc.size(); i++) created[i] = !assoc[i];
+    createLandmarks(k, z, candidates, created);
+    for (const bool c : created) (c ? lastStepStats.created : lastStepStats.associated)++;
+}
+
+void CMultiRobotVisualSLAM::createLandmarks(size_t k, const std::vector<TLandmarkMeasurement>& z,
+                                            std::vector<TMeasurementCandidates>& candidates,
+                                            const std::vector<bool>& created)
+{
+    const size_t n = z.size();
+    std::vector<size_t> creating;  // the particles that create any
+    for (size_t i = 0; i < m_particles.size(); i++)
+        for (size_t j = 0; j < n; j++) {
+            if (!created[i * n + j]) continue;
+            if (creating.empty() || creating.back() != i) creating.push_back(i);
+            if (candidates[j].new_id) continue;  // the id an earlier particle was given
+            const TPlanarTransform pose(m_particles[i].d->poses[k]);
+            m_particles[i].d->map.reserveNewId(z[j], toMapFrame(z[j], pose), candidates[j]);
+        }
+    core::parallelFor(creating.size(), m_threads, [&](size_t c) {
+        auto& d = *m_particles[creating[c]].d;
+        const TPlanarTransform pose(d.poses[k]);
+        const size_t first = d.correspondences.size() - n;  // robot k's, in the order of z
+        for (size_t j = 0; j < n; j++)
+            if (created[creating[c] * n + j])
+                d.correspondences[first + j].landmark =
+                    d.map
+                        .fuseAs(z[j], toMapFrame(z[j], pose), candidates[j],
+                                static_cast<unsigned>(k), std::nullopt)
+                        .id;
     });
 }
 

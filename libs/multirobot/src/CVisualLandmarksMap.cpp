@@ -277,15 +277,22 @@ TFusionResult CVisualLandmarksMap::fuseAs(const TLandmarkMeasurement& m,
 
 std::vector<TFusionResult> CVisualLandmarksMap::fuseFrame(
     const std::vector<TLandmarkMeasurement>& z, const std::vector<TMapMeasurement>& in_map,
-    std::vector<TMeasurementCandidates>& candidates, unsigned robot, TFrameAssociation rule)
+    std::vector<TMeasurementCandidates>& candidates, unsigned robot, TFrameAssociation rule,
+    bool create)
 {
     std::vector<TFusionResult> results(z.size());
+    const auto fuseOne = [&](size_t j, const std::optional<TAssociation>& a) {
+        if (a || create) return fuseAs(z[j], in_map[j], candidates[j], robot, a);
+        TFusionResult r;  // line 36, the landmark left to the caller
+        r.created = true;
+        r.log_w = std::log(insertionOptions.p0);
+        return r;
+    };
     if (insertionOptions.joint_association || rule == TFrameAssociation::DistinctNearestFirst) {
         const auto assoc = insertionOptions.joint_association
                                ? associateJointly(in_map, candidates)
                                : associateNearestFirst(z, in_map, candidates);
-        for (size_t j = 0; j < z.size(); j++)
-            results[j] = fuseAs(z[j], in_map[j], candidates[j], robot, assoc[j]);
+        for (size_t j = 0; j < z.size(); j++) results[j] = fuseOne(j, assoc[j]);
         return results;
     }
     const bool distinct = rule == TFrameAssociation::DistinctInOrder;
@@ -294,7 +301,7 @@ std::vector<TFusionResult> CVisualLandmarksMap::fuseFrame(
         const auto a =
             associate(in_map[j], candidates[j], distinct ? &taken : nullptr, z[j].identity);
         if (a && distinct) taken.push_back(a->id);
-        results[j] = fuseAs(z[j], in_map[j], candidates[j], robot, a);
+        results[j] = fuseOne(j, a);
     }
     return results;
 }

@@ -47,18 +47,6 @@ void LandmarkStore::clear()
     m_count = 0;
 }
 
-void LandmarkStore::renumber(const std::vector<std::pair<uint32_t, uint32_t>>& from_to)
-{
-    std::vector<TVisualLandmark> moved;
-    moved.reserve(from_to.size());
-    for (const auto& [from, to] : from_to) {
-        assert(find(from));
-        moved.push_back(*find(from));
-    }
-    for (const auto& [from, to] : from_to) erase(from);
-    for (size_t i = 0; i < from_to.size(); i++) insert(from_to[i].second, moved[i]);
-}
-
 size_t LandmarkStore::unsharedBlocks() const
 {
     size_t n = 0;

@@ -208,6 +208,14 @@ class CMultiRobotVisualSLAM
     void proposeAndFuse(size_t k, const core::TOdometryGaussian& motion,
                         const std::vector<TLandmarkMeasurement>& z,
                         const std::vector<TRobotReading>& readings);
+    /** Alg. 1 lines 33-36 for robot k after its particles fused the rest of z:
+     *  `created[i * n + j]` says measurement j starts a landmark in particle i. The pool's ids
+     *  are handed out in particle order (one thread, as a serial loop would), then the
+     *  particles create the landmarks in parallel and give the id to the correspondence
+     *  each left for it (the last n of the particle's). */
+    void createLandmarks(size_t k, const std::vector<TLandmarkMeasurement>& z,
+                         std::vector<TMeasurementCandidates>& candidates,
+                         const std::vector<bool>& created);
 
     size_t m_steps = 0;                   ///< since reset()
     TStepObserver* m_observer = nullptr;  ///< setStepObserver()

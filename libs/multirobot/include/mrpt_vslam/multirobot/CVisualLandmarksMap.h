@@ -176,16 +176,15 @@ class CVisualLandmarksMap : public mrpt::maps::CMetricMap {
     /** Alg. 1 lines 18-46 for the measurements of one frame of one robot: with
      *  joint_association fuseAs() the associations of associateJointly(), else as `rule`
      *  says. `candidates` (one per measurement) are searched before the frame is fused, so
-     *  two points of one frame never become one landmark. Returns one result per measurement. */
+     *  two points of one frame never become one landmark. Returns one result per measurement.
+     *  With `create` false a point left without a landmark changes nothing: its result is
+     *  `created` with log p0 and no id, and the caller creates the landmark with fuseAs()
+     *  (particles fusing on parallel threads, the pool's ids handed out between). */
     std::vector<TFusionResult> fuseFrame(const std::vector<TLandmarkMeasurement>& z,
                                          const std::vector<TMapMeasurement>& in_map,
                                          std::vector<TMeasurementCandidates>& candidates,
-                                         unsigned robot, TFrameAssociation rule);
-    /// Moves landmarks to other ids, (from, to) each (see LandmarkStore::renumber()).
-    void renumberLandmarks(const std::vector<std::pair<uint32_t, uint32_t>>& from_to)
-    {
-        m_store.renumber(from_to);
-    }
+                                         unsigned robot, TFrameAssociation rule,
+                                         bool create = true);
     /// Removes the landmarks fused from fewer than `min_times_seen` measurements; returns how
     /// many it removed.
     size_t removeLandmarksSeenLessThan(unsigned min_times_seen);

@@ -5,7 +5,6 @@
 #include <array>
 #include <cstdint>
 #include <memory>
-#include <utility>
 #include <vector>
 
 namespace mrpt_vslam::multirobot {
@@ -40,8 +39,6 @@ class LandmarkStore {
     void erase(uint32_t id);
     /// Removes every landmark.
     void clear();
-    /// Moves landmarks to other ids, (from, to) each; a `to` may be the `from` of another pair.
-    void renumber(const std::vector<std::pair<uint32_t, uint32_t>>& from_to);
 
     size_t size() const { return m_count; }
     bool empty() const { return m_count == 0; }
