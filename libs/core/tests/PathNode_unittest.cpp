@@ -4,6 +4,7 @@
 #include <mrpt_vslam/core/ParticleFilterDataImpl.h>
 #include <mrpt_vslam/core/PathNode.h>
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -100,4 +101,41 @@ TEST(ParticleFilterDataImpl, EssAndNormalizationAreMrpts)
         EXPECT_EQ(ours.ESS(), theirs.TMrpt::ESS()) << n;
     }
     EXPECT_EQ(TFilter().normalizeWeights(), 0);
+}
+
+// Resampling gives MRPT's set (the same data in the same order) and reuses the data of the
+// particles nobody drew for the copies: no particle data is allocated when the count stays.
+TEST(ParticleFilterDataImpl, SubstitutionIsMrptsAndReusesTheDroppedParticles)
+{
+    using TMrpt = mrpt::bayes::CParticleFilterDataImpl<TFilter, TBase::CParticleList>;
+    mrpt::random::CRandomGenerator rng(11);
+    for (const size_t n : {1, 2, 9, 300}) {
+        for (const size_t m : {n, n + 3, n / 2 + 1}) {  // as many, more and fewer drawn
+            TFilter ours, theirs;
+            std::vector<const TWeighted*> before;
+            for (TFilter* f : {&ours, &theirs}) {
+                f->m_particles.resize(n);
+                for (size_t i = 0; i < n; i++) {
+                    f->m_particles[i].d.reset(new TWeighted{static_cast<double>(i)});
+                    f->m_particles[i].log_w = -1;
+                }
+            }
+            for (const auto& p : ours.m_particles) before.push_back(p.d.get());
+            std::vector<size_t> indx(m);
+            for (auto& i : indx) i = rng.drawUniform32bit() % n;
+            ours.performSubstitution(indx);
+            theirs.TMrpt::performSubstitution(indx);
+            ASSERT_EQ(ours.m_particles.size(), m);
+            ASSERT_EQ(theirs.m_particles.size(), m);
+            size_t reused = 0;
+            for (size_t i = 0; i < m; i++) {
+                EXPECT_EQ(ours.m_particles[i].d->accumulated_log_w,
+                          theirs.m_particles[i].d->accumulated_log_w)
+                    << n << " " << m << " " << i;
+                EXPECT_EQ(ours.m_particles[i].log_w, 0);
+                reused += std::count(before.begin(), before.end(), ours.m_particles[i].d.get());
+            }
+            EXPECT_EQ(reused, std::min(n, m)) << n << " " << m;
+        }
+    }
 }

@@ -19,6 +19,15 @@ LandmarkStore::Block& LandmarkStore::writableBlock(size_t b)
     return *block;
 }
 
+LandmarkStore& LandmarkStore::operator=(const LandmarkStore& other)
+{
+    m_blocks.resize(other.m_blocks.size());
+    for (size_t b = 0; b < m_blocks.size(); b++)
+        if (m_blocks[b] != other.m_blocks[b]) m_blocks[b] = other.m_blocks[b];
+    m_count = other.m_count;
+    return *this;
+}
+
 TVisualLandmark& LandmarkStore::modify(uint32_t id)
 {
     assert(find(id));

@@ -27,10 +27,35 @@ class ParticleFilterDataImpl : public mrpt::bayes::CParticleFilterDataImpl<Deriv
     /// results do not depend on it: the same seed gives the same particles bit for bit.
     void setThreadCount(unsigned threads) { m_threads = resolveThreadCount(threads); }
 
+    /** MRPT's new set (the particles `indx` draws, in increasing index, the first draw of a
+     *  particle taking its data, the others copies), with every log-weight 0, and the copies
+     *  made into the data of particles nobody drew (assigned, not allocated and freed). */
     void performSubstitution(const std::vector<size_t>& indx) override
     {
-        mrpt::bayes::CParticleFilterDataImpl<Derived, ParticleList>::performSubstitution(indx);
-        for (auto& p : particles()) p.log_w = 0;
+        ParticleList& old = particles();
+        std::vector<size_t> sorted(indx);
+        std::sort(sorted.begin(), sorted.end());
+        std::vector<size_t> first(old.size(), kNone);  // new index of an old particle's data
+        for (size_t i = 0; i < sorted.size(); i++)
+            if (first[sorted[i]] == kNone) first[sorted[i]] = i;
+        std::vector<size_t> spare;  // particles nobody drew, in increasing index
+        for (size_t j = 0; j < old.size(); j++)
+            if (first[j] == kNone) spare.push_back(j);
+        ParticleList drawn(sorted.size());
+        size_t next_spare = 0;
+        for (size_t i = 0; i < sorted.size(); i++) {
+            const size_t j = sorted[i];
+            if (first[j] == i) {
+                drawn[i].d = std::move(old[j].d);
+            } else if (next_spare < spare.size()) {
+                drawn[i].d = std::move(old[spare[next_spare++]].d);
+                *drawn[i].d = *drawn[first[j]].d;
+            } else {
+                drawn[i].d = drawn[first[j]].d;  // a deep copy
+            }
+            drawn[i].log_w = 0;
+        }
+        old = std::move(drawn);
     }
 
     /// Subtracts the largest log-weight from all; returns max / min weight: MRPT's.
@@ -79,6 +104,7 @@ class ParticleFilterDataImpl : public mrpt::bayes::CParticleFilterDataImpl<Deriv
     }
 
   protected:
+    static constexpr size_t kNone = static_cast<size_t>(-1);
     ParticleList& particles() { return static_cast<Derived*>(this)->m_particles; }
     const ParticleList& particles() const { return static_cast<const Derived*>(this)->m_particles; }
 

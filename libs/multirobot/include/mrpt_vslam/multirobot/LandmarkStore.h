@@ -22,6 +22,14 @@ class LandmarkStore {
   public:
     static constexpr uint32_t kBlockSize = 32;
 
+    LandmarkStore() = default;
+    LandmarkStore(const LandmarkStore&) = default;
+    LandmarkStore(LandmarkStore&&) = default;
+    LandmarkStore& operator=(LandmarkStore&&) = default;
+    /// Holds other's blocks; one both hold already is not touched (resampling assigns a copy
+    /// of a particle to a relative's store, which shares most of its blocks).
+    LandmarkStore& operator=(const LandmarkStore& other);
+
     /// The landmark with this id, or nullptr if this particle has none.
     const TVisualLandmark* find(uint32_t id) const
     {
