@@ -89,8 +89,8 @@ TEST(ThreadCount, OmniFastSLAMGivesTheSameRun)
 }
 
 // multirobot-vslam with both proposals on the short stereo sequence: the optimal proposal
-// (landmark ids handed out after the parallel proposals) and the paper's (provisional ids
-// renumbered after the parallel updates).
+// and the paper's (both hand out the ids of new landmarks after the parallel updates, then
+// create them in parallel).
 TEST(ThreadCount, MultiRobotVSLAMGivesTheSameRunWithBothProposals)
 {
     const std::string data = kConfigs + "multirobot-vslam/office-team-2.ini " + kSource +
