@@ -42,19 +42,27 @@ class ParticleFilterDataImpl : public mrpt::bayes::CParticleFilterDataImpl<Deriv
         for (size_t j = 0; j < old.size(); j++)
             if (first[j] == kNone) spare.push_back(j);
         ParticleList drawn(sorted.size());
+        std::vector<size_t> copies;  // new indices whose data is a copy of drawn[first[sorted[i]]]
         size_t next_spare = 0;
         for (size_t i = 0; i < sorted.size(); i++) {
             const size_t j = sorted[i];
             if (first[j] == i) {
                 drawn[i].d = std::move(old[j].d);
-            } else if (next_spare < spare.size()) {
-                drawn[i].d = std::move(old[spare[next_spare++]].d);
-                *drawn[i].d = *drawn[first[j]].d;
             } else {
-                drawn[i].d = drawn[first[j]].d;  // a deep copy
+                if (next_spare < spare.size()) drawn[i].d = std::move(old[spare[next_spare++]].d);
+                copies.push_back(i);
             }
             drawn[i].log_w = 0;
         }
+        // the copies read only first draws, which none of them writes
+        parallelFor(copies.size(), m_threads, [&](size_t c) {
+            const size_t i = copies[c];
+            const auto& source = drawn[first[sorted[i]]].d;
+            if (drawn[i].d.get())
+                *drawn[i].d = *source;
+            else
+                drawn[i].d = source;  // a deep copy
+        });
         old = std::move(drawn);
     }
 
