@@ -40,14 +40,17 @@ class WorkerPool {
         const std::lock_guard<std::mutex> one_loop(m_loop_mutex);
         while (m_workers.size() + 1 < threads)
             m_workers.emplace_back([this, id = m_workers.size()] { serve(id); });
+        if (m_shares.size() < threads) m_shares = std::vector<Share>(threads);
         {
             const std::lock_guard<std::mutex> lock(m_mutex);
             m_body = &body;
-            m_count = n;
-            // small chunks handed out as threads get free: a thread the system holds back
-            // delays the loop by one chunk, not by its share
+            // thread t's share first (parallelFor()), in small chunks: a thread the system
+            // holds back delays the loop by one chunk, not by its share
             m_chunk = std::max<size_t>(1, n / (8 * threads));
-            m_next = 0;
+            for (unsigned t = 0; t < threads; t++) {
+                m_shares[t].next = n * t / threads;
+                m_shares[t].end = n * (t + 1) / threads;
+            }
             m_failed_index = std::numeric_limits<size_t>::max();
             m_failure = nullptr;
             m_participants = threads - 1;
@@ -55,7 +58,7 @@ class WorkerPool {
             m_generation++;
         }
         m_wake.notify_all();
-        work();
+        work(0);
         spinWhile([this] { return m_active.load(std::memory_order_relaxed) != 0; });
         std::unique_lock<std::mutex> lock(m_mutex);
         m_done.wait(lock, [this] { return m_active == 0; });
@@ -87,31 +90,41 @@ class WorkerPool {
             seen = m_generation;
             if (id >= m_participants) continue;
             lock.unlock();
-            work();
+            work(id + 1);
             lock.lock();
             if (--m_active == 0) m_done.notify_all();
         }
     }
 
-    void work()
+    /// Runs the chunks of share `own`, then those left in the others.
+    void work(size_t own)
     {
         t_inside = true;
-        for (;;) {
-            const size_t start = m_next.fetch_add(m_chunk);
-            if (start >= m_count) break;
-            for (size_t i = start; i < std::min(start + m_chunk, m_count); i++) {
-                try {
-                    (*m_body)(i);
-                } catch (...) {
-                    const std::lock_guard<std::mutex> lock(m_mutex);
-                    if (i < m_failed_index) {
-                        m_failed_index = i;
-                        m_failure = std::current_exception();
-                    }
-                }
+        const size_t shares = m_participants + 1;
+        for (size_t s = 0; s < shares; s++) {
+            Share& share = m_shares[(own + s) % shares];
+            for (;;) {
+                const size_t start = share.next.fetch_add(m_chunk);
+                if (start >= share.end) break;
+                runChunk(start, std::min(start + m_chunk, share.end));
             }
         }
         t_inside = false;
+    }
+
+    void runChunk(size_t begin, size_t end)
+    {
+        for (size_t i = begin; i < end; i++) {
+            try {
+                (*m_body)(i);
+            } catch (...) {
+                const std::lock_guard<std::mutex> lock(m_mutex);
+                if (i < m_failed_index) {
+                    m_failed_index = i;
+                    m_failure = std::current_exception();
+                }
+            }
+        }
     }
 
   public:
@@ -125,9 +138,14 @@ class WorkerPool {
     bool m_stop = false;
     std::atomic<uint64_t> m_generation{0};
     const std::function<void(size_t)>* m_body = nullptr;
-    size_t m_count = 0, m_chunk = 1, m_participants = 0;
+    size_t m_chunk = 1, m_participants = 0;
     std::atomic<size_t> m_active{0};
-    std::atomic<size_t> m_next{0};
+    /// The indices [next, end) of a thread's share not yet taken (a cache line each).
+    struct alignas(64) Share {
+        std::atomic<size_t> next{0};
+        size_t end = 0;
+    };
+    std::vector<Share> m_shares;
     size_t m_failed_index = 0;
     std::exception_ptr m_failure;
 };

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -20,6 +21,28 @@ TEST(ParallelFor, EveryIndexRunsOnceWhateverTheThreadCount)
             for (size_t i = 0; i < n; i++)
                 ASSERT_EQ(calls[i].load(), 1) << "index " << i << ", " << threads << " threads";
         }
+}
+
+TEST(ParallelFor, AThreadDoneWithItsShareTakesTheOthers)
+{
+    // The thread that runs index 0 waits until 60 of the other 99 indices are done: the other
+    // thread has to run more than its own half of them. Without taking chunks from the first
+    // thread's share it would finish at 50 and the wait would time out.
+    constexpr size_t n = 100;
+    std::atomic<size_t> done{0};
+    std::atomic<bool> timed_out{false};
+    std::vector<std::atomic<int>> calls(n);
+    parallelFor(n, 2, [&](size_t i) {
+        if (i == 0) {
+            const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+            while (done.load() < 60 && !timed_out)
+                if (std::chrono::steady_clock::now() > until) timed_out = true;
+        }
+        calls[i]++;
+        done++;
+    });
+    EXPECT_FALSE(timed_out) << "the loop did not balance between its threads";
+    for (size_t i = 0; i < n; i++) ASSERT_EQ(calls[i].load(), 1) << "index " << i;
 }
 
 TEST(ParallelFor, ThrowsTheErrorOfTheLowestFailingIndex)

@@ -9,7 +9,9 @@ namespace mrpt_vslam::core {
 unsigned resolveThreadCount(unsigned requested);
 
 /** Runs body(i) for every i in [0, n) on up to `threads` threads: the caller's and workers
- *  that sleep between loops, taking chunks of indices as they get free.
+ *  that sleep between loops. Thread t starts on the t-th of `threads` equal shares of [0, n)
+ *  (so a loop over particles runs each where the loop before left it, in that core's cache),
+ *  taking it in small chunks, and then takes the chunks left in the other shares.
  *
  *  The bodies must not write state that another index reads or writes; then the result does
  *  not depend on the thread count. With threads <= 1, n <= 1, or inside another loop's body,
