@@ -42,21 +42,19 @@ class ParticleFilterDataImpl : public mrpt::bayes::CParticleFilterDataImpl<Deriv
         for (size_t j = 0; j < old.size(); j++)
             if (first[j] == kNone) spare.push_back(j);
         ParticleList drawn(sorted.size());
-        std::vector<size_t> copies;  // new indices whose data is a copy of drawn[first[sorted[i]]]
         size_t next_spare = 0;
         for (size_t i = 0; i < sorted.size(); i++) {
             const size_t j = sorted[i];
-            if (first[j] == i) {
+            if (first[j] == i)
                 drawn[i].d = std::move(old[j].d);
-            } else {
-                if (next_spare < spare.size()) drawn[i].d = std::move(old[spare[next_spare++]].d);
-                copies.push_back(i);
-            }
+            else if (next_spare < spare.size())
+                drawn[i].d = std::move(old[spare[next_spare++]].d);
             drawn[i].log_w = 0;
         }
-        // the copies read only first draws, which none of them writes
-        parallelFor(copies.size(), m_threads, [&](size_t c) {
-            const size_t i = copies[c];
+        // the copies, each made where the loops over the particles update it (a share of the
+        // new indices per thread); they read only first draws, which none of them writes
+        parallelFor(sorted.size(), m_threads, [&](size_t i) {
+            if (first[sorted[i]] == i) return;
             const auto& source = drawn[first[sorted[i]]].d;
             if (drawn[i].d.get())
                 *drawn[i].d = *source;
