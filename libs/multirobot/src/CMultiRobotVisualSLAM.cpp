@@ -195,7 +195,8 @@ void CMultiRobotVisualSLAM::reset(const std::vector<TPose2D>& start_poses, doubl
             d.poses[k].phi = mrpt::math::wrapToPi(
                 d.poses[k].phi + options.initial_std_phi * m_rng.drawGaussian1D_normalized());
         }
-        d.path = core::newPathNode<TTeamStep>(timestamp, nullptr, d.poses);
+        d.path = TTeamParticlePath();
+        d.path.append(timestamp, d.poses);
         d.map = m_template;
         d.accumulated_log_w = 0;
         d.correspondences.resize(0);
@@ -221,8 +222,8 @@ std::vector<std::pair<double, TPose2D>> CMultiRobotVisualSLAM::pathOf(const TTea
                                                                       size_t robot)
 {
     std::vector<std::pair<double, TPose2D>> path;
-    for (const auto* n : core::nodesOldestFirst(p.path.get()))
-        path.emplace_back(n->timestamp, n->state.poses.at(robot));
+    for (const auto* s : p.path.stepsOldestFirst())
+        path.emplace_back(s->timestamp, s->state.poses.at(robot));
     return path;
 }
 
@@ -549,7 +550,7 @@ void CMultiRobotVisualSLAM::runStep(
     }
     core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
         auto& d = *m_particles[i].d;
-        d.path = core::newPathNode<TTeamStep>(timestamp, d.path, d.poses, d.correspondences);
+        d.path.append(timestamp, d.poses, d.correspondences);
         d.correspondences.resize(0);  // keeps its storage for the next step
     });
     m_steps++;

@@ -30,9 +30,9 @@ TLandmarkIdentityTally TLandmarkIdentityTally::of(const std::vector<TCorresponde
 std::vector<TCorrespondence> TLandmarkIdentityTally::historyOf(const TTeamParticle& p)
 {
     std::vector<TCorrespondence> history;
-    for (const auto* n : core::nodesOldestFirst(p.path.get()))
-        history.insert(history.end(), n->state.correspondences.begin(),
-                       n->state.correspondences.end());
+    for (const auto* s : p.path.stepsOldestFirst())
+        history.insert(history.end(), s->state.correspondences.begin(),
+                       s->state.correspondences.end());
     return history;
 }
 

@@ -98,9 +98,8 @@ void TeamPathSmoother::onRobotStep(
 TeamPathSmoother::TTeamPath TeamPathSmoother::recordedPathOf(const TTeamParticle& p) const
 {
     TTeamPath path;
-    for (const TTeamPathNode* n = p.path.get(); n; n = n->previous.get())
-        path.emplace_back(n->state.poses.begin(), n->state.poses.end());
-    std::reverse(path.begin(), path.end());
+    for (const auto* s : p.path.stepsOldestFirst())
+        path.emplace_back(s->state.poses.begin(), s->state.poses.end());
     if (path.size() != m_motions.size() + 1)
         throw std::logic_error(
             "TeamPathSmoother: the particle's path is not that of the steps recorded since the "

@@ -144,10 +144,10 @@ TEST(CMultiRobotVisualSLAM, ResamplingLeavesOnlyHeldLandmarksInThePoolsSearch)
     EXPECT_GE(pool_size, 32u) << "too few landmarks for the search to be pruned";
 }
 
-// Each path node holds its step's correspondences, which resampling (here after every robot)
+// Each step of a path holds its correspondences, which resampling (here after every robot)
 // carries with the map they were fused into: a particle's history has one entry per fusion into
 // its map, by the robot that made it. The step observer hears of every robot of every step.
-TEST(CMultiRobotVisualSLAM, PathNodesHoldTheCorrespondencesOfTheParticlesMap)
+TEST(CMultiRobotVisualSLAM, PathStepsHoldTheCorrespondencesOfTheParticlesMap)
 {
     struct TRecorder : CMultiRobotVisualSLAM::TStepObserver {
         std::vector<std::pair<size_t, size_t>> steps;  // (step, robot)

@@ -37,7 +37,7 @@ TEST(LandmarkIdentityTally, CountsAHandWorkedHistory)
     EXPECT_EQ(TLandmarkIdentityTally::of({}, map).landmarks_with_identity, 0u);
 }
 
-// A particle's history is its path nodes' correspondences, oldest first.
+// A particle's history is its path's correspondences, oldest first.
 TEST(LandmarkIdentityTally, HistoryOfAParticleIsOldestFirst)
 {
     TTeamParticle p;
@@ -46,9 +46,9 @@ TEST(LandmarkIdentityTally, HistoryOfAParticleIsOldestFirst)
         for (const auto& c : correspondences) s.correspondences.push_back(c);
         return s;
     };
-    p.path = std::make_shared<const TTeamPathNode>(0.0, nullptr, step({}));
-    p.path = std::make_shared<const TTeamPathNode>(1.0, p.path, step({{0, 5, 1}, {0, 6, 2}}));
-    p.path = std::make_shared<const TTeamPathNode>(2.0, p.path, step({{0, 5, 3}}));
+    p.path.append(0.0, step({}));
+    p.path.append(1.0, step({{0, 5, 1}, {0, 6, 2}}));
+    p.path.append(2.0, step({{0, 5, 3}}));
     const auto h = TLandmarkIdentityTally::historyOf(p);
     ASSERT_EQ(h.size(), 3u);
     EXPECT_EQ(h[0].track_id, 1);

@@ -111,7 +111,7 @@ TEST(TeamPathSmoother, MinSeenFractionRemovesTheLandmarksReadInFewerFrames)
         return m;
     };
     TTeamParticle p;
-    p.path = std::make_shared<const TTeamPathNode>(0, nullptr, teamPoses(start));
+    p.path.append(0, teamPoses(start));
     const size_t frames = 100, steps = frames + 3;
     for (size_t step = 1; step <= steps; step++) {
         std::vector<TLandmarkMeasurement> z;
@@ -124,8 +124,7 @@ TEST(TeamPathSmoother, MinSeenFractionRemovesTheLandmarksReadInFewerFrames)
         }
         smoother.onRobotStep(step, 0, mrpt_vslam::core::TOdometryGaussian(), z, readings);
         smoother.onRobotStep(step, 1, mrpt_vslam::core::TOdometryGaussian(), {}, {});
-        p.path = std::make_shared<const TTeamPathNode>(static_cast<double>(step), p.path,
-                                                       teamPoses(start));
+        p.path.append(static_cast<double>(step), teamPoses(start));
     }
     auto keptCounts = [&](double fraction) {
         smoother.options.min_seen_fraction = fraction;
@@ -164,11 +163,10 @@ TEST(TeamPathSmoother, NearestPairFirstGivesEachLandmarkTheReadingsOfOnePost)
     const std::vector<std::vector<TLandmarkMeasurement>> frames{
         {reading({2, 0, 0}, 0)}, {reading({2, 0.25, 0}, 1), reading({2, 0.05, 0}, 0)}};
     TTeamParticle p;
-    p.path = std::make_shared<const TTeamPathNode>(0, nullptr, teamPoses(start));
+    p.path.append(0, teamPoses(start));
     for (size_t step = 1; step <= frames.size(); step++) {
         smoother.onRobotStep(step, 0, mrpt_vslam::core::TOdometryGaussian(), frames[step - 1], {});
-        p.path = std::make_shared<const TTeamPathNode>(static_cast<double>(step), p.path,
-                                                       teamPoses(start));
+        p.path.append(static_cast<double>(step), teamPoses(start));
     }
     for (const bool nearest : {false, true}) {
         smoother.options.nearest_pair_first = nearest;
@@ -205,21 +203,19 @@ TEST(TeamPathSmoother, SmoothingReanchorsAPartDisplacedAfterAGap)
     mrpt::obs::CSensoryFrame sf;
     const size_t steps = 60, gapFrom = 20, gapTo = 35;  // R2 blind in steps [gapFrom, gapTo)
     TTeamParticle truth, displaced;
-    truth.path = displaced.path =
-        std::make_shared<const TTeamPathNode>(world.time, nullptr, teamPoses(world.startPoses()));
+    truth.path.append(world.time, teamPoses(world.startPoses()));
+    displaced.path = truth.path;
     const mrpt::poses::CPose2D by(0.3, -0.3, 20 * M_PI / 180);
     mrpt::poses::CPose2D at;  // R2's true pose after the gap
     for (size_t i = 1; i <= steps; i++) {
         world.step(acts, sf);
         if (i >= gapFrom && i < gapTo) sf.eraseByLabel("R2_LANDMARKS");
         pf.executeOn(filter, &acts, &sf);
-        truth.path =
-            std::make_shared<const TTeamPathNode>(world.time, truth.path, teamPoses(world.truth));
+        truth.path.append(world.time, teamPoses(world.truth));
         auto poses = world.truth;
         if (i == gapTo) at = mrpt::poses::CPose2D(poses[1]);
         if (i >= gapTo) poses[1] = (at + by + (mrpt::poses::CPose2D(poses[1]) - at)).asTPose();
-        displaced.path =
-            std::make_shared<const TTeamPathNode>(world.time, displaced.path, teamPoses(poses));
+        displaced.path.append(world.time, teamPoses(poses));
     }
     // R2's error after the gap
     auto errorAfterGap = [&](const TeamPathSmoother::TSmoothedTeam& s) {

@@ -103,7 +103,8 @@ COmniFastSLAM::COmniFastSLAM(const CCeilingLightsMap& map_template, size_t parti
 
 void COmniFastSLAM::reset(const TPose2D& robot_in_map, double timestamp)
 {
-    const auto start = core::newPathNode<TOmniFastSLAMStep>(timestamp, nullptr, robot_in_map);
+    TOmniFastSLAMPath start;
+    start.append(timestamp, robot_in_map);
     for (auto& p : m_particles) {
         p.log_w = 0;
         p.d->robot_in_map = robot_in_map;
@@ -116,17 +117,18 @@ void COmniFastSLAM::reset(const TPose2D& robot_in_map, double timestamp)
 std::vector<std::pair<double, TPose2D>> COmniFastSLAM::pathOf(const TOmniFastSLAMParticle& p)
 {
     std::vector<std::pair<double, TPose2D>> path;
-    for (const auto* n : core::nodesOldestFirst(p.path.get()))
-        path.emplace_back(n->timestamp, n->state.robot_in_map);
+    for (const auto* s : p.path.stepsOldestFirst())
+        path.emplace_back(s->timestamp, s->state.robot_in_map);
     return path;
 }
 
 TAssociationTally COmniFastSLAM::associationsOf(const TOmniFastSLAMParticle& p)
 {
     TAssociationTally tally;
-    for (const TOmniFastSLAMPathNode* n = p.path.get(); n; n = n->previous.get())
-        for (const auto& c : n->state.correspondences)
+    p.path.forEachNewestFirst([&](const TOmniFastSLAMPath::TStep& s) {
+        for (const auto& c : s.state.correspondences)
             if (c.hidden_id >= 0) tally.counts[c.landmark_id][c.hidden_id]++;
+    });
     return tally;
 }
 
@@ -255,7 +257,7 @@ double COmniFastSLAM::updateParticle(TOmniFastSLAMParticle& p, const TPose2D& x_
     p.map.updateLandmarksType();
 
     p.robot_in_map = x_t;
-    p.path = core::newPathNode<TOmniFastSLAMStep>(timestamp, p.path, std::move(step));
+    p.path.append(timestamp, std::move(step));
     return log_w_inc;
 }
 
@@ -286,7 +288,7 @@ void COmniFastSLAM::runStep(const mrpt::obs::CActionCollection* action,
     core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
         auto& part = m_particles[i];
         auto& p = *part.d;
-        double timestamp = p.path ? p.path->timestamp : 0;
+        double timestamp = p.path.empty() ? 0 : p.path.newest().timestamp;
         const auto z = measurementsFromFrame(sf, p.map, timestamp);
         measured[i] = z.size();
 

@@ -321,7 +321,7 @@ std::optional<std::pair<size_t, size_t>> mergeablePair(const Problem& problem, d
 
 LightsPathSmoother::TResult LightsPathSmoother::smooth(const TOmniFastSLAMParticle& p) const
 {
-    const auto nodes = core::nodesOldestFirst(p.path.get());
+    const auto nodes = p.path.stepsOldestFirst();
     if (nodes.size() != m_steps.size() + 1)
         throw std::logic_error("LightsPathSmoother: the particle's path has " +
                                std::to_string(nodes.size()) + " nodes for " +

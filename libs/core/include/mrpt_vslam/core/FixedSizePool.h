@@ -8,7 +8,7 @@
 namespace mrpt_vslam::core {
 
 /** Memory for objects of one size that a particle filter allocates and frees by the thousand
- *  each step, from several threads: the copy-on-write landmark blocks and path nodes of its
+ *  each step, from several threads: the copy-on-write landmark blocks and path chunks of its
  *  particles (created on the filter's threads, released by resampling on the caller's).
  *
  *  Each thread keeps a free list of `Size`-byte slots. A thread that has freed more than two

@@ -50,8 +50,8 @@ namespace mrpt_vslam::multirobot {
  *      motion is sampled. The robots' motions are independent, so this is the same posterior
  *      processed one robot at a time; it keeps the particles from having to be good for all
  *      K robots at once, which the joint product over a 3K-dimensional proposal rarely is.
- *  The best particle is the one with the largest Σ_t log ω_t (Eq. 14). Each step's path node
- *  of a particle keeps the step's correspondences (FastSLAM's c_t: the landmark each measurement
+ *  The best particle is the one with the largest Σ_t log ω_t (Eq. 14). Each step of a
+ *  particle's path keeps the step's correspondences (FastSLAM's c_t: the landmark each measurement
  *  went to, with its track_id), for the evaluation of the associations. */
 class CMultiRobotVisualSLAM
     : public mrpt::bayes::CParticleFilterData<TTeamParticle,
@@ -138,7 +138,7 @@ class CMultiRobotVisualSLAM
         /// drawn around them with σ initial_std_xy [m], initial_std_phi [rad].
         virtual void onReset(const std::vector<mrpt::math::TPose2D>& start_poses,
                              double initial_std_xy, double initial_std_phi) = 0;
-        /** Robot `robot` in step `step` (1 for the first, the index of the step's path node;
+        /** Robot `robot` in step `step` (1 for the first, the index of the step in the path;
          *  robots in the order of options.robots): its odometry Gaussian, its B measurements
          *  and its readings of other robots of the team. */
         virtual void onRobotStep(size_t step, size_t robot, const core::TOdometryGaussian& motion,

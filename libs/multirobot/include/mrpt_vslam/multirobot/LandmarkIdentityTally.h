@@ -25,7 +25,7 @@ struct TLandmarkIdentityTally {
      *  TeamPathSmoother made its map with) over the landmarks of `map`. */
     static TLandmarkIdentityTally of(const std::vector<TCorrespondence>& history,
                                      const CVisualLandmarksMap& map);
-    /// A particle's correspondences, from its path nodes oldest first.
+    /// A particle's correspondences, from its path, oldest first.
     static std::vector<TCorrespondence> historyOf(const TTeamParticle& p);
 };
 

@@ -2,7 +2,7 @@
 
 #include <mrpt/containers/vector_with_small_size_optimization.h>
 #include <mrpt/math/TPose2D.h>
-#include <mrpt_vslam/core/PathNode.h>
+#include <mrpt_vslam/core/ParticlePath.h>
 #include <mrpt_vslam/multirobot/CVisualLandmarksMap.h>
 
 #include <algorithm>
@@ -42,17 +42,17 @@ struct TTeamStep {
     TTeamPoses poses;  ///< one per robot
     TStepCorrespondences correspondences{};
 };
-using TTeamPathNode = core::TPathNode<TTeamStep>;
+using TTeamParticlePath = core::ParticlePath<TTeamStep>;
 
 /** One particle of the team filter (Gil et al. 2010, Eq. 5 and Table 1): the K robot poses, their
  *  paths and the map they share. */
 struct TTeamParticle {
-    TTeamPoses poses;                           ///< x_t,<1:K>
-    std::shared_ptr<const TTeamPathNode> path;  ///< newest first
+    TTeamPoses poses;        ///< x_t,<1:K>
+    TTeamParticlePath path;  ///< the team's steps, oldest first
     CVisualLandmarksMap map;
     /// Σ_t log ω_t of Eq. 14, kept through resampling: the best particle has the largest.
     double accumulated_log_w = 0;
-    /// The correspondences of the step in progress, copied into its path node when it ends
+    /// The correspondences of the step in progress, copied into the path when the step ends
     /// (resampling between robots copies them with the map they were fused into).
     TStepCorrespondences correspondences;
 };

@@ -119,7 +119,7 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
     TSmoothedTeam smoothPaths(const TTeamParticle& p) const;
 
   private:
-    /// A robot's measurements of one step: `step` indexes the path node of that step (0: the
+    /// A robot's measurements of one step: `step` indexes that step in the path (0: the
     /// start poses).
     struct TFusedFrame {
         size_t step, robot;
@@ -133,7 +133,7 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
     double m_initialStdXY = 0, m_initialStdPhi = 0;  ///< the filter's initial_std_*
 
     size_t robotCount() const { return m_startPoses.size(); }
-    /// A particle's team poses per path node, [step][robot] (0: the start poses).
+    /// A particle's team poses per step of its path, [step][robot] (0: the start poses).
     using TTeamPath = std::vector<std::vector<mrpt::math::TPose2D>>;
     /// `p`'s path, which must have one node per step recorded (and the start).
     TTeamPath recordedPathOf(const TTeamParticle& p) const;

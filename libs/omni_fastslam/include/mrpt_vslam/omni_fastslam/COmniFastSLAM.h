@@ -10,7 +10,7 @@
 #include <mrpt_vslam/core/OdometryGaussian.h>
 #include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/core/ParticleFilterDataImpl.h>
-#include <mrpt_vslam/core/PathNode.h>
+#include <mrpt_vslam/core/ParticlePath.h>
 #include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
 
 #include <map>
@@ -31,7 +31,7 @@ struct TOmniFastSLAMStep {
     };
     std::vector<TCorrespondence> correspondences{};
 };
-using TOmniFastSLAMPathNode = core::TPathNode<TOmniFastSLAMStep>;
+using TOmniFastSLAMPath = core::ParticlePath<TOmniFastSLAMStep>;
 
 /** Evaluation only, when the data set gives landmark numbers (TBearingMeasurement::hidden_id):
  *  the numbers of the measurements associated (level 1) to each landmark of a map. A landmark
@@ -48,7 +48,7 @@ struct TAssociationTally {
 /** One FastSLAM particle: the robot pose, its path and its own map of ceiling lights. */
 struct TOmniFastSLAMParticle {
     mrpt::math::TPose2D robot_in_map;
-    std::shared_ptr<const TOmniFastSLAMPathNode> path;  ///< newest first
+    TOmniFastSLAMPath path;
     CCeilingLightsMap map;
     /// Σ of the log-weight increments since the start, kept through resampling: the best
     /// particle is the one with the largest value.
@@ -123,7 +123,7 @@ class COmniFastSLAM
     struct TStepObserver {
         virtual ~TStepObserver() = default;
         virtual void onReset(const mrpt::math::TPose2D& robot_in_map, double timestamp) = 0;
-        /// The step's odometry Gaussian and measurements; path node k follows the k-th call.
+        /// The step's odometry Gaussian and measurements; path step k follows the k-th call.
         virtual void onStep(const core::TOdometryGaussian& motion,
                             const std::vector<TBearingMeasurement>& z) = 0;
     };

@@ -1,52 +1,109 @@
 #include <gtest/gtest.h>
 #include <mrpt/bayes/CParticleFilterData.h>
 #include <mrpt/random/RandomGenerators.h>
+#include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/core/ParticleFilterDataImpl.h>
-#include <mrpt_vslam/core/PathNode.h>
+#include <mrpt_vslam/core/ParticlePath.h>
 
 #include <algorithm>
 #include <memory>
 #include <vector>
 
-using mrpt_vslam::core::nodesOldestFirst;
-using TNode = mrpt_vslam::core::TPathNode<int>;
+using TPath = mrpt_vslam::core::ParticlePath<int>;
 
 namespace {
-std::shared_ptr<const TNode> chain(int length, std::shared_ptr<const TNode> from = nullptr)
+/// `from` and `length` steps more, of states first, first + 1, ... at times 0.5 × state.
+TPath extended(TPath from, int length, int first = 0)
 {
-    for (int i = 0; i < length; i++)
-        from = std::make_shared<const TNode>(0.5 * i, std::move(from), i);
+    for (int i = first; i < first + length; i++) from.append(0.5 * i, i);
     return from;
+}
+std::vector<int> statesOf(const TPath& path)
+{
+    std::vector<int> states;
+    for (const auto* s : path.stepsOldestFirst()) states.push_back(s->state);
+    return states;
+}
+std::vector<int> range(int first, int length)
+{
+    std::vector<int> v(static_cast<size_t>(length));
+    for (int i = 0; i < length; i++) v[static_cast<size_t>(i)] = first + i;
+    return v;
 }
 }  // namespace
 
-TEST(PathNode, NodesOldestFirst)
+TEST(ParticlePath, StepsOldestFirstAcrossChunks)
 {
-    const auto path = chain(5);
-    const auto nodes = nodesOldestFirst(path.get());
-    ASSERT_EQ(nodes.size(), 5u);
-    for (int i = 0; i < 5; i++) {
-        EXPECT_EQ(nodes[i]->state, i);
-        EXPECT_DOUBLE_EQ(nodes[i]->timestamp, 0.5 * i);
+    const int n = 3 * static_cast<int>(TPath::kChunk) + 2;
+    const TPath path = extended(TPath(), n);
+    ASSERT_EQ(path.size(), static_cast<size_t>(n));
+    const auto steps = path.stepsOldestFirst();
+    ASSERT_EQ(steps.size(), static_cast<size_t>(n));
+    for (int i = 0; i < n; i++) {
+        EXPECT_EQ(steps[static_cast<size_t>(i)]->state, i);
+        EXPECT_DOUBLE_EQ(steps[static_cast<size_t>(i)]->timestamp, 0.5 * i);
     }
-    EXPECT_TRUE(nodesOldestFirst<int>(nullptr).empty());
+    EXPECT_EQ(path.newest().state, n - 1);
+    std::vector<int> newest_first;
+    path.forEachNewestFirst([&](const TPath::TStep& s) { newest_first.push_back(s.state); });
+    const auto oldest_first = statesOf(path);
+    EXPECT_EQ(newest_first, std::vector<int>(oldest_first.rbegin(), oldest_first.rend()));
+    EXPECT_EQ(oldest_first, range(0, n));
+    EXPECT_TRUE(TPath().stepsOldestFirst().empty());
+    EXPECT_TRUE(TPath().empty());
 }
 
-TEST(PathNode, ReleasingAVeryLongChainDoesNotRecurse)
+TEST(ParticlePath, ReleasingAVeryLongPathDoesNotRecurse)
 {
-    // a recursive release of 10^6 nodes overflows the default 8 MB stack
-    auto path = chain(1000000);
-    path.reset();
+    // a recursive release of 250 000 chunks overflows the default 8 MB stack
+    TPath path = extended(TPath(), 250000 * static_cast<int>(TPath::kChunk));
+    path = TPath();
     SUCCEED();
 }
 
-TEST(PathNode, SharedHistorySurvivesTheBranchThatIsReleased)
+// Copies share their history; each one's steps after the copy are its own, whichever of them
+// took the shared chunk's free slots, and releasing one leaves the others whole.
+TEST(ParticlePath, CopiesKeepTheirOwnStepsAndSurviveTheReleaseOfOthers)
 {
-    const auto common = chain(100);
-    auto a = chain(3, common), b = chain(2, common);
-    a.reset();  // releases a's own 3 nodes only
-    EXPECT_EQ(nodesOldestFirst(b.get()).size(), 102u);
-    EXPECT_EQ(nodesOldestFirst(common.get()).size(), 100u);
+    const TPath common = extended(TPath(), 100);
+    TPath a = extended(common, 3, 1000), b = extended(common, 2, 2000);
+    TPath c = extended(common, 10, 3000);
+    auto expect = [](int own_first, int own) {
+        auto v = range(0, 100);
+        const auto o = range(own_first, own);
+        v.insert(v.end(), o.begin(), o.end());
+        return v;
+    };
+    EXPECT_EQ(statesOf(a), expect(1000, 3));
+    EXPECT_EQ(statesOf(b), expect(2000, 2));
+    a = TPath();  // releases a's own steps only
+    EXPECT_EQ(statesOf(b), expect(2000, 2));
+    EXPECT_EQ(statesOf(c), expect(3000, 10));
+    EXPECT_EQ(statesOf(common), range(0, 100));
+    const TPath d = extended(common, 1, 4000);  // the slot a took is not d's
+    EXPECT_EQ(statesOf(d), expect(4000, 1));
+}
+
+// Resampling's copies add their steps on different threads at the same time.
+TEST(ParticlePath, CopiesAddingStepsOnSeveralThreadsKeepTheirOwn)
+{
+    const TPath common = extended(TPath(), 5);
+    std::vector<TPath> copies(64, common);
+    for (int round = 0; round < 3; round++) {  // every copy shares its chunk with others
+        mrpt_vslam::core::parallelFor(copies.size(), 4, [&](size_t i) {
+            copies[i] = extended(copies[i], 11, 1000 * static_cast<int>(i) + 100 * round);
+        });
+        for (size_t i = 0; i < copies.size(); i += 2) copies[i + 1] = copies[i];
+    }
+    for (size_t i = 0; i < copies.size(); i++) {
+        auto expected = range(0, 5);
+        for (int round = 0; round < 3; round++) {
+            // after each round the odd copies became their even neighbours
+            const auto own = range(1000 * static_cast<int>(i - i % 2) + 100 * round, 11);
+            expected.insert(expected.end(), own.begin(), own.end());
+        }
+        EXPECT_EQ(statesOf(copies[i]), expected) << i;
+    }
 }
 
 namespace {
