@@ -308,21 +308,30 @@ std::vector<TMeasurementCandidates> CMultiRobotVisualSLAM::searchCandidates(
     const std::vector<TPose2D>& poses, double extra_xy, double extra_phi,
     const std::vector<TLandmarkMeasurement>& z)
 {
-    // the particles' spread around their mean pose widens the search
+    // the particles' spread around their mean pose widens the search; the sines and distances
+    // on the threads, the sums in particle order (the same whatever the thread count)
+    const size_t M = poses.size();
+    std::vector<double> sin_phi(M), cos_phi(M);
+    core::parallelFor(M, m_threads, [&](size_t i) {
+        sin_phi[i] = std::sin(poses[i].phi);
+        cos_phi[i] = std::cos(poses[i].phi);
+    });
     double sx = 0, sy = 0, ss = 0, sc = 0;
-    for (const auto& x : poses) {
-        sx += x.x;
-        sy += x.y;
-        ss += std::sin(x.phi);
-        sc += std::cos(x.phi);
+    for (size_t i = 0; i < M; i++) {
+        sx += poses[i].x;
+        sy += poses[i].y;
+        ss += sin_phi[i];
+        sc += cos_phi[i];
     }
-    const double n = static_cast<double>(poses.size());
+    const double n = static_cast<double>(M);
     const TPose2D mean_pose(sx / n, sy / n, std::atan2(ss, sc));
-    double max_xy = 0, max_phi = 0;
-    for (const auto& x : poses) {
-        max_xy = std::max(max_xy, std::hypot(x.x - mean_pose.x, x.y - mean_pose.y));
-        max_phi = std::max(max_phi, std::abs(mrpt::math::wrapToPi(x.phi - mean_pose.phi)));
-    }
+    std::vector<double> d_xy(M), d_phi(M);
+    core::parallelFor(M, m_threads, [&](size_t i) {
+        d_xy[i] = std::hypot(poses[i].x - mean_pose.x, poses[i].y - mean_pose.y);
+        d_phi[i] = std::abs(mrpt::math::wrapToPi(poses[i].phi - mean_pose.phi));
+    });
+    double max_xy = *std::max_element(d_xy.begin(), d_xy.end());
+    double max_phi = *std::max_element(d_phi.begin(), d_phi.end());
     max_xy += extra_xy;
     max_phi = std::min(max_phi + extra_phi, M_PI);
 
@@ -341,9 +350,9 @@ std::vector<TMeasurementCandidates> CMultiRobotVisualSLAM::searchCandidates(
 
 std::vector<TPose2D> CMultiRobotVisualSLAM::posesOf(size_t k) const
 {
-    std::vector<TPose2D> poses;
-    poses.reserve(m_particles.size());
-    for (const auto& p : m_particles) poses.push_back(p.d->poses[k]);
+    std::vector<TPose2D> poses(m_particles.size());
+    core::parallelFor(poses.size(), m_threads,
+                      [&](size_t i) { poses[i] = m_particles[i].d->poses[k]; });
     return poses;
 }
 
@@ -381,8 +390,9 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussi
                                            const std::vector<TRobotReading>& readings)
 {
     // x̂ = x_{t-1} ⊕ u for every particle; the search also covers 3σ of the motion noise
-    std::vector<TPose2D> predicted = posesOf(k);
-    for (auto& x : predicted) x = x + motion.mean;
+    std::vector<TPose2D> predicted(m_particles.size());
+    core::parallelFor(predicted.size(), m_threads,
+                      [&](size_t i) { predicted[i] = m_particles[i].d->poses[k] + motion.mean; });
     auto candidates =
         searchCandidates(predicted, 3 * std::sqrt(motion.cov(0, 0) + motion.cov(1, 1)),
                          3 * std::sqrt(motion.cov(2, 2)), z);
