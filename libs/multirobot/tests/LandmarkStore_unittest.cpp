@@ -87,26 +87,28 @@ TEST(LandmarkStore, CopiesShareBlocksUntilOneIsWritten)
 
 TEST(LandmarkStore, AssignmentKeepsTheBlocksBothHold)
 {
+    constexpr uint32_t B = LandmarkStore::kBlockSize;
     LandmarkStore a;
-    for (uint32_t id = 0; id < 4 * LandmarkStore::kBlockSize; id++) a.insert(id, landmark(id));
+    for (uint32_t id = 0; id < 4 * B; id++) a.insert(id, landmark(id));
     LandmarkStore b = a;
-    b.modify(40).mean.x() = -1;  // block 1 of b is its own
-    b.insert(200, landmark(9));  // and block 6
-    const TVisualLandmark* kept = a.find(100);
+    b.modify(B + 3).mean.x() = -1;     // block 1 of b is its own
+    b.insert(6 * B + 3, landmark(9));  // and block 6
+    const TVisualLandmark* kept = a.find(3 * B + 1);
+    ASSERT_NE(kept, nullptr);
     a = b;  // what resampling does into the data of a particle nobody drew
-    EXPECT_EQ(a.find(100), kept) << "a block both held must stay where it was";
+    EXPECT_EQ(a.find(3 * B + 1), kept) << "a block both held must stay where it was";
     EXPECT_EQ(a.size(), b.size());
-    EXPECT_EQ(a.find(40)->mean.x(), -1.0);
-    EXPECT_EQ(a.find(200)->mean.x(), 9.0);
+    EXPECT_EQ(a.find(B + 3)->mean.x(), -1.0);
+    EXPECT_EQ(a.find(6 * B + 3)->mean.x(), 9.0);
     EXPECT_EQ(a.unsharedBlocks(), 0u);
 
     LandmarkStore shorter;
     shorter.insert(3, landmark(3));
     a = shorter;
     EXPECT_EQ(a.size(), 1u);
-    EXPECT_EQ(a.find(200), nullptr);
-    EXPECT_EQ(a.find(40), nullptr);
+    EXPECT_EQ(a.find(6 * B + 3), nullptr);
+    EXPECT_EQ(a.find(B + 3), nullptr);
     a = a;  // NOLINT: self-assignment changes nothing
     EXPECT_EQ(a.find(3)->mean.x(), 3.0);
-    EXPECT_EQ(b.find(40)->mean.x(), -1.0) << "assigning to a must not change b";
+    EXPECT_EQ(b.find(B + 3)->mean.x(), -1.0) << "assigning to a must not change b";
 }

@@ -20,7 +20,7 @@ namespace mrpt_vslam::multirobot {
  *  map size, and M particles share every block none of them changed since they split. */
 class LandmarkStore {
   public:
-    static constexpr uint32_t kBlockSize = 32;
+    static constexpr uint32_t kBlockSize = 16;
 
     LandmarkStore() = default;
     LandmarkStore(const LandmarkStore&) = default;
@@ -65,10 +65,13 @@ class LandmarkStore {
      *  set grows to cover every id held). */
     void addIdsTo(std::vector<uint32_t>& held) const
     {
-        static_assert(kBlockSize == 32, "one word of `held` per block");
-        if (held.size() < m_blocks.size()) held.resize(m_blocks.size(), 0);
+        static_assert(32 % kBlockSize == 0, "whole blocks per word of `held`");
+        constexpr size_t kPerWord = 32 / kBlockSize;
+        const size_t words = (m_blocks.size() + kPerWord - 1) / kPerWord;
+        if (held.size() < words) held.resize(words, 0);
         for (size_t b = 0; b < m_blocks.size(); b++)
-            if (m_blocks[b]) held[b] |= m_blocks[b]->present;
+            if (m_blocks[b])
+                held[b / kPerWord] |= m_blocks[b]->present << (b % kPerWord * kBlockSize);
     }
     /// Blocks this store holds alone (not shared with any copy): for tests and statistics.
     size_t unsharedBlocks() const;
