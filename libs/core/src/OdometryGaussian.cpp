@@ -2,9 +2,11 @@
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt_vslam/core/OdometryGaussian.h>
+#include <mrpt_vslam/core/ParallelFor.h>
 
 #include <Eigen/Cholesky>
 #include <cmath>
+#include <random>
 #include <stdexcept>
 
 namespace mrpt_vslam::core {
@@ -58,13 +60,57 @@ Eigen::Vector3d drawGaussian(mrpt::random::CRandomGenerator& rng, const Eigen::M
     return L * n;
 }
 
+namespace {
+/// The generator and the normal distribution that CRandomGenerator::drawGaussian1D_normalized()
+/// draws with (protected members of MRPT 2.5's CRandomGenerator)
+struct GeneratorParts : mrpt::random::CRandomGenerator {
+    static mrpt::random::Generator_MT19937& bits(CRandomGenerator& rng)
+    {
+        return rng.*(&GeneratorParts::m_MT19937);
+    }
+    static std::normal_distribution<double>& normal(CRandomGenerator& rng)
+    {
+        return rng.*(&GeneratorParts::m_normdistribution);
+    }
+};
+}  // namespace
+
 const std::vector<Eigen::Vector3d>& drawStandardNormals(mrpt::random::CRandomGenerator& rng,
                                                         size_t count,
-                                                        std::vector<Eigen::Vector3d>& n)
+                                                        std::vector<Eigen::Vector3d>& n,
+                                                        unsigned threads)
 {
     n.resize(count);
-    for (auto& v : n)
-        for (int i = 0; i < 3; i++) v[i] = rng.drawGaussian1D_normalized();
+    const size_t total = 3 * count;
+    if (total == 0) return n;
+    const auto at = [&](size_t v) -> double& { return n[v / 3][static_cast<Eigen::Index>(v % 3)]; };
+    auto& bits = GeneratorParts::bits(rng);
+    auto& normal = GeneratorParts::normal(rng);
+    // The polar method as std::normal_distribution runs it: a pair of uniforms in the unit disc
+    // gives two normals, the second kept for the next draw. A value kept from the last pair
+    // (the distribution then differs from a fresh one) comes first; then the pairs are drawn in
+    // order (serially: the generator's sequence), their logarithms and roots on the threads.
+    size_t first = 0;
+    if (!(normal == std::normal_distribution<double>(normal.param()))) at(first++) = normal(bits);
+    struct TPair {
+        double x, y, r2;
+    };
+    std::vector<TPair> pairs((total - first) / 2);
+    for (auto& p : pairs) {
+        do {
+            p.x = 2.0 * std::generate_canonical<double, 53>(bits) - 1.0;
+            p.y = 2.0 * std::generate_canonical<double, 53>(bits) - 1.0;
+            p.r2 = p.x * p.x + p.y * p.y;
+        } while (p.r2 > 1.0 || p.r2 == 0.0);
+    }
+    const double stddev = normal.stddev(), mean = normal.mean();
+    parallelFor(pairs.size(), threads, [&](size_t i) {
+        const TPair& p = pairs[i];
+        const double mult = std::sqrt(-2 * std::log(p.r2) / p.r2);
+        at(first + 2 * i) = p.y * mult * stddev + mean;
+        at(first + 2 * i + 1) = p.x * mult * stddev + mean;
+    });
+    if (first + 2 * pairs.size() < total) at(total - 1) = normal(bits);  // keeps its pair's x
     return n;
 }
 

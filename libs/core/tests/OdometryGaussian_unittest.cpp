@@ -85,6 +85,30 @@ TEST(OdometryGaussian, DrawsHaveTheCovarianceLLt)
     EXPECT_EQ(mrpt_vslam::core::drawGaussian(a, L), mrpt_vslam::core::drawGaussian(b, L));
 }
 
+TEST(OdometryGaussian, StandardNormalsAreTheSerialDrawsBitForBit)
+{
+    // drawStandardNormals() draws the generator's sequence itself: against a serial loop of
+    // drawGaussian1D_normalized(), after an even or odd number of earlier draws (a value kept
+    // from the last pair or not), for any count and thread count, and the draws after it
+    for (const unsigned threads : {1u, 2u, 4u})
+        for (const int before : {0, 1, 2, 3})
+            for (const size_t count : {0, 1, 2, 3, 4, 7, 1001}) {
+                mrpt::random::CRandomGenerator serial(11), bulk(11);
+                for (int i = 0; i < before; i++)
+                    ASSERT_EQ(serial.drawGaussian1D_normalized(), bulk.drawGaussian1D_normalized());
+                std::vector<Eigen::Vector3d> n;
+                mrpt_vslam::core::drawStandardNormals(bulk, count, n, threads);
+                ASSERT_EQ(n.size(), count);
+                for (size_t i = 0; i < count; i++)
+                    for (int c = 0; c < 3; c++)
+                        ASSERT_EQ(n[i][c], serial.drawGaussian1D_normalized())
+                            << "threads " << threads << ", " << before << " before, count " << count
+                            << ", value " << 3 * i + c;
+                for (int i = 0; i < 3; i++)
+                    ASSERT_EQ(bulk.drawGaussian1D_normalized(), serial.drawGaussian1D_normalized());
+            }
+}
+
 TEST(MotionNoiseFloor, ReadsDegreesAndRefusesNonPositiveValues)
 {
     TMotionNoiseFloor f;

@@ -295,7 +295,7 @@ void CMultiRobotVisualSLAM::weighRobotReadings(size_t k, const std::vector<TRobo
 
 void CMultiRobotVisualSLAM::sampleMotion(size_t k, const core::TOdometryGaussian& motion)
 {
-    const auto& noise = core::drawStandardNormals(m_rng, m_particles.size(), m_noise);
+    const auto& noise = core::drawStandardNormals(m_rng, m_particles.size(), m_noise, m_threads);
     core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
         auto& pose = m_particles[i].d->poses[k];  // Alg. 1 line 18, p(x_t | x_{t-1}, u_t)
         const Eigen::Vector3d dx = motion.L * noise[i];
@@ -401,7 +401,7 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussi
     const size_t n = z.size();
     std::vector<std::optional<CVisualLandmarksMap::TAssociation>> assoc(m_particles.size() * n);
     std::vector<double> log_w(m_particles.size(), 0);
-    const auto& noise = core::drawStandardNormals(m_rng, m_particles.size(), m_noise);
+    const auto& noise = core::drawStandardNormals(m_rng, m_particles.size(), m_noise, m_threads);
     const bool joint = m_template.insertionOptions.joint_association;
     core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
         auto& p = *m_particles[i].d;

@@ -283,7 +283,7 @@ void COmniFastSLAM::runStep(const mrpt::obs::CActionCollection* action,
         double timestamp = 0;
         m_observer->onStep(motion, measurementsFromFrame(sf, m_particles[0].d->map, timestamp));
     }
-    const auto& noise = core::drawStandardNormals(m_rng, m_particles.size(), m_noise);
+    const auto& noise = core::drawStandardNormals(m_rng, m_particles.size(), m_noise, m_threads);
     std::vector<size_t> measured(m_particles.size()), associated(m_particles.size());
     core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
         auto& part = m_particles[i];

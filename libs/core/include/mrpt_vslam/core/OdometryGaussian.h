@@ -43,11 +43,13 @@ struct TOdometryGaussian {
 Eigen::Vector3d drawGaussian(mrpt::random::CRandomGenerator& rng, const Eigen::Matrix3d& L);
 
 /** `count` samples of N(0, I₃) from `rng` into `n` (resized to `count`; a filter keeps it from
- *  step to step), drawn as `count` calls of drawGaussian() would: a filter draws its particles'
- *  noise before updating them in parallel, and L * n[i] equals the i-th drawGaussian(rng, L) of
- *  a serial loop bit for bit. Returns `n`. */
+ *  step to step), the same bit for bit as `count` calls of drawGaussian() in a serial loop, so
+ *  L * n[i] is the i-th drawGaussian(rng, L): a filter draws its particles' noise before
+ *  updating them in parallel. The generator's sequence is drawn serially, the logarithms and
+ *  roots of the normals on up to `threads` threads. Returns `n`. */
 const std::vector<Eigen::Vector3d>& drawStandardNormals(mrpt::random::CRandomGenerator& rng,
                                                         size_t count,
-                                                        std::vector<Eigen::Vector3d>& n);
+                                                        std::vector<Eigen::Vector3d>& n,
+                                                        unsigned threads = 1);
 
 }  // namespace mrpt_vslam::core
