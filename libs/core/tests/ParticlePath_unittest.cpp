@@ -142,8 +142,9 @@ TEST(ParticleFilterDataImpl, EssAndNormalizationAreMrpts)
 {
     using TMrpt = mrpt::bayes::CParticleFilterDataImpl<TFilter, TBase::CParticleList>;
     mrpt::random::CRandomGenerator rng(7);
-    for (const size_t n : {1, 2, 17, 500}) {
+    for (const size_t n : {1, 2, 17, 500, 3001}) {
         TFilter ours, theirs;
+        ours.setThreadCount(n % 2 ? 3 : 1);
         for (TFilter* f : {&ours, &theirs}) f->m_particles.resize(n);
         for (size_t i = 0; i < n; i++) {
             ours.m_particles[i].log_w = theirs.m_particles[i].log_w = rng.drawUniform(-30.0, 5.0);

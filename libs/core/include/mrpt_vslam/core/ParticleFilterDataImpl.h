@@ -81,10 +81,11 @@ class ParticleFilterDataImpl : public mrpt::bayes::CParticleFilterDataImpl<Deriv
     /// N_eff = 1 / (M Σ w̃ᵢ²), w̃ the normalized weights: MRPT's, to the last bit.
     double ESS() const override
     {
-        std::vector<double> w;
-        w.reserve(particles().size());
+        const ParticleList& all = particles();
+        std::vector<double> w(all.size());  // the exponentials on the threads, sums in order
+        parallelFor(w.size(), m_threads, [&](size_t i) { w[i] = std::exp(all[i].log_w); });
         double sum = 0;
-        for (const auto& p : particles()) sum += w.emplace_back(std::exp(p.log_w));
+        for (const double wi : w) sum += wi;
         double cum = 0;
         for (const double wi : w) cum += (wi / sum) * (wi / sum);
         return cum == 0 ? 0 : 1.0 / (static_cast<double>(w.size()) * cum);
