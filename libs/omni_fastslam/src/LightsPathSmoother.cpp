@@ -321,15 +321,15 @@ std::optional<std::pair<size_t, size_t>> mergeablePair(const Problem& problem, d
 
 LightsPathSmoother::TResult LightsPathSmoother::smooth(const TOmniFastSLAMParticle& p) const
 {
-    const auto nodes = p.path.stepsOldestFirst();
-    if (nodes.size() != m_steps.size() + 1)
+    const auto steps = p.path.stepsOldestFirst();
+    if (steps.size() != m_steps.size() + 1)
         throw std::logic_error("LightsPathSmoother: the particle's path has " +
-                               std::to_string(nodes.size()) + " nodes for " +
+                               std::to_string(steps.size()) + " steps for " +
                                std::to_string(m_steps.size()) +
                                " recorded steps (register it before the filter's reset())");
     const BearingMeasurementModel model = p.map.measurementModel();
     Problem problem(model, options.huber);
-    for (const auto* n : nodes) problem.poses.push_back(n->state.robot_in_map);
+    for (const auto* s : steps) problem.poses.push_back(s->state.robot_in_map);
     for (const auto& s : m_steps) problem.motions.push_back(s.motion);
 
     const auto& landmarks = p.map.landmarks();
@@ -339,8 +339,8 @@ LightsPathSmoother::TResult LightsPathSmoother::smooth(const TOmniFastSLAMPartic
         problem.lights.push_back(landmarks[j].mean);
     }
     problem.prior = problem.lights;
-    for (size_t k = 1; k < nodes.size(); k++)
-        for (const auto& c : nodes[k]->state.correspondences) {
+    for (size_t k = 1; k < steps.size(); k++)
+        for (const auto& c : steps[k]->state.correspondences) {
             const auto it = index_of_id.find(c.landmark_id);
             if (it == index_of_id.end()) continue;  // a light the map no longer has
             const TBearingMeasurement& m = m_steps[k - 1].z.at(c.measurement);
@@ -359,7 +359,7 @@ LightsPathSmoother::TResult LightsPathSmoother::smooth(const TOmniFastSLAMPartic
         for (size_t j = 0; j < problem.lights.size(); j++)
             lights.addLandmark(problem.lights[j], covs[j]);
         problem.terms.clear();
-        for (size_t k = 1; k < nodes.size(); k++) {
+        for (size_t k = 1; k < steps.size(); k++) {
             const auto& z = m_steps[k - 1].z;
             if (z.empty()) continue;
             Eigen::VectorXd log_p_new(static_cast<Eigen::Index>(z.size()));
@@ -401,8 +401,8 @@ LightsPathSmoother::TResult LightsPathSmoother::smooth(const TOmniFastSLAMPartic
     result.final_cost = problem.cost();
     result.outliers = problem.outliers();
 
-    for (size_t k = 0; k < nodes.size(); k++)
-        result.path.emplace_back(nodes[k]->timestamp, problem.poses[k]);
+    for (size_t k = 0; k < steps.size(); k++)
+        result.path.emplace_back(steps[k]->timestamp, problem.poses[k]);
     result.map = p.map;
     result.map.clear();
     const auto covs = problem.lightCovariances();

@@ -135,7 +135,7 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
     size_t robotCount() const { return m_startPoses.size(); }
     /// A particle's team poses per step of its path, [step][robot] (0: the start poses).
     using TTeamPath = std::vector<std::vector<mrpt::math::TPose2D>>;
-    /// `p`'s path, which must have one node per step recorded (and the start).
+    /// `p`'s path, which must hold the start and one step per step recorded.
     TTeamPath recordedPathOf(const TTeamParticle& p) const;
     /// mapAlongPath() along `path`; `ids` (if given) gets, per fused frame and measurement,
     /// the landmark it went to, or std::nullopt if that landmark was removed.

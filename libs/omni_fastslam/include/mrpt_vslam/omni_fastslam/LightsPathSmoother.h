@@ -56,7 +56,8 @@ class LightsPathSmoother : public COmniFastSLAM::TStepObserver {
     };
     /** Smooths particle `p`'s path and the lights of its map it associated measurements with.
      *  \pre registered with the filter before its reset()
-     *  \throw std::logic_error if `p`'s path does not have one node per recorded step */
+     *  \throw std::logic_error if `p`'s path does not hold the start and one step per recorded step
+     */
     TResult smooth(const TOmniFastSLAMParticle& p) const;
 
   private:
