@@ -125,8 +125,15 @@ std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     std::optional<uint32_t> best;
     double best_D = 0;
     float best_E = 0;
-    for (const auto& c : candidates.candidates) {
+    const auto& cs = candidates.candidates;
+    constexpr size_t kAhead = 4;  // look-ups started this many candidates early, per stage
+    for (size_t i = 0; i < std::min(2 * kAhead, cs.size()); i++) m_store.prefetchEntry(cs[i].id);
+    for (size_t i = 0; i < std::min(kAhead, cs.size()); i++) m_store.prefetchLandmark(cs[i].id);
+    for (size_t i = 0; i < cs.size(); i++) {
+        const auto& c = cs[i];
         if (best && c.E > best_E) break;
+        if (i + 2 * kAhead < cs.size()) m_store.prefetchEntry(cs[i + 2 * kAhead].id);
+        if (i + kAhead < cs.size()) m_store.prefetchLandmark(cs[i + kAhead].id);
         const TVisualLandmark* lm = m_store.find(c.id);
         if (!lm ||
             (excluded && std::find(excluded->begin(), excluded->end(), c.id) != excluded->end()))
