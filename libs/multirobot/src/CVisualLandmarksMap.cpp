@@ -90,11 +90,6 @@ Cholesky3 innovationFactor(const Eigen::Matrix3d& Z, uint32_t id)
                                     ": innovation covariance not positive definite");
     return L;
 }
-/// D = vᵀ Z⁻¹ v (Eq. 15) of innovation v with covariance Z, of landmark `id`.
-double mahalanobis2(const Eigen::Vector3d& v, const Eigen::Matrix3d& Z, uint32_t id)
-{
-    return innovationFactor(Z, id).whiten(v).squaredNorm();
-}
 }  // namespace
 
 CVisualLandmarksMap::TAssociation CVisualLandmarksMap::evaluate(const TMapMeasurement& m,
@@ -122,16 +117,20 @@ std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     // D = vᵀ Z⁻¹ v ≥ |v|² / tr(Z): a candidate that bound puts outside the gate, or behind the
     // best so far, is passed over before its factorization; log N only for the chosen one.
     constexpr double kRounding = 1 + 1e-9;
-    std::optional<uint32_t> best;
-    double best_D = 0;
-    float best_E = 0;
+    struct TBest {
+        uint32_t id;
+        double D;
+        float E;
+        Cholesky3 L;  ///< of Z
+    };
+    std::optional<TBest> best;
     const auto& cs = candidates.candidates;
     constexpr size_t kAhead = 4;  // look-ups started this many candidates early, per stage
     for (size_t i = 0; i < std::min(2 * kAhead, cs.size()); i++) m_store.prefetchEntry(cs[i].id);
     for (size_t i = 0; i < std::min(kAhead, cs.size()); i++) m_store.prefetchLandmark(cs[i].id);
     for (size_t i = 0; i < cs.size(); i++) {
         const auto& c = cs[i];
-        if (best && c.E > best_E) break;
+        if (best && c.E > best->E) break;
         if (i + 2 * kAhead < cs.size()) m_store.prefetchEntry(cs[i + 2 * kAhead].id);
         if (i + kAhead < cs.size()) m_store.prefetchLandmark(cs[i + kAhead].id);
         const TVisualLandmark* lm = m_store.find(c.id);
@@ -140,16 +139,15 @@ std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
             continue;
         const Eigen::Matrix3d Z = lm->cov + m.R;
         const Eigen::Vector3d v = m.z - lm->mean;
-        const double limit = best ? std::min(best_D, insertionOptions.D0) : insertionOptions.D0;
+        const double limit = best ? std::min(best->D, insertionOptions.D0) : insertionOptions.D0;
         if (v.squaredNorm() > kRounding * limit * Z.trace()) continue;
-        const double D = mahalanobis2(v, Z, c.id);
-        if (!(D <= insertionOptions.D0) || (best && D >= best_D)) continue;  // line 28
-        best = c.id;
-        best_D = D;
-        best_E = c.E;
+        const Cholesky3 L = innovationFactor(Z, c.id);
+        const double D = L.whiten(v).squaredNorm();                           // Eq. 15
+        if (!(D <= insertionOptions.D0) || (best && D >= best->D)) continue;  // line 28
+        best = TBest{c.id, D, c.E, L};
     }
     if (!best) return std::nullopt;
-    return evaluate(m, *best);
+    return TAssociation{best->id, best->D, best->L.logGaussian(best->D)};  // Eq. 13
 }
 
 std::vector<std::optional<CVisualLandmarksMap::TAssociation>> CVisualLandmarksMap::associateJointly(
