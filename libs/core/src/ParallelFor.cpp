@@ -35,7 +35,8 @@ class WorkerPool {
         for (auto& t : m_workers) t.join();
     }
 
-    void run(size_t n, unsigned threads, const std::function<void(size_t)>& body)
+    void run(size_t n, unsigned threads, const std::function<void(size_t)>& body,
+             const std::function<void()>& first)
     {
         const std::lock_guard<std::mutex> one_loop(m_loop_mutex);
         while (m_workers.size() + 1 < threads)
@@ -58,10 +59,21 @@ class WorkerPool {
             m_generation++;
         }
         m_wake.notify_all();
+        std::exception_ptr first_failure;
+        if (first) {
+            t_inside = true;  // a loop inside `first` runs serially
+            try {
+                first();
+            } catch (...) {
+                first_failure = std::current_exception();
+            }
+            t_inside = false;
+        }
         work(0);
         spinWhile([this] { return m_active.load(std::memory_order_relaxed) != 0; });
         std::unique_lock<std::mutex> lock(m_mutex);
         m_done.wait(lock, [this] { return m_active == 0; });
+        if (first_failure) std::rethrow_exception(first_failure);
         if (m_failure) std::rethrow_exception(m_failure);
     }
 
@@ -159,13 +171,15 @@ unsigned resolveThreadCount(unsigned requested)
     return std::max(1u, std::thread::hardware_concurrency());
 }
 
-void parallelFor(size_t n, unsigned threads, const std::function<void(size_t)>& body)
+void parallelFor(size_t n, unsigned threads, const std::function<void(size_t)>& body,
+                 const std::function<void()>& first)
 {
     if (threads <= 1 || n <= 1 || WorkerPool::t_inside) {
+        if (first) first();
         for (size_t i = 0; i < n; i++) body(i);
         return;
     }
-    WorkerPool::instance().run(n, static_cast<unsigned>(std::min<size_t>(threads, n)), body);
+    WorkerPool::instance().run(n, static_cast<unsigned>(std::min<size_t>(threads, n)), body, first);
 }
 
 }  // namespace mrpt_vslam::core

@@ -64,3 +64,62 @@ TEST(ParallelFor, ThreadCountZeroMeansEveryCore)
     EXPECT_EQ(resolveThreadCount(3), 3u);
     EXPECT_EQ(resolveThreadCount(0), std::max(1u, std::thread::hardware_concurrency()));
 }
+
+TEST(ParallelFor, FirstRunsOnTheCallingThreadWhileTheOthersLoop)
+{
+    // `first` waits until another thread has run half of the bodies: with two threads the loop
+    // goes on while it runs. With one thread it runs before the bodies.
+    for (const unsigned threads : {1u, 2u}) {
+        constexpr size_t n = 100;
+        std::atomic<size_t> done{0};
+        std::vector<std::atomic<int>> calls(n);
+        int first_calls = 0, nested = 0;
+        bool timed_out = false;
+        const auto caller = std::this_thread::get_id();
+        std::thread::id first_thread;
+        parallelFor(
+            n, threads,
+            [&](size_t i) {
+                calls[i]++;
+                done++;
+            },
+            [&] {
+                first_calls++;
+                first_thread = std::this_thread::get_id();
+                parallelFor(10, 2, [&](size_t) { nested++; });  // serial inside
+                const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+                while (threads > 1 && done.load() < n / 2 && !timed_out)
+                    if (std::chrono::steady_clock::now() > until) timed_out = true;
+                if (threads == 1) {
+                    EXPECT_EQ(done.load(), 0u);
+                }
+            });
+        EXPECT_EQ(first_calls, 1);
+        EXPECT_EQ(nested, 10);
+        EXPECT_EQ(first_thread, caller);
+        EXPECT_FALSE(timed_out) << "the other thread did not loop while `first` ran";
+        for (size_t i = 0; i < n; i++) ASSERT_EQ(calls[i].load(), 1) << "index " << i;
+    }
+}
+
+TEST(ParallelFor, FirstsErrorComesAfterTheLoopAndBeforeTheBodies)
+{
+    for (const unsigned threads : {1u, 2u}) {
+        std::atomic<size_t> done{0};
+        try {
+            parallelFor(
+                100, threads,
+                [&](size_t i) {
+                    done++;
+                    if (i == 50 && threads > 1) throw std::runtime_error("body");
+                },
+                [] { throw std::runtime_error("first"); });
+            ADD_FAILURE() << "no exception, " << threads << " threads";
+        } catch (const std::runtime_error& e) {
+            EXPECT_STREQ(e.what(), "first") << threads << " threads";
+        }
+        // with threads the others finish the loop before the error is thrown; serially
+        // `first` throws before any body
+        EXPECT_EQ(done.load(), threads > 1 ? 100u : 0u);
+    }
+}

@@ -202,6 +202,7 @@ void CMultiRobotVisualSLAM::reset(const std::vector<TPose2D>& start_poses, doubl
         d.correspondences.resize(0);
     }
     m_steps = 0;
+    m_noise_ahead_drawn = false;
     m_poolSizeAtPrune = m_poolKeptAtPrune = 0;
     if (m_observer)
         m_observer->onReset(start_poses, options.initial_std_xy, options.initial_std_phi);
@@ -293,15 +294,36 @@ void CMultiRobotVisualSLAM::weighRobotReadings(size_t k, const std::vector<TRobo
     });
 }
 
+const std::vector<Eigen::Vector3d>& CMultiRobotVisualSLAM::particleNoise()
+{
+    if (m_noise_ahead_drawn && m_noise_ahead.size() == m_particles.size()) {
+        m_noise_ahead_drawn = false;
+        std::swap(m_noise, m_noise_ahead);
+        return m_noise;
+    }
+    m_noise_ahead_drawn = false;
+    return core::drawStandardNormals(m_rng, m_particles.size(), m_noise, m_threads);
+}
+
+void CMultiRobotVisualSLAM::drawNoiseAhead()
+{
+    if (options.observation_selection == TOptions::TSelection::Random) return;
+    core::drawStandardNormals(m_rng, m_particles.size(), m_noise_ahead, 1);
+    m_noise_ahead_drawn = true;
+}
+
 void CMultiRobotVisualSLAM::sampleMotion(size_t k, const core::TOdometryGaussian& motion)
 {
-    const auto& noise = core::drawStandardNormals(m_rng, m_particles.size(), m_noise, m_threads);
-    core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
-        auto& pose = m_particles[i].d->poses[k];  // Alg. 1 line 18, p(x_t | x_{t-1}, u_t)
-        const Eigen::Vector3d dx = motion.L * noise[i];
-        pose =
-            pose + TPose2D(motion.mean.x + dx[0], motion.mean.y + dx[1], motion.mean.phi + dx[2]);
-    });
+    const auto& noise = particleNoise();
+    core::parallelFor(
+        m_particles.size(), m_threads,
+        [&](size_t i) {
+            auto& pose = m_particles[i].d->poses[k];  // Alg. 1 line 18, p(x_t | x_{t-1}, u_t)
+            const Eigen::Vector3d dx = motion.L * noise[i];
+            pose = pose +
+                   TPose2D(motion.mean.x + dx[0], motion.mean.y + dx[1], motion.mean.phi + dx[2]);
+        },
+        [this] { drawNoiseAhead(); });
 }
 
 std::vector<TMeasurementCandidates> CMultiRobotVisualSLAM::searchCandidates(
@@ -401,91 +423,95 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussi
     const size_t n = z.size();
     std::vector<std::optional<CVisualLandmarksMap::TAssociation>> assoc(m_particles.size() * n);
     std::vector<double> log_w(m_particles.size(), 0);
-    const auto& noise = core::drawStandardNormals(m_rng, m_particles.size(), m_noise, m_threads);
+    const auto& noise = particleNoise();
     const bool joint = m_template.insertionOptions.joint_association;
-    core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
-        auto& p = *m_particles[i].d;
-        const auto assoc_i = assoc.begin() + static_cast<std::ptrdiff_t>(i * n);
-        // prior N(x̂, J C Jᵀ), J the rotation of the increment into the map frame
-        const double c = std::cos(p.poses[k].phi), s = std::sin(p.poses[k].phi);
-        Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
-        J.topLeftCorner<2, 2>() << c, -s, s, c;
-        Eigen::Matrix3d Sigma = J * motion.cov * J.transpose();
-        Eigen::Vector3d mu(predicted[i].x, predicted[i].y, predicted[i].phi);
+    core::parallelFor(
+        m_particles.size(), m_threads,
+        [&](size_t i) {
+            auto& p = *m_particles[i].d;
+            const auto assoc_i = assoc.begin() + static_cast<std::ptrdiff_t>(i * n);
+            // prior N(x̂, J C Jᵀ), J the rotation of the increment into the map frame
+            const double c = std::cos(p.poses[k].phi), s = std::sin(p.poses[k].phi);
+            Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
+            J.topLeftCorner<2, 2>() << c, -s, s, c;
+            Eigen::Matrix3d Sigma = J * motion.cov * J.transpose();
+            Eigen::Vector3d mu(predicted[i].x, predicted[i].y, predicted[i].phi);
 
-        // Gaussian proposal p(x_t | x_{t-1}, u_t, z_t) by sequential EKF updates of the pose,
-        // each measurement associated with the pose uncertainty so far in its gate; the
-        // product of the marginals N(v; 0, Σ_l + R_w + H Σ Hᵀ) is the weight
-        // p(z_t | x_{t-1}, u_t, map) (FastSLAM 2.0, ours for Gil et al. 2010)
-        Eigen::Matrix3d HS;
-        // the point measured from the current mean, with H Σ Hᵀ added to its covariance
-        const auto linearize = [&](const TLandmarkMeasurement& m) {
-            const TMapMeasurement w = toMapFrame(m, TPose2D(mu[0], mu[1], mu[2]));
-            // H = ∂z_w/∂(x, y, θ): identity in x, y, and ∂R(θ)z/∂θ
-            Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-            H(0, 0) = H(1, 1) = 1;
-            H(0, 2) = -(w.z.y() - mu[1]);
-            H(1, 2) = w.z.x() - mu[0];
-            HS = H * Sigma;
-            return TMapMeasurement{w.z, w.R + HS * H.transpose()};
-        };
-        // the EKF update of the proposal with innovation v and its covariance S
-        const auto correct = [&](const Eigen::Vector3d& v, const Eigen::Matrix3d& S) {
-            const Eigen::Matrix3d K = HS.transpose() * Cholesky3(S).inverse();
-            mu -= K * v;
-            mu[2] = mrpt::math::wrapToPi(mu[2]);
-            const Eigen::Matrix3d updated = Sigma - K * HS;
-            Sigma = 0.5 * (updated + updated.transpose());
-        };
-        std::vector<TMapMeasurement> gated(n);
-        std::vector<uint32_t> taken;
-        if (joint) {  // every point against the prior, then the updates one by one
-            for (size_t j = 0; j < n; j++) gated[j] = linearize(z[j]);
-            std::copy_n(p.map.associateJointly(gated, candidates).begin(), n, assoc_i);
-        }
-        for (size_t j = 0; j < n; j++) {
-            auto& a = assoc_i[static_cast<std::ptrdiff_t>(j)];
-            gated[j] = linearize(z[j]);
-            if (!joint) {
-                a = p.map.associate(gated[j], candidates[j], &taken, z[j].identity);
-                if (a) taken.push_back(a->id);
-            } else if (a) {  // p(z_j | z_1..z_{j-1}) for the weight
-                a = p.map.evaluate(gated[j], a->id);
+            // Gaussian proposal p(x_t | x_{t-1}, u_t, z_t) by sequential EKF updates of the pose,
+            // each measurement associated with the pose uncertainty so far in its gate; the
+            // product of the marginals N(v; 0, Σ_l + R_w + H Σ Hᵀ) is the weight
+            // p(z_t | x_{t-1}, u_t, map) (FastSLAM 2.0, ours for Gil et al. 2010)
+            Eigen::Matrix3d HS;
+            // the point measured from the current mean, with H Σ Hᵀ added to its covariance
+            const auto linearize = [&](const TLandmarkMeasurement& m) {
+                const TMapMeasurement w = toMapFrame(m, TPose2D(mu[0], mu[1], mu[2]));
+                // H = ∂z_w/∂(x, y, θ): identity in x, y, and ∂R(θ)z/∂θ
+                Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+                H(0, 0) = H(1, 1) = 1;
+                H(0, 2) = -(w.z.y() - mu[1]);
+                H(1, 2) = w.z.x() - mu[0];
+                HS = H * Sigma;
+                return TMapMeasurement{w.z, w.R + HS * H.transpose()};
+            };
+            // the EKF update of the proposal with innovation v and its covariance S
+            const auto correct = [&](const Eigen::Vector3d& v, const Eigen::Matrix3d& S) {
+                const Eigen::Matrix3d K = HS.transpose() * Cholesky3(S).inverse();
+                mu -= K * v;
+                mu[2] = mrpt::math::wrapToPi(mu[2]);
+                const Eigen::Matrix3d updated = Sigma - K * HS;
+                Sigma = 0.5 * (updated + updated.transpose());
+            };
+            std::vector<TMapMeasurement> gated(n);
+            std::vector<uint32_t> taken;
+            if (joint) {  // every point against the prior, then the updates one by one
+                for (size_t j = 0; j < n; j++) gated[j] = linearize(z[j]);
+                std::copy_n(p.map.associateJointly(gated, candidates).begin(), n, assoc_i);
             }
-            if (!a) {
-                log_w[i] += std::log(p.map.insertionOptions.p0);  // line 36
-                continue;
+            for (size_t j = 0; j < n; j++) {
+                auto& a = assoc_i[static_cast<std::ptrdiff_t>(j)];
+                gated[j] = linearize(z[j]);
+                if (!joint) {
+                    a = p.map.associate(gated[j], candidates[j], &taken, z[j].identity);
+                    if (a) taken.push_back(a->id);
+                } else if (a) {  // p(z_j | z_1..z_{j-1}) for the weight
+                    a = p.map.evaluate(gated[j], a->id);
+                }
+                if (!a) {
+                    log_w[i] += std::log(p.map.insertionOptions.p0);  // line 36
+                    continue;
+                }
+                log_w[i] += a->log_likelihood;
+                const TVisualLandmark& lm = *p.map.landmark(a->id);
+                correct(gated[j].z - lm.mean, lm.cov + gated[j].R);
             }
-            log_w[i] += a->log_likelihood;
-            const TVisualLandmark& lm = *p.map.landmark(a->id);
-            correct(gated[j].z - lm.mean, lm.cov + gated[j].R);
-        }
-        for (const auto& r : readings) {  // the seen robot's pose is exact in this particle
-            const TMapMeasurement w = linearize(r.m);
-            const Eigen::Vector3d v =
-                w.z - Eigen::Vector3d(p.poses[r.robot].x, p.poses[r.robot].y, 0);
-            log_w[i] += robotReadingLogLikelihood(v, w.R);
-            correct(v, w.R);
-        }
-        const Cholesky3 L(Sigma);
-        if (!L.ok)
-            throw std::runtime_error(options.robots[k] +
-                                     ": proposal covariance is not positive definite");
-        const Eigen::Vector3d x = mu + L.factor() * noise[i];
-        p.poses[k] = TPose2D(x[0], x[1], mrpt::math::wrapToPi(x[2]));
+            for (const auto& r : readings) {  // the seen robot's pose is exact in this particle
+                const TMapMeasurement w = linearize(r.m);
+                const Eigen::Vector3d v =
+                    w.z - Eigen::Vector3d(p.poses[r.robot].x, p.poses[r.robot].y, 0);
+                log_w[i] += robotReadingLogLikelihood(v, w.R);
+                correct(v, w.R);
+            }
+            const Cholesky3 L(Sigma);
+            if (!L.ok)
+                throw std::runtime_error(options.robots[k] +
+                                         ": proposal covariance is not positive definite");
+            const Eigen::Vector3d x = mu + L.factor() * noise[i];
+            p.poses[k] = TPose2D(x[0], x[1], mrpt::math::wrapToPi(x[2]));
 
-        // The associated landmarks updated from the sampled pose while they are in the cache;
-        // a new landmark waits for its id, and its correspondence with it
-        const TPlanarTransform pose(p.poses[k]);
-        for (size_t j = 0; j < n; j++) {
-            const auto& a = assoc_i[static_cast<std::ptrdiff_t>(j)];
-            if (a)
-                p.map.fuseAs(z[j], toMapFrame(z[j], pose), candidates[j], static_cast<unsigned>(k),
-                             a);
-            p.correspondences.push_back({static_cast<uint32_t>(k), a ? a->id : 0, z[j].track_id});
-        }
-        addLogWeight(m_particles[i], log_w[i]);  // line 11: the product over the team
-    });
+            // The associated landmarks updated from the sampled pose while they are in the cache;
+            // a new landmark waits for its id, and its correspondence with it
+            const TPlanarTransform pose(p.poses[k]);
+            for (size_t j = 0; j < n; j++) {
+                const auto& a = assoc_i[static_cast<std::ptrdiff_t>(j)];
+                if (a)
+                    p.map.fuseAs(z[j], toMapFrame(z[j], pose), candidates[j],
+                                 static_cast<unsigned>(k), a);
+                p.correspondences.push_back(
+                    {static_cast<uint32_t>(k), a ? a->id : 0, z[j].track_id});
+            }
+            addLogWeight(m_particles[i], log_w[i]);  // line 11: the product over the team
+        },
+        [this] { drawNoiseAhead(); });
 
     std::vector<bool> created(assoc.size());
     for (size_t i = 0; i < assoc.size(); i++) created[i] = !assoc[i];

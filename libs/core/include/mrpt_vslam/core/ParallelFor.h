@@ -16,7 +16,13 @@ unsigned resolveThreadCount(unsigned requested);
  *  The bodies must not write state that another index reads or writes; then the result does
  *  not depend on the thread count. With threads <= 1, n <= 1, or inside another loop's body,
  *  it is a plain loop. If bodies throw, the exception of the lowest index is rethrown once the
- *  loop has finished, so which error is reported does not depend on the thread count either. */
-void parallelFor(size_t n, unsigned threads, const std::function<void(size_t)>& body);
+ *  loop has finished, so which error is reported does not depend on the thread count either.
+ *
+ *  `first`, if given, is run by the calling thread before it takes its share (the others
+ *  start on theirs at once and take what it leaves): serial work that the loop's bodies do
+ *  not touch, overlapped with the loop. Loops inside it run serially. If it throws, its
+ *  exception is the one rethrown (serially, before any body has run). */
+void parallelFor(size_t n, unsigned threads, const std::function<void(size_t)>& body,
+                 const std::function<void()>& first = {});
 
 }  // namespace mrpt_vslam::core

@@ -196,6 +196,13 @@ class CMultiRobotVisualSLAM
                  bool optimal);
     /// Sec. 3.1 for robot k: sample its pose in every particle from the motion model.
     void sampleMotion(size_t k, const core::TOdometryGaussian& motion);
+    /// N(0, I₃) per particle for a robot's move: drawn ahead (drawNoiseAhead()) or now.
+    const std::vector<Eigen::Vector3d>& particleNoise();
+    /** The next move's particle noise drawn from the generator now, by the calling thread
+     *  while the others update the particles (core::parallelFor()'s `first`): the same draws
+     *  in the same order, off the serial path. Not with `observation_selection = random`,
+     *  which draws from the generator between two moves. */
+    void drawNoiseAhead();
     /** The pool's candidates for each measurement, searched once for all particles around
      *  the mean of `poses`, widened by their spread plus extra_xy [m] and extra_phi [rad]. */
     std::vector<TMeasurementCandidates> searchCandidates(
@@ -224,7 +231,9 @@ class CMultiRobotVisualSLAM
     /// Pool size at the last performSubstitution() that pruned it, and ids it kept then
     size_t m_poolSizeAtPrune = 0, m_poolKeptAtPrune = 0;
     mrpt::random::CRandomGenerator m_rng;
-    std::vector<Eigen::Vector3d> m_noise;  ///< the step's normal draws, one per particle
+    /// The move's normal draws, one per particle, and those of the next move if drawn ahead
+    std::vector<Eigen::Vector3d> m_noise, m_noise_ahead;
+    bool m_noise_ahead_drawn = false;
 };
 
 }  // namespace mrpt_vslam::multirobot
