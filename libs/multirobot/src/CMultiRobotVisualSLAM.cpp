@@ -428,6 +428,14 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussi
     core::parallelFor(
         m_particles.size(), m_threads,
         [&](size_t i) {
+            // the first look-ups of the associations of the next particles, requested ahead
+            for (const auto stage :
+                 {CVisualLandmarksMap::kPrefetchTable, CVisualLandmarksMap::kPrefetchEntries,
+                  CVisualLandmarksMap::kPrefetchLandmarks}) {
+                const size_t ahead = i + 3 - static_cast<size_t>(stage);
+                if (ahead < m_particles.size())
+                    m_particles[ahead].d->map.prefetchAssociation(candidates, stage);
+            }
             auto& p = *m_particles[i].d;
             const auto assoc_i = assoc.begin() + static_cast<std::ptrdiff_t>(i * n);
             // prior N(x̂, J C Jᵀ), J the rotation of the increment into the map frame
@@ -584,7 +592,18 @@ void CMultiRobotVisualSLAM::runStep(
         if (options.resample_per_robot && k + 1 < K && ESS() < pf_options.BETA)
             performResampling(pf_options);
     }
+    // a memory-bound loop: what particle i + 2·kAhead appends loaded, and then its path's slot
+    constexpr size_t kAhead = 4;
     core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
+        if (i + 2 * kAhead < m_particles.size()) {
+            const TTeamParticle& ahead = *m_particles[i + 2 * kAhead].d;
+            const auto* c = reinterpret_cast<const char*>(&ahead.correspondences);
+            __builtin_prefetch(&ahead.poses);
+            __builtin_prefetch(&ahead.path);
+            __builtin_prefetch(c);
+            __builtin_prefetch(c + sizeof(ahead.correspondences) - 1);
+        }
+        if (i + kAhead < m_particles.size()) m_particles[i + kAhead].d->path.prefetchAppend();
         auto& d = *m_particles[i].d;
         d.path.append(timestamp, d.poses, d.correspondences);
         d.correspondences.resize(0);  // keeps its storage for the next step

@@ -125,7 +125,7 @@ std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     };
     std::optional<TBest> best;
     const auto& cs = candidates.candidates;
-    constexpr size_t kAhead = 4;  // look-ups started this many candidates early, per stage
+    constexpr size_t kAhead = kPrefetchAhead;
     for (size_t i = 0; i < std::min(2 * kAhead, cs.size()); i++) m_store.prefetchEntry(cs[i].id);
     for (size_t i = 0; i < std::min(kAhead, cs.size()); i++) m_store.prefetchLandmark(cs[i].id);
     for (size_t i = 0; i < cs.size(); i++) {
@@ -148,6 +148,24 @@ std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     }
     if (!best) return std::nullopt;
     return TAssociation{best->id, best->D, best->L.logGaussian(best->D)};  // Eq. 13
+}
+
+void CVisualLandmarksMap::prefetchAssociation(const std::vector<TMeasurementCandidates>& candidates,
+                                              TPrefetchStage stage) const
+{
+    if (stage == kPrefetchTable) {
+        m_store.prefetchTable();
+        return;
+    }
+    for (const auto& c : candidates) {
+        const auto& cs = c.candidates;
+        if (stage == kPrefetchEntries)
+            for (size_t i = 0; i < std::min(2 * kPrefetchAhead, cs.size()); i++)
+                m_store.prefetchEntry(cs[i].id);
+        else
+            for (size_t i = 0; i < std::min(kPrefetchAhead, cs.size()); i++)
+                m_store.prefetchLandmark(cs[i].id);
+    }
 }
 
 std::vector<std::optional<CVisualLandmarksMap::TAssociation>> CVisualLandmarksMap::associateJointly(

@@ -53,7 +53,12 @@ class ParticleFilterDataImpl : public mrpt::bayes::CParticleFilterDataImpl<Deriv
         }
         // the copies, each made where the loops over the particles update it (a share of the
         // new indices per thread); they read only first draws, which none of them writes
+        // (bound by memory: the objects of the copy kCopyAhead indices on are requested ahead)
         parallelFor(sorted.size(), m_threads, [&](size_t i) {
+            if (const size_t a = i + kCopyAhead; a < sorted.size() && first[sorted[a]] != a) {
+                prefetchObject(drawn[a].d.get());
+                prefetchObject(drawn[first[sorted[a]]].d.get());
+            }
             if (first[sorted[i]] == i) return;
             const auto& source = drawn[first[sorted[i]]].d;
             if (drawn[i].d.get())
@@ -112,6 +117,15 @@ class ParticleFilterDataImpl : public mrpt::bayes::CParticleFilterDataImpl<Deriv
 
   protected:
     static constexpr size_t kNone = static_cast<size_t>(-1);
+    static constexpr size_t kCopyAhead = 2;
+    /// Starts loading every cache line of *p (if any).
+    template <class T>
+    static void prefetchObject(const T* p)
+    {
+        if (!p) return;
+        const auto* bytes = reinterpret_cast<const char*>(p);
+        for (size_t b = 0; b < sizeof(T); b += 64) __builtin_prefetch(bytes + b);
+    }
     ParticleList& particles() { return static_cast<Derived*>(this)->m_particles; }
     const ParticleList& particles() const { return static_cast<const Derived*>(this)->m_particles; }
 

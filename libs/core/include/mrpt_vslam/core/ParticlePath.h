@@ -92,6 +92,18 @@ class ParticlePath {
         m_alone.store(true, std::memory_order_relaxed);
     }
 
+    /** Starts loading, for writing, the memory the next append() writes when it takes a slot of
+     *  the newest chunk: a loop that appends to many paths calls it a few paths ahead, so that
+     *  the misses of several paths overlap. Changes nothing. */
+    void prefetchAppend() const
+    {
+        if (!m_chunk || m_count >= kChunk) return;
+        Chunk* c = m_chunk.get();
+        if (!m_alone.load(std::memory_order_relaxed)) __builtin_prefetch(&c->used, 1);
+        const char* slot = static_cast<const char*>(c->slot(m_count));
+        for (size_t b = 0; b < sizeof(TStep); b += 64) __builtin_prefetch(slot + b, 1);
+    }
+
     size_t size() const { return m_chunk ? m_chunk->first + m_count : 0; }
     bool empty() const { return !m_chunk; }
     /// \pre !empty()

@@ -146,6 +146,14 @@ class CVisualLandmarksMap : public mrpt::maps::CMetricMap {
     std::vector<std::optional<TAssociation>> associateNearestFirst(
         const std::vector<TLandmarkMeasurement>& z, const std::vector<TMapMeasurement>& in_map,
         const std::vector<TMeasurementCandidates>& candidates) const;
+    /** Starts loading what associate() reads first for these candidate lists, in the stages
+     *  that a loop over particles requests some particles apart, each when the previous one's
+     *  lines are in the cache: kPrefetchTable (this map's table of blocks), kPrefetchEntries (the
+     *  table's entries of the first candidates), kPrefetchLandmarks (those landmarks). Changes
+     *  nothing. */
+    enum TPrefetchStage { kPrefetchTable, kPrefetchEntries, kPrefetchLandmarks };
+    void prefetchAssociation(const std::vector<TMeasurementCandidates>& candidates,
+                             TPrefetchStage stage) const;
     /// D and log N(v; 0, Z) of the measurement against landmark `id` of this map, ungated.
     TAssociation evaluate(const TMapMeasurement& m, uint32_t id) const;
     /// The landmark with this id (nullptr if this map does not hold it).
@@ -219,6 +227,9 @@ class CVisualLandmarksMap : public mrpt::maps::CMetricMap {
         const mrpt::obs::CObservation& obs) const override;
 
   private:
+    /// associate() requests a candidate's table entry 2·kPrefetchAhead candidates and its
+    /// landmark kPrefetchAhead candidates before it reads them
+    static constexpr size_t kPrefetchAhead = 4;
     LandmarkStore m_store;
     std::shared_ptr<LandmarkDescriptorPool> m_pool;
 };
