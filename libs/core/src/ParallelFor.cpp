@@ -35,7 +35,7 @@ class WorkerPool {
         for (auto& t : m_workers) t.join();
     }
 
-    void run(size_t n, unsigned threads, const std::function<void(size_t)>& body,
+    void run(size_t n, unsigned threads, const std::function<void(size_t, size_t)>& body,
              const std::function<void()>& first)
     {
         const std::lock_guard<std::mutex> one_loop(m_loop_mutex);
@@ -128,7 +128,7 @@ class WorkerPool {
     {
         for (size_t i = begin; i < end; i++) {
             try {
-                (*m_body)(i);
+                (*m_body)(i, end);
             } catch (...) {
                 const std::lock_guard<std::mutex> lock(m_mutex);
                 if (i < m_failed_index) {
@@ -149,7 +149,7 @@ class WorkerPool {
     std::vector<std::thread> m_workers;
     bool m_stop = false;
     std::atomic<uint64_t> m_generation{0};
-    const std::function<void(size_t)>* m_body = nullptr;
+    const std::function<void(size_t, size_t)>* m_body = nullptr;
     size_t m_chunk = 1, m_participants = 0;
     std::atomic<size_t> m_active{0};
     /// The indices [next, end) of a thread's share not yet taken (a cache line each).
@@ -171,15 +171,22 @@ unsigned resolveThreadCount(unsigned requested)
     return std::max(1u, std::thread::hardware_concurrency());
 }
 
-void parallelFor(size_t n, unsigned threads, const std::function<void(size_t)>& body,
-                 const std::function<void()>& first)
+void parallelForAhead(size_t n, unsigned threads, const std::function<void(size_t, size_t)>& body,
+                      const std::function<void()>& first)
 {
     if (threads <= 1 || n <= 1 || WorkerPool::t_inside) {
         if (first) first();
-        for (size_t i = 0; i < n; i++) body(i);
+        for (size_t i = 0; i < n; i++) body(i, n);
         return;
     }
     WorkerPool::instance().run(n, static_cast<unsigned>(std::min<size_t>(threads, n)), body, first);
+}
+
+void parallelFor(size_t n, unsigned threads, const std::function<void(size_t)>& body,
+                 const std::function<void()>& first)
+{
+    parallelForAhead(
+        n, threads, [&body](size_t i, size_t) { body(i); }, first);
 }
 
 }  // namespace mrpt_vslam::core

@@ -59,6 +59,34 @@ TEST(ParallelFor, ThrowsTheErrorOfTheLowestFailingIndex)
     }
 }
 
+TEST(ParallelFor, AheadGivesTheIndicesThisThreadRunsNext)
+{
+    // each index records its thread, its order on that thread and its `end`; every index in
+    // (i, end) must then run later on the same thread
+    for (const unsigned threads : {1u, 2u, 3u})
+        for (const size_t n : {size_t{1}, size_t{7}, size_t{1000}}) {
+            std::vector<std::thread::id> thread(n);
+            std::vector<size_t> order(n), end(n);
+            std::atomic<size_t> clock{0};
+            mrpt_vslam::core::parallelForAhead(n, threads, [&](size_t i, size_t e) {
+                thread[i] = std::this_thread::get_id();
+                order[i] = clock++;
+                end[i] = e;
+            });
+            for (size_t i = 0; i < n; i++) {
+                ASSERT_GT(end[i], i) << threads << " threads, n = " << n;
+                ASSERT_LE(end[i], n);
+                for (size_t j = i + 1; j < end[i]; j++) {
+                    ASSERT_EQ(thread[j], thread[i]) << "index " << j << " after " << i;
+                    ASSERT_GT(order[j], order[i]) << "index " << j << " after " << i;
+                }
+            }
+            if (threads == 1) {
+                EXPECT_EQ(end[0], n);
+            }
+        }
+}
+
 TEST(ParallelFor, ThreadCountZeroMeansEveryCore)
 {
     EXPECT_EQ(resolveThreadCount(3), 3u);

@@ -425,16 +425,15 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussi
     std::vector<double> log_w(m_particles.size(), 0);
     const auto& noise = particleNoise();
     const bool joint = m_template.insertionOptions.joint_association;
-    core::parallelFor(
+    core::parallelForAhead(
         m_particles.size(), m_threads,
-        [&](size_t i) {
-            // the first look-ups of the associations of the next particles, requested ahead
+        [&](size_t i, size_t end) {
+            // the first look-ups of the associations of this thread's next particles, ahead
             for (const auto stage :
                  {CVisualLandmarksMap::kPrefetchTable, CVisualLandmarksMap::kPrefetchEntries,
                   CVisualLandmarksMap::kPrefetchLandmarks}) {
                 const size_t ahead = i + 3 - static_cast<size_t>(stage);
-                if (ahead < m_particles.size())
-                    m_particles[ahead].d->map.prefetchAssociation(candidates, stage);
+                if (ahead < end) m_particles[ahead].d->map.prefetchAssociation(candidates, stage);
             }
             auto& p = *m_particles[i].d;
             const auto assoc_i = assoc.begin() + static_cast<std::ptrdiff_t>(i * n);
@@ -594,8 +593,8 @@ void CMultiRobotVisualSLAM::runStep(
     }
     // a memory-bound loop: what particle i + 2·kAhead appends loaded, and then its path's slot
     constexpr size_t kAhead = 4;
-    core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
-        if (i + 2 * kAhead < m_particles.size()) {
+    core::parallelForAhead(m_particles.size(), m_threads, [&](size_t i, size_t end) {
+        if (i + 2 * kAhead < end) {
             const TTeamParticle& ahead = *m_particles[i + 2 * kAhead].d;
             const auto* c = reinterpret_cast<const char*>(&ahead.correspondences);
             __builtin_prefetch(&ahead.poses);
@@ -603,7 +602,7 @@ void CMultiRobotVisualSLAM::runStep(
             __builtin_prefetch(c);
             __builtin_prefetch(c + sizeof(ahead.correspondences) - 1);
         }
-        if (i + kAhead < m_particles.size()) m_particles[i + kAhead].d->path.prefetchAppend();
+        if (i + kAhead < end) m_particles[i + kAhead].d->path.prefetchAppend();
         auto& d = *m_particles[i].d;
         d.path.append(timestamp, d.poses, d.correspondences);
         d.correspondences.resize(0);  // keeps its storage for the next step

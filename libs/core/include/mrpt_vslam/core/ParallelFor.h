@@ -25,4 +25,11 @@ unsigned resolveThreadCount(unsigned requested);
 void parallelFor(size_t n, unsigned threads, const std::function<void(size_t)>& body,
                  const std::function<void()>& first = {});
 
+/** parallelFor() for a body that reads ahead: body(i, end), where the indices (i, end) are the
+ *  ones this thread runs next, in increasing order, and no other thread runs. The body may read
+ *  their state, which no other body writes while it runs (to request their memory before it
+ *  is needed, say); `end` is n when the loop runs serially. */
+void parallelForAhead(size_t n, unsigned threads, const std::function<void(size_t, size_t)>& body,
+                      const std::function<void()>& first = {});
+
 }  // namespace mrpt_vslam::core

@@ -53,9 +53,9 @@ class ParticleFilterDataImpl : public mrpt::bayes::CParticleFilterDataImpl<Deriv
         }
         // the copies, each made where the loops over the particles update it (a share of the
         // new indices per thread); they read only first draws, which none of them writes
-        // (bound by memory: the objects of the copy kCopyAhead indices on are requested ahead)
-        parallelFor(sorted.size(), m_threads, [&](size_t i) {
-            if (const size_t a = i + kCopyAhead; a < sorted.size() && first[sorted[a]] != a) {
+        // (bound by memory: the objects of this thread's copy kCopyAhead indices on requested)
+        parallelForAhead(sorted.size(), m_threads, [&](size_t i, size_t end) {
+            if (const size_t a = i + kCopyAhead; a < end && first[sorted[a]] != a) {
                 prefetchObject(drawn[a].d.get());
                 prefetchObject(drawn[first[sorted[a]]].d.get());
             }

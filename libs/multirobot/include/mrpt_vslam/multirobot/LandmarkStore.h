@@ -39,12 +39,12 @@ class LandmarkStore {
         const uint32_t bit = 1u << (id % kBlockSize);
         return (block.present & bit) ? &block.items[id % kBlockSize] : nullptr;
     }
+    /// Starts reading the table itself (where its entries are), before prefetchEntry().
+    void prefetchTable() const { __builtin_prefetch(&m_blocks); }
     /** Starts reading what find(id) reads, in two stages a few look-ups apart so that the
      *  misses overlap: first the entry of id's block in the table (prefetchEntry()), then, once
      *  that entry is in the cache, the block's presence bits and the landmark
      *  (prefetchLandmark()). */
-    /// Starts reading the table itself (where its entries are), before prefetchEntry().
-    void prefetchTable() const { __builtin_prefetch(&m_blocks); }
     void prefetchEntry(uint32_t id) const
     {
         const size_t b = id / kBlockSize;
