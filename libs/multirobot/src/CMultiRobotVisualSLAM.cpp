@@ -10,6 +10,7 @@
 #include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/ParallelFor.h>
+#include <mrpt_vslam/core/Prefetch.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
 #include <mrpt_vslam/multirobot/Cholesky3.h>
 
@@ -596,11 +597,9 @@ void CMultiRobotVisualSLAM::runStep(
     core::parallelForAhead(m_particles.size(), m_threads, [&](size_t i, size_t end) {
         if (i + 2 * kAhead < end) {
             const TTeamParticle& ahead = *m_particles[i + 2 * kAhead].d;
-            const auto* c = reinterpret_cast<const char*>(&ahead.correspondences);
-            __builtin_prefetch(&ahead.poses);
-            __builtin_prefetch(&ahead.path);
-            __builtin_prefetch(c);
-            __builtin_prefetch(c + sizeof(ahead.correspondences) - 1);
+            core::prefetchObject(&ahead.poses);
+            core::prefetchObject(&ahead.path);
+            core::prefetchObject(&ahead.correspondences);
         }
         if (i + kAhead < end) m_particles[i + kAhead].d->path.prefetchAppend();
         auto& d = *m_particles[i].d;

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <mrpt_vslam/core/Prefetch.h>
+
 #include <cstddef>
 #include <mutex>
 #include <new>
@@ -32,7 +34,7 @@ class FixedSizePool {
         local.head = s->next;
         local.count--;
         // the next allocation reads the next slot's link: a slot freed long ago is not cached
-        if (local.head) __builtin_prefetch(local.head);
+        prefetchObject(local.head);
         return s;
 #endif
     }

@@ -2,6 +2,7 @@
 
 #include <mrpt/bayes/CParticleFilterData.h>
 #include <mrpt_vslam/core/ParallelFor.h>
+#include <mrpt_vslam/core/Prefetch.h>
 
 #include <algorithm>
 #include <cmath>
@@ -118,14 +119,6 @@ class ParticleFilterDataImpl : public mrpt::bayes::CParticleFilterDataImpl<Deriv
   protected:
     static constexpr size_t kNone = static_cast<size_t>(-1);
     static constexpr size_t kCopyAhead = 2;
-    /// Starts loading every cache line of *p (if any).
-    template <class T>
-    static void prefetchObject(const T* p)
-    {
-        if (!p) return;
-        const auto* bytes = reinterpret_cast<const char*>(p);
-        for (size_t b = 0; b < sizeof(T); b += 64) __builtin_prefetch(bytes + b);
-    }
     ParticleList& particles() { return static_cast<Derived*>(this)->m_particles; }
     const ParticleList& particles() const { return static_cast<const Derived*>(this)->m_particles; }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <mrpt_vslam/core/FixedSizePool.h>
+#include <mrpt_vslam/core/Prefetch.h>
 
 #include <atomic>
 #include <cstddef>
@@ -99,9 +100,8 @@ class ParticlePath {
     {
         if (!m_chunk || m_count >= kChunk) return;
         Chunk* c = m_chunk.get();
-        if (!m_alone.load(std::memory_order_relaxed)) __builtin_prefetch(&c->used, 1);
-        const char* slot = static_cast<const char*>(c->slot(m_count));
-        for (size_t b = 0; b < sizeof(TStep); b += 64) __builtin_prefetch(slot + b, 1);
+        if (!m_alone.load(std::memory_order_relaxed)) prefetchObject<TPrefetchFor::Write>(&c->used);
+        prefetchBytes<TPrefetchFor::Write>(c->slot(m_count), sizeof(TStep));
     }
 
     size_t size() const { return m_chunk ? m_chunk->first + m_count : 0; }

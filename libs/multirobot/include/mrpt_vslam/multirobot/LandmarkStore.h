@@ -1,5 +1,6 @@
 #pragma once
 
+#include <mrpt_vslam/core/Prefetch.h>
 #include <mrpt_vslam/multirobot/VisualLandmark.h>
 
 #include <array>
@@ -40,7 +41,7 @@ class LandmarkStore {
         return (block.present & bit) ? &block.items[id % kBlockSize] : nullptr;
     }
     /// Starts reading the table itself (where its entries are), before prefetchEntry().
-    void prefetchTable() const { __builtin_prefetch(&m_blocks); }
+    void prefetchTable() const { core::prefetchObject(&m_blocks); }
     /** Starts reading what find(id) reads, in two stages a few look-ups apart so that the
      *  misses overlap: first the entry of id's block in the table (prefetchEntry()), then, once
      *  that entry is in the cache, the block's presence bits and the landmark
@@ -48,17 +49,15 @@ class LandmarkStore {
     void prefetchEntry(uint32_t id) const
     {
         const size_t b = id / kBlockSize;
-        if (b < m_blocks.size()) __builtin_prefetch(&m_blocks[b]);
+        if (b < m_blocks.size()) core::prefetchObject(&m_blocks[b]);
     }
     void prefetchLandmark(uint32_t id) const
     {
         const size_t b = id / kBlockSize;
         if (b >= m_blocks.size() || !m_blocks[b]) return;
         const Block& block = *m_blocks[b];
-        __builtin_prefetch(&block.present);
-        const auto* lm = reinterpret_cast<const char*>(&block.items[id % kBlockSize]);
-        __builtin_prefetch(lm);
-        __builtin_prefetch(lm + sizeof(TVisualLandmark) - 1);
+        core::prefetchObject(&block.present);
+        core::prefetchObject(&block.items[id % kBlockSize]);
     }
     /// Writable access to an existing landmark (clones its block if shared). \pre find(id)
     TVisualLandmark& modify(uint32_t id);
