@@ -297,12 +297,12 @@ void CMultiRobotVisualSLAM::weighRobotReadings(size_t k, const std::vector<TRobo
 
 const std::vector<Eigen::Vector3d>& CMultiRobotVisualSLAM::particleNoise()
 {
-    if (m_noise_ahead_drawn && m_noise_ahead.size() == m_particles.size()) {
-        m_noise_ahead_drawn = false;
+    const bool ahead = m_noise_ahead_drawn && m_noise_ahead.size() == m_particles.size();
+    m_noise_ahead_drawn = false;
+    if (ahead) {
         std::swap(m_noise, m_noise_ahead);
         return m_noise;
     }
-    m_noise_ahead_drawn = false;
     return core::drawStandardNormals(m_rng, m_particles.size(), m_noise, m_threads);
 }
 
