@@ -143,7 +143,9 @@ double PlanarPoseLandmarkGraph::cost(double huber_threshold) const
 PlanarPoseLandmarkGraph::TResult PlanarPoseLandmarkGraph::optimize(const TOptions& options)
 {
     const auto n = static_cast<Eigen::Index>(scaleOffset(m_scales.size()));
-    std::vector<Eigen::Triplet<double>> triplets;
+    std::vector<Eigen::Triplet<double>> triplets;  // the entries of each factor's blocks
+    triplets.reserve(9 * m_priors.size() + 64 * m_odometry.size() + 4 * m_scalePriors.size() +
+                     25 * m_readings.size());
     Eigen::VectorXd b(n);
     // adds Jᵀ w J and Jᵀ w e of one whitened factor e = J δ + e0 over the blocks `at`
     auto accumulate = [&](const auto& J, const auto& e, const auto& at, double w) {
