@@ -1,30 +1,40 @@
 #include <gtest/gtest.h>
 #include <mrpt_vslam/core/Prefetch.h>
 
+#include <cstdint>
 #include <set>
-#include <vector>
 
-using mrpt_vslam::core::forEachCacheLine;
+using mrpt_vslam::core::cacheLineOffsets;
 using mrpt_vslam::core::kCacheLine;
 
-// The lines visited are exactly those holding a byte of the range, each once, in order:
-// against the set of every byte's line, for every offset in two lines and sizes up to three.
-TEST(Prefetch, VisitsEachLineOfTheRangeOnce)
+namespace {
+/// Whether the offsets, inside an object of n bytes, reach every line of it at every alignment.
+template <size_t N>
+void expectEveryLineReached()
 {
-    alignas(64) static char buffer[6 * kCacheLine];
-    for (size_t offset = 0; offset < 2 * kCacheLine; offset++)
-        for (size_t n = 0; n <= 3 * kCacheLine; n++) {
-            const char* p = buffer + offset;
-            std::set<std::uintptr_t> expected;
-            for (size_t i = 0; i < n; i++)
-                expected.insert(reinterpret_cast<std::uintptr_t>(p + i) / kCacheLine);
-            std::vector<std::uintptr_t> visited;
-            forEachCacheLine(p, n, [&](const void* line) {
-                const auto a = reinterpret_cast<std::uintptr_t>(line);
-                EXPECT_EQ(a % kCacheLine, 0u);
-                visited.push_back(a / kCacheLine);
-            });
-            ASSERT_EQ(std::vector<std::uintptr_t>(expected.begin(), expected.end()), visited)
-                << "offset " << offset << ", " << n << " bytes";
-        }
+    constexpr auto offsets = cacheLineOffsets<N>();
+    for (const size_t o : offsets) EXPECT_LT(o, N);
+    for (std::uintptr_t start = 0; start < 2 * kCacheLine; start++) {
+        std::set<std::uintptr_t> lines, reached;
+        for (size_t i = 0; i < N; i++) lines.insert((start + i) / kCacheLine);
+        for (const size_t o : offsets) reached.insert((start + o) / kCacheLine);
+        ASSERT_EQ(lines, reached) << N << " bytes at offset " << start;
+    }
+}
+}  // namespace
+
+// Against the line of every byte, for sizes below, at and above one, two and three lines.
+TEST(Prefetch, OffsetsReachEveryLineOfTheObject)
+{
+    expectEveryLineReached<1>();
+    expectEveryLineReached<8>();
+    expectEveryLineReached<63>();
+    expectEveryLineReached<64>();
+    expectEveryLineReached<65>();
+    expectEveryLineReached<104>();
+    expectEveryLineReached<128>();
+    expectEveryLineReached<129>();
+    expectEveryLineReached<191>();
+    expectEveryLineReached<192>();
+    expectEveryLineReached<1667>();
 }

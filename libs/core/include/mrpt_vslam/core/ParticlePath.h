@@ -100,8 +100,8 @@ class ParticlePath {
     {
         if (!m_chunk || m_count >= kChunk) return;
         Chunk* c = m_chunk.get();
-        if (!m_alone.load(std::memory_order_relaxed)) prefetchObject<TPrefetchFor::Write>(&c->used);
-        prefetchBytes<TPrefetchFor::Write>(c->slot(m_count), sizeof(TStep));
+        if (!m_alone.load(std::memory_order_relaxed)) prefetchObject(&c->used);
+        prefetchObject(static_cast<const TStep*>(c->slot(m_count)));
     }
 
     size_t size() const { return m_chunk ? m_chunk->first + m_count : 0; }

@@ -1,40 +1,58 @@
 #pragma once
 
+#include <array>
 #include <cstddef>
-#include <cstdint>
+#include <utility>
 
 namespace mrpt_vslam::core {
 
 /// Cache line size of the machines the requests ahead are made for [bytes].
-inline constexpr std::uintptr_t kCacheLine = 64;
+inline constexpr size_t kCacheLine = 64;
 
-/// Calls f(line) for each cache line holding a byte of [p, p + n), in increasing address order.
-template <class F>
-void forEachCacheLine(const void* p, size_t n, F&& f)
+/** The offsets prefetchObject() requests in an object of N bytes: one every kCacheLine bytes
+ *  from its start, and its last byte, so that each cache line holding a byte of it gets one
+ *  whatever the object's alignment. */
+template <size_t N>
+constexpr std::array<size_t, (N + kCacheLine - 1) / kCacheLine + 1> cacheLineOffsets()
 {
-    if (n == 0) return;
-    const auto begin = reinterpret_cast<std::uintptr_t>(p);
-    for (std::uintptr_t line = begin & ~(kCacheLine - 1); line < begin + n; line += kCacheLine)
-        f(reinterpret_cast<const void*>(line));
+    static_assert(N > 0);
+    std::array<size_t, (N + kCacheLine - 1) / kCacheLine + 1> offsets{};
+    for (size_t j = 0; j + 1 < offsets.size(); j++) offsets[j] = j * kCacheLine;
+    offsets.back() = N - 1;
+    return offsets;
 }
 
-enum class TPrefetchFor : int { Read = 0, Write = 1 };
-
-/** Starts loading every cache line of the n bytes at p, to be read or written soon: a loop
- *  bound by memory requests what it reads a few iterations ahead, so that the misses overlap.
- *  A hint only: it changes nothing. */
-template <TPrefetchFor For = TPrefetchFor::Read>
-void prefetchBytes(const void* p, size_t n)
+namespace detail {
+/** A request for the cache line of p that the compiler keeps: GCC deletes a call to a function
+ *  that only prefetches, and a loop whose body only does, as code with no effect. */
+[[gnu::always_inline]] inline void prefetchLine(const char* p)
 {
-    forEachCacheLine(p, n,
-                     [](const void* line) { __builtin_prefetch(line, static_cast<int>(For)); });
+#if defined(__x86_64__) || defined(__i386__)
+    asm volatile("prefetcht0 %0" : : "m"(*p));
+#else
+    __builtin_prefetch(p);
+    asm volatile("" : : "r"(p));
+#endif
 }
 
-/// prefetchBytes() of the whole of *p; nothing for a null p.
-template <TPrefetchFor For = TPrefetchFor::Read, class T>
-void prefetchObject(const T* p)
+template <size_t N, size_t... J>
+[[gnu::always_inline]] inline void prefetchOffsets(const char* bytes, std::index_sequence<J...>)
 {
-    if (p) prefetchBytes<For>(p, sizeof(T));
+    constexpr auto offsets = cacheLineOffsets<N>();
+    (prefetchLine(bytes + offsets[J]), ...);
+}
+}  // namespace detail
+
+/** Starts loading every cache line of *p (nothing for a null p): a loop bound by memory
+ *  requests what it reads a few iterations ahead, so that the misses overlap. A hint only: it
+ *  changes nothing. */
+template <class T>
+[[gnu::always_inline]] inline void prefetchObject(const T* p)
+{
+    if (!p) return;
+    detail::prefetchOffsets<sizeof(T)>(
+        reinterpret_cast<const char*>(p),
+        std::make_index_sequence<cacheLineOffsets<sizeof(T)>().size()>());
 }
 
 }  // namespace mrpt_vslam::core
