@@ -32,6 +32,6 @@ check() {
 }
 check libmrpt_vslam_multirobot.so 'CVisualLandmarksMap::associate(' \
   'CVisualLandmarksMap::prefetchAssociation(' 'ParticleFilterDataImpl<mrpt_vslam::multirobot::CMultiRobotVisualSLAM,' \
-  'CMultiRobotVisualSLAM::runStep('
+  'CMultiRobotVisualSLAM::runStep(' 'CMultiRobotVisualSLAM::forEachParticle('
 check libmrpt_vslam_omni_fastslam.so 'ParticleFilterDataImpl<mrpt_vslam::omni_fastslam::COmniFastSLAM,'
 exit $fail

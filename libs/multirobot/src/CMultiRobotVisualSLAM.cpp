@@ -282,7 +282,7 @@ std::vector<CMultiRobotVisualSLAM::TRobotReading> CMultiRobotVisualSLAM::robotRe
 void CMultiRobotVisualSLAM::weighRobotReadings(size_t k, const std::vector<TRobotReading>& readings)
 {
     if (readings.empty()) return;
-    core::parallelFor(m_particles.size(), m_threads, [&](size_t i) {
+    forEachParticle([&](size_t i) {
         auto& p = m_particles[i];
         const TPlanarTransform pose(p.d->poses[k]);
         for (const auto& r : readings) {
@@ -316,8 +316,7 @@ void CMultiRobotVisualSLAM::drawNoiseAhead()
 void CMultiRobotVisualSLAM::sampleMotion(size_t k, const core::TOdometryGaussian& motion)
 {
     const auto& noise = particleNoise();
-    core::parallelFor(
-        m_particles.size(), m_threads,
+    forEachParticle(
         [&](size_t i) {
             auto& pose = m_particles[i].d->poses[k];  // Alg. 1 line 18, p(x_t | x_{t-1}, u_t)
             const Eigen::Vector3d dx = motion.L * noise[i];
@@ -374,9 +373,21 @@ std::vector<TMeasurementCandidates> CMultiRobotVisualSLAM::searchCandidates(
 std::vector<TPose2D> CMultiRobotVisualSLAM::posesOf(size_t k) const
 {
     std::vector<TPose2D> poses(m_particles.size());
-    core::parallelFor(poses.size(), m_threads,
-                      [&](size_t i) { poses[i] = m_particles[i].d->poses[k]; });
+    forEachParticle([&](size_t i) { poses[i] = m_particles[i].d->poses[k]; });
     return poses;
+}
+
+void CMultiRobotVisualSLAM::forEachParticle(const std::function<void(size_t)>& body,
+                                            const std::function<void()>& first) const
+{
+    constexpr size_t kAhead = 4;
+    core::parallelForAhead(
+        m_particles.size(), m_threads,
+        [&](size_t i, size_t end) {
+            if (i + kAhead < end) core::prefetchObject(&m_particles[i + kAhead].d->poses);
+            body(i);
+        },
+        first);
 }
 
 void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandmarkMeasurement>& z)
@@ -414,8 +425,7 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussi
 {
     // x̂ = x_{t-1} ⊕ u for every particle; the search also covers 3σ of the motion noise
     std::vector<TPose2D> predicted(m_particles.size());
-    core::parallelFor(predicted.size(), m_threads,
-                      [&](size_t i) { predicted[i] = m_particles[i].d->poses[k] + motion.mean; });
+    forEachParticle([&](size_t i) { predicted[i] = m_particles[i].d->poses[k] + motion.mean; });
     auto candidates =
         searchCandidates(predicted, 3 * std::sqrt(motion.cov(0, 0) + motion.cov(1, 1)),
                          3 * std::sqrt(motion.cov(2, 2)), z);

@@ -11,6 +11,7 @@
 #include <mrpt_vslam/core/ParticleFilterDataImpl.h>
 #include <mrpt_vslam/multirobot/TeamParticle.h>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -189,6 +190,12 @@ class CMultiRobotVisualSLAM
     /// pfStandardProposal: multiplies each particle's weight by its robot readings' likelihood.
     void weighRobotReadings(size_t k, const std::vector<TRobotReading>& readings);
     std::vector<mrpt::math::TPose2D> posesOf(size_t k) const;
+    /** core::parallelFor() over the particles for a body that reads or writes their poses
+     *  and little else: the poses of the particle a few indices on in this thread's run are
+     *  requested before body(i) runs (the particles' data lie scattered in memory, and such a
+     *  loop is bound by the misses on them). */
+    void forEachParticle(const std::function<void(size_t)>& body,
+                         const std::function<void()>& first = {}) const;
     /// One step: every robot moves and measures (lines 7-9); `optimal` selects the proposal.
     void runStep(const mrpt::obs::CActionCollection* action,
                  const mrpt::obs::CSensoryFrame* observation,
