@@ -45,9 +45,9 @@ class WorkerPool {
         {
             const std::lock_guard<std::mutex> lock(m_mutex);
             m_body = &body;
-            // thread t's share first (parallelFor()), in small chunks: a thread the system
-            // holds back delays the loop by one chunk, not by its share
-            m_chunk = std::max<size_t>(1, n / (8 * threads));
+            // thread t's share first (parallelFor()), in chunks (takeChunk()): a thread the
+            // system holds back delays the loop by one chunk, not by its share
+            m_min_chunk = std::max<size_t>(1, n / (64 * threads));
             for (unsigned t = 0; t < threads; t++) {
                 m_shares[t].next = n * t / threads;
                 m_shares[t].end = n * (t + 1) / threads;
@@ -79,6 +79,11 @@ class WorkerPool {
 
   private:
     static constexpr std::chrono::microseconds kSpin{100};
+    /// The indices [next, end) of a thread's share not yet taken (a cache line each).
+    struct alignas(64) Share {
+        std::atomic<size_t> next{0};
+        size_t end = 0;
+    };
 
     /// Calls `busy` until it is false or kSpin has passed.
     template <class Busy>
@@ -115,13 +120,25 @@ class WorkerPool {
         const size_t shares = m_participants + 1;
         for (size_t s = 0; s < shares; s++) {
             Share& share = m_shares[(own + s) % shares];
-            for (;;) {
-                const size_t start = share.next.fetch_add(m_chunk);
-                if (start >= share.end) break;
-                runChunk(start, std::min(start + m_chunk, share.end));
-            }
+            size_t begin = 0, end = 0;
+            while (takeChunk(share, shares, begin, end)) runChunk(begin, end);
         }
         t_inside = false;
+    }
+
+    /** Takes the next chunk [begin, end) of a share: 1 / (2 shares) of what is left of it, at
+     *  least m_min_chunk. Large first (fewer chunk starts, where the body has not requested
+     *  anything ahead), small at the end, where the others may wait for the thread that took
+     *  the last chunk. */
+    bool takeChunk(Share& share, size_t shares, size_t& begin, size_t& end)
+    {
+        begin = share.next.load(std::memory_order_relaxed);
+        do {
+            if (begin >= share.end) return false;
+            end = std::min(share.end,
+                           begin + std::max(m_min_chunk, (share.end - begin) / (2 * shares)));
+        } while (!share.next.compare_exchange_weak(begin, end));
+        return true;
     }
 
     void runChunk(size_t begin, size_t end)
@@ -150,13 +167,8 @@ class WorkerPool {
     bool m_stop = false;
     std::atomic<uint64_t> m_generation{0};
     const std::function<void(size_t, size_t)>* m_body = nullptr;
-    size_t m_chunk = 1, m_participants = 0;
+    size_t m_min_chunk = 1, m_participants = 0;
     std::atomic<size_t> m_active{0};
-    /// The indices [next, end) of a thread's share not yet taken (a cache line each).
-    struct alignas(64) Share {
-        std::atomic<size_t> next{0};
-        size_t end = 0;
-    };
     std::vector<Share> m_shares;
     size_t m_failed_index = 0;
     std::exception_ptr m_failure;

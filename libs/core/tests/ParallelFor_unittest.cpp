@@ -45,6 +45,27 @@ TEST(ParallelFor, AThreadDoneWithItsShareTakesTheOthers)
     for (size_t i = 0; i < n; i++) ASSERT_EQ(calls[i].load(), 1) << "index " << i;
 }
 
+TEST(ParallelFor, ChunksShrinkAsEachShareEmpties)
+{
+    // The chunks are read from parallelForAhead()'s `end`, the end of the chunk being run: a
+    // quarter of a share first (two threads), never growing, the last no more than n / 128.
+    constexpr size_t n = 6400, share = n / 2, min_chunk = n / 128;
+    std::vector<std::atomic<size_t>> chunk_end(n);
+    mrpt_vslam::core::parallelForAhead(n, 2, [&](size_t i, size_t end) { chunk_end[i] = end; });
+    for (const size_t first : {size_t{0}, share}) {
+        std::vector<size_t> sizes;
+        for (size_t begin = first; begin < first + share; begin = chunk_end[begin]) {
+            ASSERT_GT(chunk_end[begin].load(), begin);
+            ASSERT_LE(chunk_end[begin].load(), first + share) << "a chunk across two shares";
+            sizes.push_back(chunk_end[begin] - begin);
+        }
+        EXPECT_EQ(sizes.front(), share / 4) << "share at " << first;
+        for (size_t c = 1; c < sizes.size(); c++)
+            EXPECT_LE(sizes[c], sizes[c - 1]) << "chunk " << c << " of the share at " << first;
+        EXPECT_LE(sizes.back(), min_chunk) << "share at " << first;
+    }
+}
+
 TEST(ParallelFor, ThrowsTheErrorOfTheLowestFailingIndex)
 {
     for (const unsigned threads : {1u, 2u, 4u}) {

@@ -11,7 +11,9 @@ unsigned resolveThreadCount(unsigned requested);
 /** Runs body(i) for every i in [0, n) on up to `threads` threads: the caller's and workers
  *  that sleep between loops. Thread t starts on the t-th of `threads` equal shares of [0, n)
  *  (so a loop over particles runs each where the loop before left it, in that core's cache),
- *  taking it in small chunks, and then takes the chunks left in the other shares.
+ *  taking it in chunks that shrink as the share empties (a 1 / (2 threads) part of what is
+ *  left, at least n / (64 threads)), and then takes the chunks left in the other shares: the
+ *  threads finish within about one small chunk of each other.
  *
  *  The bodies must not write state that another index reads or writes; then the result does
  *  not depend on the thread count. With threads <= 1, n <= 1, or inside another loop's body,
