@@ -380,11 +380,11 @@ std::vector<TPose2D> CMultiRobotVisualSLAM::posesOf(size_t k) const
 void CMultiRobotVisualSLAM::forEachParticle(const std::function<void(size_t)>& body,
                                             const std::function<void()>& first) const
 {
-    constexpr size_t kAhead = 4;
     core::parallelForAhead(
         m_particles.size(), m_threads,
         [&](size_t i, size_t end) {
-            if (i + kAhead < end) core::prefetchObject(&m_particles[i + kAhead].d->poses);
+            if (i + kParticlesAhead < end)
+                core::prefetchObject(&m_particles[i + kParticlesAhead].d->poses);
             body(i);
         },
         first);
@@ -603,7 +603,7 @@ void CMultiRobotVisualSLAM::runStep(
             performResampling(pf_options);
     }
     // a memory-bound loop: what particle i + 2·kAhead appends loaded, and then its path's slot
-    constexpr size_t kAhead = 4;
+    constexpr size_t kAhead = kParticlesAhead;
     core::parallelForAhead(m_particles.size(), m_threads, [&](size_t i, size_t end) {
         if (i + 2 * kAhead < end) {
             const TTeamParticle& ahead = *m_particles[i + 2 * kAhead].d;

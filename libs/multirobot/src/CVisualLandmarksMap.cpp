@@ -102,6 +102,21 @@ CVisualLandmarksMap::TAssociation CVisualLandmarksMap::evaluate(const TMapMeasur
     return TAssociation{id, D, L.logGaussian(D)};             // Eq. 13
 }
 
+namespace {
+/// associate()'s first requests for one candidate list: the table entries of its first
+/// 2·ahead candidates (kPrefetchEntries) or the landmarks of its first `ahead`
+/// (kPrefetchLandmarks); inlined, so that each caller holds the requests
+[[gnu::always_inline]] inline void prefetchFirstCandidates(
+    const LandmarkStore& store, const std::vector<TLandmarkCandidate>& cs,
+    CVisualLandmarksMap::TPrefetchStage stage, size_t ahead)
+{
+    if (stage == CVisualLandmarksMap::kPrefetchEntries)
+        for (size_t i = 0; i < std::min(2 * ahead, cs.size()); i++) store.prefetchEntry(cs[i].id);
+    else
+        for (size_t i = 0; i < std::min(ahead, cs.size()); i++) store.prefetchLandmark(cs[i].id);
+}
+}  // namespace
+
 std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     const TMapMeasurement& m, const TMeasurementCandidates& candidates,
     const std::vector<uint32_t>* excluded, int64_t identity) const
@@ -126,8 +141,8 @@ std::optional<CVisualLandmarksMap::TAssociation> CVisualLandmarksMap::associate(
     std::optional<TBest> best;
     const auto& cs = candidates.candidates;
     constexpr size_t kAhead = kPrefetchAhead;
-    for (size_t i = 0; i < std::min(2 * kAhead, cs.size()); i++) m_store.prefetchEntry(cs[i].id);
-    for (size_t i = 0; i < std::min(kAhead, cs.size()); i++) m_store.prefetchLandmark(cs[i].id);
+    prefetchFirstCandidates(m_store, cs, kPrefetchEntries, kAhead);
+    prefetchFirstCandidates(m_store, cs, kPrefetchLandmarks, kAhead);
     for (size_t i = 0; i < cs.size(); i++) {
         const auto& c = cs[i];
         if (best && c.E > best->E) break;
@@ -157,15 +172,8 @@ void CVisualLandmarksMap::prefetchAssociation(const std::vector<TMeasurementCand
         m_store.prefetchTable();
         return;
     }
-    for (const auto& c : candidates) {
-        const auto& cs = c.candidates;
-        if (stage == kPrefetchEntries)
-            for (size_t i = 0; i < std::min(2 * kPrefetchAhead, cs.size()); i++)
-                m_store.prefetchEntry(cs[i].id);
-        else
-            for (size_t i = 0; i < std::min(kPrefetchAhead, cs.size()); i++)
-                m_store.prefetchLandmark(cs[i].id);
-    }
+    for (const auto& c : candidates)
+        prefetchFirstCandidates(m_store, c.candidates, stage, kPrefetchAhead);
 }
 
 std::vector<std::optional<CVisualLandmarksMap::TAssociation>> CVisualLandmarksMap::associateJointly(

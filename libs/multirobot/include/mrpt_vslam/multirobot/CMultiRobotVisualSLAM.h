@@ -191,11 +191,14 @@ class CMultiRobotVisualSLAM
     void weighRobotReadings(size_t k, const std::vector<TRobotReading>& readings);
     std::vector<mrpt::math::TPose2D> posesOf(size_t k) const;
     /** core::parallelFor() over the particles for a body that reads or writes their poses
-     *  and little else: the poses of the particle a few indices on in this thread's run are
+     *  and little else: the poses of the particle kParticlesAhead on in this thread's run are
      *  requested before body(i) runs (the particles' data lie scattered in memory, and such a
      *  loop is bound by the misses on them). */
     void forEachParticle(const std::function<void(size_t)>& body,
                          const std::function<void()>& first = {}) const;
+    /// How many particles on in its run a loop over the particles requests a particle's data
+    /// (forEachParticle(), the path step of runStep()): enough for the misses to overlap
+    static constexpr size_t kParticlesAhead = 4;
     /// One step: every robot moves and measures (lines 7-9); `optimal` selects the proposal.
     void runStep(const mrpt::obs::CActionCollection* action,
                  const mrpt::obs::CSensoryFrame* observation,
