@@ -3,23 +3,25 @@
 #   1. stock simul-landmarks (share/mrpt-vslam/config/peer-comparison/simul-landmarks-noise-*.ini)
 #      writes one robot's rawlog (action / sensory-frame pairs: CActionRobotMovement2D +
 #      CObservationBearingRange) per noise level (low, medium, high range and bearing std) with
-#      landmark IDs kept and hidden (ID -1): 300 steps on a 7.2 m square, 40 landmarks, seed 1;
+#      landmark IDs kept and hidden (ID -1): 300 steps on a 7.2 m square, 40 landmarks, one world
+#      per simulation seed;
 #      its ground truth becomes NAME.groundtruth.tum and NAME.landmarks.txt beside NAME.rawlog;
 #   2. stock kf-slam (EKF, CRangeBearingKFSLAM2D, kf-slam-2d.ini with the rawlog's sensor noise;
 #      readings with an ID are associated by it, the others to the nearest landmark within a
 #      Mahalanobis gate) on each rawlog, timed; its printed poses and final 3D scene become a run
-#      folder (estimated_path.tum, map.txt);
+#      folder (estimated_path.tum, map.txt); where it diverges (NaN poses), diverged.txt instead;
 #   3. multirobot-vslam (multirobot-vslam/range-bearing.ini) on each rawlog, per seed, timed;
 #   4. vslam-eval on every run folder, and the table of both to doc/results/range-bearing.md (or
 #      $RESULTS): position RMSE (unaligned and SE(2)-aligned), landmarks mapped vs true, landmark error mean (one-to-one
 #      matching within vslam-eval's 1.5 m), run time (wall clock of the process), and the turn of
 #      each path's best alignment to the truth.
 # Writes rawlogs, run folders (metrics.json, paths.png, ...) and logs under
-# out/reproduce-range-bearing/ (or $OUT). Builds first (scripts/setup.sh). Takes about 2 min
-# (30 rawlogs; each tool well under a second per rawlog at the default SEEDS).
-# Environment: OUT, SIM_SEEDS (simulation seeds, default "1 2 3 4 5": one rawlog per noise level,
-# IDs kept or hidden and seed), SEEDS (multirobot-vslam seeds, default 1; several: the table has
-# their mean),
+# out/reproduce-range-bearing/ (or $OUT). Builds first (scripts/setup.sh). Takes about 5 min
+# (120 rawlogs; each tool well under a second per rawlog at the default SEEDS).
+# Environment: OUT, SIM_SEEDS (simulation seeds, default 1 to 20: one rawlog per noise level,
+# IDs kept or hidden and seed; twenty worlds, because which tool is the more accurate on a
+# single world changes from one world to the next), SEEDS (multirobot-vslam seeds, default 1;
+# several: the table has their mean),
 # NOISE_LEVELS (default "low medium high"), TOOLS (default "kf-slam multirobot-vslam"), RESULTS.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -33,7 +35,7 @@ BIN="$BUILD_DIR/bin"
 CONFIGS="$REPO_DIR/share/mrpt-vslam/config"
 PEER="$CONFIGS/peer-comparison"
 SEEDS="${SEEDS:-1}"
-SIM_SEEDS="${SIM_SEEDS:-1 2 3 4 5}"
+SIM_SEEDS="${SIM_SEEDS:-$(seq -s ' ' 1 20)}"
 NOISE_LEVELS="${NOISE_LEVELS:-low medium high}"
 TOOLS="${TOOLS:-kf-slam multirobot-vslam}"
 RESULTS="${RESULTS:-$REPO_DIR/doc/results/range-bearing.md}"
@@ -146,7 +148,7 @@ run_kf_slam() {  # run_kf_slam NAME NOISE
   local dir="$OUT/kf-slam/$name" sim="$PEER/simul-landmarks-noise-$noise.ini"
   local steps=$(( $(ini_value "$sim" nSteps) - 1 ))
   mkdir -p "$dir"
-  rm -f "$dir"/*.tum "$dir/map.txt" "$dir/metrics.json"
+  rm -f "$dir"/*.tum "$dir/map.txt" "$dir/metrics.json" "$dir/summary.txt" "$dir/diverged.txt"
   ini_copy "$PEER/kf-slam-2d.ini" "$dir/kf-slam.ini" logOutput_dir="$dir/kf-slam-out" \
     SAVE_LOG_FREQUENCY=$(( steps - 1 )) std_sensor_range="$(ini_value "$sim" stdRange)" \
     std_sensor_yaw_deg="$(ini_value "$sim" stdYaw_deg)"
@@ -165,13 +167,22 @@ run_kf_slam() {  # run_kf_slam NAME NOISE
          END { if (k != n) { print "kf-slam printed " k " poses for " n " steps" > "/dev/stderr"; exit 1 } }' \
       "$DATA/$name.stamps.txt" - | { echo "# timestamp x y z qx qy qz qw"; cat; } \
       > "$dir/estimated_path.tum"
+  awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f\n", b - a }' > "$dir/wall_s.txt"
+  printf '{"app": "kf-slam", "config": "%s", "rawlog": "%s", "ground_truth": "%s"}\n' \
+    "$dir/kf-slam.ini" "$DATA/$name.rawlog" "$DATA/$name.rawlog" > "$dir/run.json"
+  # a filter that diverged prints NaN poses from then on: diverged.txt holds the first such
+  # step, and there is nothing to evaluate
+  local diverged
+  diverged=$(awk 'NR > 1 && tolower($0) ~ /nan/ { print NR - 2; exit }' "$dir/estimated_path.tum")
+  if [ -n "$diverged" ]; then
+    echo "$diverged" > "$dir/diverged.txt"
+    echo "kf-slam diverged on $name: NaN poses from step $diverged" >&2
+    return
+  fi
   local last
   last=$(printf '%05d' $(( steps - 1 )))
   perl -e "$SCENE_TO_MAP" "$dir/kf-slam-out/kf_state_$last.3Dscene" \
     "$dir/kf-slam-out/full_cov_$last.txt" > "$dir/map.txt"
-  awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f\n", b - a }' > "$dir/wall_s.txt"
-  printf '{"app": "kf-slam", "config": "%s", "rawlog": "%s", "ground_truth": "%s"}\n' \
-    "$dir/kf-slam.ini" "$DATA/$name.rawlog" "$DATA/$name.rawlog" > "$dir/run.json"
   "$BIN/vslam-eval" "$dir" --ground-truth "$DATA/$name.rawlog" > "$dir/summary.txt"
 }
 
@@ -218,6 +229,17 @@ cells() {
           printf " %s | %s | %s | %s | %s |", v[1] == "-" ? "-" : sprintf("%.3f", v[1]),
             v[2] == "-" ? "-" : sprintf("%.3f", v[2]), lm,
             v[6] == "-" ? "-" : sprintf("%.3f", v[6]), v[7] == "-" ? "-" : sprintf("%.2f", v[7]) }'
+}
+
+# kf_cells NAME: cells() of kf-slam's run on rawlog NAME, or, where it diverged, the step its
+# poses became NaN in the RMSE cell
+kf_cells() {
+  local d="$OUT/kf-slam/$1"
+  if [ -f "$d/diverged.txt" ]; then
+    echo " diverged: NaN from step $(cat "$d/diverged.txt") | - | - | - | $(cat "$d/wall_s.txt") |"
+  else
+    cells "$d"
+  fi
 }
 
 # --- run -----------------------------------------------------------------------------------------
@@ -274,29 +296,35 @@ mkdir -p "$(dirname "$RESULTS")"
   for entry in "${NAMES[@]}"; do
     IFS=: read -r name noise ids sim <<< "$entry"
     s="$PEER/simul-landmarks-noise-$noise.ini"
-    echo "| $name | $ids | $noise ($(ini_value "$s" stdRange) m, $(ini_value "$s" stdYaw_deg)°) | $sim |$(cells "$OUT/kf-slam/$name")$(cells $(mrv_dirs "$name"))"
+    echo "| $name | $ids | $noise ($(ini_value "$s" stdRange) m, $(ini_value "$s" stdYaw_deg)°) | $sim |$(kf_cells "$name")$(cells $(mrv_dirs "$name"))"
   done
   if [[ " $TOOLS " == *" kf-slam "* && " $TOOLS " == *" multirobot-vslam "* ]]; then
     echo
     echo "## Over the simulation seeds"
     echo
-    echo "Means over the simulation seeds ($SIM_SEEDS), and on how many rawlogs multirobot-vslam's" \
-      "figure is at most kf-slam's (the RMSE to the millimetre)."
+    echo "Means over the simulation seeds ($SIM_SEEDS) where kf-slam finished, and on how many" \
+      "rawlogs multirobot-vslam's figure is at most kf-slam's (the RMSE to the millimetre; where" \
+      "kf-slam diverged, multirobot-vslam's figure counts as at most kf-slam's)."
     echo
-    echo "| IDs | noise | kf-slam RMSE [m] | multirobot-vslam RMSE [m] | RMSE ≤ kf-slam's | kf-slam aligned RMSE [m] | multirobot-vslam aligned RMSE [m] | aligned RMSE ≤ kf-slam's | kf-slam landmark error [m] | multirobot-vslam landmark error [m] | landmark error ≤ kf-slam's |"
-    echo "|---|---|---|---|---|---|---|---|---|---|---|"
+    echo "| IDs | noise | kf-slam diverged | kf-slam RMSE [m] | multirobot-vslam RMSE [m] | RMSE ≤ kf-slam's | kf-slam aligned RMSE [m] | multirobot-vslam aligned RMSE [m] | aligned RMSE ≤ kf-slam's | kf-slam landmark error [m] | multirobot-vslam landmark error [m] | landmark error ≤ kf-slam's |"
+    echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
     for noise in $NOISE_LEVELS; do
       for ids in kept hidden; do
         for sim in $SIM_SEEDS; do
           name="range-bearing-ids-$ids-noise-$noise-sim$sim"
           echo "$(metrics "$OUT/kf-slam/$name") $(cells $(mrv_dirs "$name") | tr -d '|' | awk '{ print $1, $2, $8 }')"
         done | awk -v ids="$ids" -v noise="$noise" '
-          # kf-slam: rmse aligned est true matched error; multirobot-vslam: rmse aligned error
-          { n++; kr += $1; ka += $2; ke += $6; mr += $7; ma += $8; me += $9
-            wr += mm($7) <= mm($1); wa += mm($8) <= mm($2); we += mm($9) <= mm($6) }
+          # kf-slam: rmse aligned est true matched error ("-": diverged); multirobot-vslam: rmse
+          # aligned error
+          { n++; have = $7 != "-" && $8 != "-" && $9 != "-" }
+          $1 == "-" { dv++; wr += have; wa += have; we += have; next }
+          { m++; kr += $1; ka += $2; ke += $6; mr += $7; ma += $8; me += $9
+            if (have) { wr += mm($7) <= mm($1); wa += mm($8) <= mm($2); we += mm($9) <= mm($6) } }
           function mm(v) { return int(v * 1000 + 0.5) }
-          END { printf "| %s | %s | %.3f | %.3f | %d of %d | %.3f | %.3f | %d of %d | %.3f | %.3f | %d of %d |\n",
-                  ids, noise, kr / n, mr / n, wr, n, ka / n, ma / n, wa, n, ke / n, me / n, we, n }'
+          function mean(v) { return m ? sprintf("%.3f", v / m) : "-" }
+          END { printf "| %s | %s | %d of %d | %s | %s | %d of %d | %s | %s | %d of %d | %s | %s | %d of %d |\n",
+                  ids, noise, dv, n, mean(kr), mean(mr), wr, n, mean(ka), mean(ma), wa, n, mean(ke),
+                  mean(me), we, n }'
       done
     done
     echo
@@ -327,7 +355,8 @@ same = "-" if None in (kf, mr) else ("yes" if kf * mr > 0 else "no")
 print(f"| {os.path.basename(sys.argv[1])} | {cell(kf)} | {cell(mr)} | {same} |")
 PY
     done)"
-    echo "The same sign on $(grep -c '| yes |$' <<< "$turns") of ${#NAMES[@]} rawlogs."
+    echo "The same sign on $(grep -c '| yes |$' <<< "$turns") of the" \
+      "$(grep -c -E '\| (yes|no) \|$' <<< "$turns") rawlogs both tools finished."
     echo
     echo "| rawlog | kf-slam turn [deg] | multirobot-vslam turn [deg] | same sign |"
     echo "|---|---|---|---|"
