@@ -242,6 +242,15 @@ kf_cells() {
   fi
 }
 
+# mrv_figures NAME: "rmse aligned_rmse error_mean" of multirobot-vslam on rawlog NAME, as its
+# table cells show them (mean over the seeds, rounded)
+mrv_figures() {
+  cells $(mrv_dirs "$1") | tr -d '|' | awk '{ print $1, $2, $8 }'
+}
+
+# awk function mm(v): v [m] in whole millimetres, the resolution the tables compare tools at
+MM_AWK='function mm(v) { return int(v * 1000 + 0.5) }'
+
 # --- run -----------------------------------------------------------------------------------------
 NAMES=()
 for noise in $NOISE_LEVELS; do
@@ -312,15 +321,14 @@ mkdir -p "$(dirname "$RESULTS")"
       for ids in kept hidden; do
         for sim in $SIM_SEEDS; do
           name="range-bearing-ids-$ids-noise-$noise-sim$sim"
-          echo "$(metrics "$OUT/kf-slam/$name") $(cells $(mrv_dirs "$name") | tr -d '|' | awk '{ print $1, $2, $8 }')"
-        done | awk -v ids="$ids" -v noise="$noise" '
+          echo "$(metrics "$OUT/kf-slam/$name") $(mrv_figures "$name")"
+        done | awk -v ids="$ids" -v noise="$noise" "$MM_AWK"'
           # kf-slam: rmse aligned est true matched error ("-": diverged); multirobot-vslam: rmse
           # aligned error
           { n++; have = $7 != "-" && $8 != "-" && $9 != "-" }
           $1 == "-" { dv++; wr += have; wa += have; we += have; next }
           { m++; kr += $1; ka += $2; ke += $6; mr += $7; ma += $8; me += $9
             if (have) { wr += mm($7) <= mm($1); wa += mm($8) <= mm($2); we += mm($9) <= mm($6) } }
-          function mm(v) { return int(v * 1000 + 0.5) }
           function mean(v) { return m ? sprintf("%.3f", v / m) : "-" }
           END { printf "| %s | %s | %d of %d | %s | %s | %d of %d | %s | %s | %d of %d | %s | %s | %d of %d |\n",
                   ids, noise, dv, n, mean(kr), mean(mr), wr, n, mean(ka), mean(ma), wa, n, mean(ke),
@@ -343,13 +351,11 @@ mkdir -p "$(dirname "$RESULTS")"
         kept="range-bearing-ids-kept-noise-$noise-sim$sim"
         hidden="range-bearing-ids-hidden-noise-$noise-sim$sim"
         echo "$(metrics "$OUT/kf-slam/$kept" | cut -d' ' -f1) $(metrics "$OUT/kf-slam/$hidden" | cut -d' ' -f1)" \
-          "$(cells $(mrv_dirs "$kept") | tr -d '|' | awk '{ print $1 }')" \
-          "$(cells $(mrv_dirs "$hidden") | tr -d '|' | awk '{ print $1 }')"
-      done | awk -v noise="$noise" '
+          "$(mrv_figures "$kept" | cut -d' ' -f1) $(mrv_figures "$hidden" | cut -d' ' -f1)"
+      done | awk -v noise="$noise" "$MM_AWK"'
         # RMSE of kf-slam kept, kf-slam hidden, multirobot-vslam kept, multirobot-vslam hidden
         $1 == "-" || $2 == "-" || $3 == "-" || $4 == "-" { next }
         { n++; kk += mm($1) > mm($2); mk += mm($3) > mm($2); mh += mm($4) > mm($2) }
-        function mm(v) { return int(v * 1000 + 0.5) }
         END { printf "| %s | %d | %d | %d | %d |\n", noise, n, kk, mk, mh }'
     done
     echo
