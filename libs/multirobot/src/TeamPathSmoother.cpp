@@ -34,6 +34,7 @@ void TeamPathSmoother::TOptions::loadFromConfigFile(const mrpt::config::CConfigF
     MRPT_LOAD_CONFIG_VAR(huber, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(odometry_scale_std, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(motion_cov_factor, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(zero_odometry_stands_still, bool, cfg, section);
     MRPT_LOAD_CONFIG_VAR(reanchor_gap, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(reanchor_gain, double, cfg, section);
 
@@ -64,6 +65,7 @@ void TeamPathSmoother::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase&
     cfg.write(section, "huber", huber);
     cfg.write(section, "odometry_scale_std", odometry_scale_std);
     cfg.write(section, "motion_cov_factor", motion_cov_factor);
+    cfg.write(section, "zero_odometry_stands_still", zero_odometry_stands_still);
     cfg.write(section, "reanchor_gap", reanchor_gap);
     cfg.write(section, "reanchor_gain", reanchor_gain);
 }
@@ -185,6 +187,8 @@ TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticl
     const double sxy = std::max(m_initialStdXY, fixed);
     const double sphi = std::max(m_initialStdPhi, fixed);
     const double scaleStd = options.odometry_scale_std;
+    const Eigen::Matrix3d standing =
+        Eigen::Vector3d(fixed * fixed, fixed * fixed, fixed * fixed).asDiagonal();
 
     TSmoothedTeam result;
     result.odometry_scales.assign(scaleStd > 0 ? K : 0, Eigen::Vector2d(1, 1));
@@ -213,7 +217,11 @@ TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticl
         for (size_t step = 1; step < path.size(); step++)
             for (size_t k = 0; k < K; k++) {
                 const core::TOdometryGaussian& u = m_motions[step - 1][k];
-                const Eigen::Matrix3d cov = u.cov * options.motion_cov_factor;
+                const bool stood = u.mean.x == 0 && u.mean.y == 0 && u.mean.phi == 0;
+                const Eigen::Matrix3d cov =
+                    options.zero_odometry_stands_still && stood
+                        ? standing
+                        : Eigen::Matrix3d(u.cov * options.motion_cov_factor);
                 if (scaleStd > 0)
                     graph.addOdometry(node(step - 1, k), node(step, k), u.mean, cov, k);
                 else

@@ -243,6 +243,58 @@ TEST(TeamPathSmoother, SmoothingReanchorsAPartDisplacedAfterAGap)
     });
 }
 
+// A robot stands for ten steps (odometry increments of exactly zero, with a noise floor of
+// 1 cm and 1 deg) reading four posts 3 m away, each frame's readings shifted by ±2 cm as if
+// read from elsewhere; then drives 0.2 m by odometry to where the readings put it at 0.23 m.
+// With zero_odometry_stands_still the standing poses stay at the start, whatever the readings
+// say; without, they follow the readings. The moving step still follows its readings.
+TEST(TeamPathSmoother, ZeroOdometryTiesTheStandingPosesToTheStart)
+{
+    TeamPathSmoother smoother(CVisualLandmarksMap{});
+    smoother.options.map_along_path = true;
+    smoother.options.smooth_paths = true;
+    const std::vector<mrpt::math::TPose2D> start{{0, 0, 0}};
+    smoother.onReset(start, 0, 0);
+    const std::vector<Eigen::Vector2d> posts{{3, 0}, {0, 3}, {-3, 0}, {0, -3}};
+    auto readingsFrom = [&](const Eigen::Vector2d& at) {
+        std::vector<TLandmarkMeasurement> z;
+        for (const auto& post : posts) {
+            TLandmarkMeasurement m;
+            m.z << post - at, 0;
+            m.R = Eigen::Matrix3d::Identity() * 1e-4;
+            z.push_back(m);
+        }
+        return z;
+    };
+    mrpt_vslam::core::TOdometryGaussian still;
+    still.cov = Eigen::Vector3d(1e-4, 1e-4, std::pow(M_PI / 180, 2)).asDiagonal();
+    mrpt_vslam::core::TOdometryGaussian forward = still;
+    forward.mean.x = 0.2;
+    TTeamParticle p;
+    p.path.append(0, teamPoses(start));
+    const size_t standing = 10;
+    for (size_t step = 1; step <= standing; step++) {
+        const double shift = step % 2 ? 0.02 : -0.02;
+        smoother.onRobotStep(step, 0, still, readingsFrom({shift, shift}), {});
+        p.path.append(static_cast<double>(step), teamPoses(start));
+    }
+    smoother.onRobotStep(standing + 1, 0, forward, readingsFrom({0.23, 0}), {});
+    p.path.append(static_cast<double>(standing + 1), teamPoses({{0.2, 0, 0}}));
+
+    auto farthestStanding = [&](const TeamPathSmoother::TSmoothedTeam& s) {
+        double d = 0;
+        for (size_t step = 1; step <= standing; step++)
+            d = std::max(d, positionError(s.paths[0][step].second, start[0]));
+        return d;
+    };
+    const auto tied = smoother.smoothPaths(p);
+    smoother.options.zero_odometry_stands_still = false;
+    const auto unbound = smoother.smoothPaths(p);
+    EXPECT_LT(farthestStanding(tied), 0.005);
+    EXPECT_GT(farthestStanding(unbound), 0.02);
+    EXPECT_GT(tied.paths[0][standing + 1].second.x, 0.215);
+}
+
 TEST(TeamPathSmoother, OptionsLoadFromTheirSectionAndRejectImpossibleValues)
 {
     mrpt::config::CConfigFileMemory ini(R"([TeamPathSmoother]
@@ -255,6 +307,7 @@ rounds = 3
 huber = 2
 odometry_scale_std = 0.3
 motion_cov_factor = 0.5
+zero_odometry_stands_still = false
 reanchor_gap = 10
 reanchor_gain = 0.2
 )");
@@ -269,6 +322,7 @@ reanchor_gain = 0.2
     EXPECT_EQ(o.huber, 2);
     EXPECT_EQ(o.odometry_scale_std, 0.3);
     EXPECT_EQ(o.motion_cov_factor, 0.5);
+    EXPECT_FALSE(o.zero_odometry_stands_still);
     EXPECT_EQ(o.reanchor_gap, 10);
     EXPECT_EQ(o.reanchor_gain, 0.2);
     // what saveToConfigFile() writes loads back the same
@@ -281,6 +335,7 @@ reanchor_gain = 0.2
     EXPECT_EQ(back.reanchor_gain, 0.2);
     EXPECT_TRUE(back.smooth_paths);
     EXPECT_TRUE(back.nearest_pair_first);
+    EXPECT_FALSE(back.zero_odometry_stands_still);
 
     EXPECT_EQ(errorOf(""), "") << "the defaults are valid";
     EXPECT_NE(errorOf("D0 = 0").find("[TeamPathSmoother] D0: must be > 0"), std::string::npos);

@@ -50,6 +50,12 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
         /// turn; 0: no scales), and the factor on the odometry covariance.
         double odometry_scale_std = 0;
         double motion_cov_factor = 1;
+        /// smoothPaths(): an odometry increment of exactly zero says the robot stood still
+        /// (wheels that did not turn): its two poses are tied as tightly as the first start
+        /// pose, not by the increment's covariance (a motion model's noise floor). More
+        /// accurate on the simul-landmarks rawlogs, which start standing, and on MRCLAM
+        /// (doc/multirobot.md §3).
+        bool zero_odometry_stands_still = true;
         /// smoothPaths(): a robot's readings more than this apart [s] (0: never) split its
         /// path; each round, a part after such a gap is moved onto the robot's odometry from the
         /// part before when that raises the fraction of its readings that fit a landmark also
@@ -111,9 +117,10 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
      *  the current paths (mapAlongPath()'s rules, the landmarks below the count threshold left
      *  out), then solve the PlanarPoseLandmarkGraph of the start poses (the first robot's
      *  fixed, the others with the filter's initial_std_*), the odometry Gaussians (covariance
-     *  × options.motion_cov_factor; with options.odometry_scale_std, scaled by one distance and
-     *  one turn scale per robot, estimated with the rest), the readings of the mapped
-     *  landmarks and of the other robots (Huber); with options.reanchor_gap,
+     *  × options.motion_cov_factor, a zero increment as tight as the first start pose with
+     *  options.zero_odometry_stands_still; with options.odometry_scale_std, scaled by one
+     *  distance and one turn scale per robot, estimated with the rest), the readings of the
+     *  mapped landmarks and of the other robots (Huber); with options.reanchor_gap,
      *  reanchorAfterGaps() after each mapping; finally map along the result.
      *  \pre registered with the filter before its reset() */
     TSmoothedTeam smoothPaths(const TTeamParticle& p) const;
