@@ -363,10 +363,13 @@ mkdir -p "$(dirname "$RESULTS")"
     echo
     echo "The angle [deg] of the SE(2) alignment that fits each path best to the truth (vslam-eval's" \
       '`aligned_se2.alignment.yaw_deg`; multirobot-vslam: the mean over its seeds). Both tools' \
-      "start at the true pose; what turns a whole path is the heading the data leave uncertain" \
-      "(the first readings are taken after odometry steps of $(ini_value "$first" odometryNoisePhi_std_deg)°" \
-      "std each); where the two tools turn the same way, by amounts of the same order, the turn is" \
-      "the data's, and it is most of the unaligned RMSE (compare the aligned RMSE)."
+      "start at the true pose; what turns a whole path is the heading the data leave uncertain." \
+      "simul-landmarks' robot stands for its first few readings, with odometry increments of exactly" \
+      "zero that the rawlog still gives $(ini_value "$first" odometryNoisePhi_std_deg)° std each;" \
+      "multirobot-vslam's smoothing takes them as standing (zero_odometry_stands_still," \
+      "doc/multirobot.md), kf-slam as steps of that noise; after them, each step's odometry has that noise." \
+      "Where the two tools turn the same way, by amounts of the same order, the turn is the data's," \
+      "and it is most of the unaligned RMSE (compare the aligned RMSE)."
     echo
     turns="$(for entry in "${NAMES[@]}"; do
       IFS=: read -r name noise ids sim <<< "$entry"
