@@ -367,7 +367,8 @@ mkdir -p "$(dirname "$RESULTS")"
       "simul-landmarks' robot stands for its first few readings, with odometry increments of exactly" \
       "zero that the rawlog still gives $(ini_value "$first" odometryNoisePhi_std_deg)° std each;" \
       "multirobot-vslam's smoothing takes them as standing (zero_odometry_stands_still," \
-      "doc/multirobot.md), kf-slam as steps of that noise; after them, each step's odometry has that noise." \
+      "doc/multirobot.md), kf-slam as steps of that noise; after them, each step's odometry" \
+      "has that noise." \
       "Where the two tools turn the same way, by amounts of the same order, the turn is the data's," \
       "and it is most of the unaligned RMSE (compare the aligned RMSE)."
     echo
