@@ -186,9 +186,10 @@ TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticl
     const double fixed = 1e-3;
     const double sxy = std::max(m_initialStdXY, fixed);
     const double sphi = std::max(m_initialStdPhi, fixed);
+    const Eigen::Matrix3d spread = Eigen::Vector3d(sxy * sxy, sxy * sxy, sphi * sphi).asDiagonal();
+    // also the tie of a robot that stood (zero_odometry_stands_still)
+    const Eigen::Matrix3d exact = Eigen::Vector3d::Constant(fixed * fixed).asDiagonal();
     const double scaleStd = options.odometry_scale_std;
-    const Eigen::Matrix3d standing =
-        Eigen::Vector3d(fixed * fixed, fixed * fixed, fixed * fixed).asDiagonal();
 
     TSmoothedTeam result;
     result.odometry_scales.assign(scaleStd > 0 ? K : 0, Eigen::Vector2d(1, 1));
@@ -206,11 +207,8 @@ TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticl
         map.landmarks().forEach([&](uint32_t id, const TVisualLandmark& lm) {
             pointOf[id] = graph.addPoint(lm.mean.head<2>());
         });
-        for (size_t k = 0; k < K; k++) {
-            const double s = k == 0 ? fixed : sxy, a = k == 0 ? fixed : sphi;
-            graph.addPosePrior(node(0, k), m_startPoses[k],
-                               Eigen::Vector3d(s * s, s * s, a * a).asDiagonal());
-        }
+        for (size_t k = 0; k < K; k++)
+            graph.addPosePrior(node(0, k), m_startPoses[k], k == 0 ? exact : spread);
         for (const auto& initial : result.odometry_scales)
             graph.addOdometryScale(initial, {1, 1},
                                    Eigen::Matrix2d::Identity() * scaleStd * scaleStd);
@@ -220,7 +218,7 @@ TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticl
                 const bool stood = u.mean.x == 0 && u.mean.y == 0 && u.mean.phi == 0;
                 const Eigen::Matrix3d cov =
                     options.zero_odometry_stands_still && stood
-                        ? standing
+                        ? exact
                         : Eigen::Matrix3d(u.cov * options.motion_cov_factor);
                 if (scaleStd > 0)
                     graph.addOdometry(node(step - 1, k), node(step, k), u.mean, cov, k);
