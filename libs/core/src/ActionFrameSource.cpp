@@ -76,18 +76,32 @@ void ActionFrameSource::emitPending(mrpt::obs::CActionCollection::Ptr& actions,
     actions = mrpt::obs::CActionCollection::Create();
     for (size_t k = 0; k < m_odometry.size(); k++) {
         mrpt::obs::CActionRobotMovement2D move;
-        move.timestamp = m_pending_time;
         if (m_stand_still_without_odometry && !m_odometry_since_last_step[k]) {
-            move.poseChange = mrpt::poses::CPosePDFGaussian::Create();  // zero mean and covariance
+            move = standingMove();
         } else {
             move.computeFromOdometry(*m_odometry[k] - *m_odometry_at_last_step[k], m_motion_model);
             m_odometry_at_last_step[k] = m_odometry[k];
         }
+        move.timestamp = m_pending_time;
         m_odometry_since_last_step[k] = false;
         actions->insert(move);
     }
     frame = m_pending;
     m_pending.reset();
+}
+
+mrpt::obs::CActionRobotMovement2D ActionFrameSource::standingMove()
+{
+    mrpt::obs::CActionRobotMovement2D move;
+    move.poseChange = mrpt::poses::CPosePDFGaussian::Create();  // zero mean and covariance
+    return move;
+}
+
+mrpt::obs::CActionCollection::Ptr ActionFrameSource::standingStill() const
+{
+    auto actions = mrpt::obs::CActionCollection::Create();
+    for (size_t k = 0; k < m_odometry.size(); k++) actions->insert(standingMove());
+    return actions;
 }
 
 mrpt::obs::CActionCollection::Ptr ActionFrameSource::afterCarried(
@@ -120,7 +134,14 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
 {
     for (TRawlogEntry e; m_reader.next(e);) {
         if (e.actions || e.observations) {  // format #1
-            if (!e.actions) continue;
+            if (!e.actions) {
+                // no action since the previous frame (or the start): the robot has not moved,
+                // unless by odometry carried from an action without a frame
+                actions = m_carried ? m_carried : standingStill();
+                m_carried.reset();
+                frame = e.observations;
+                return true;
+            }
             if (!e.actions->getBestMovementEstimation())
                 throw std::runtime_error(m_reader.file() + ": entry " + std::to_string(e.index) +
                                          " has an action collection without odometry");

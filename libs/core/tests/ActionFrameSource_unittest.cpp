@@ -5,6 +5,7 @@
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose2D.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
@@ -125,7 +126,6 @@ TEST(ActionFrameSource, OdometryWithoutAFrameIsComposedIntoTheNextStep)
     {
         mrpt::io::CFileGZOutputStream f(file);
         auto ar = mrpt::serialization::archiveFrom(f);
-        ar << frame();                       // no motion before it: passed over
         ar << forward(1.0) << forward(2.0);  // the first has no frame
         ar << frame() << forward(0.5) << frame();
     }
@@ -147,6 +147,39 @@ TEST(ActionFrameSource, OdometryWithoutAFrameIsComposedIntoTheNextStep)
         *forward(2.0).getBestMovementEstimation()->poseChange);
     EXPECT_GT(steps[0].cov.trace(), second.cov.trace());
     EXPECT_NEAR(steps[1].mean.x(), 0.5, 1e-12);
+}
+
+// A frame with no action before it: at the start, or right after another frame, the robot has
+// not moved (a step that stands still); after an action with no frame of its own, it moves by
+// that action's odometry.
+TEST(ActionFrameSource, AFrameWithoutAnActionBeforeItStandsStill)
+{
+    mrpt_vslam::test::ScratchFolder scratch("ActionFrameSource_unittest");
+    const std::string file = scratch.file("frames.rawlog");
+    {
+        mrpt::io::CFileGZOutputStream f(file);
+        auto ar = mrpt::serialization::archiveFrom(f);
+        ar << frame() << forward(1.0) << frame() << frame();
+        ar << forward(0.5) << mrpt::poses::CPose2D() << frame();  // no frame right after 0.5 m
+    }
+    RawlogReader reader(file);
+    ActionFrameSource source(reader, {ObservationSelector::of<CObservationBearingRange>("")},
+                             CActionRobotMovement2D::TMotionModelOptions());
+    std::vector<TMotion> steps;
+    CActionCollection::Ptr acts;
+    CSensoryFrame::Ptr sf;
+    while (source.next(acts, sf)) {
+        ASSERT_EQ(acts->size(), 1u);
+        const auto& move = *acts->getBestMovementEstimation();
+        steps.push_back({move.poseChange->getMeanVal().x(), ActionFrameSource::standsStill(move)});
+    }
+    const std::vector<double> x = {0, 1.0, 0, 0.5};
+    const std::vector<bool> still = {true, false, true, false};
+    ASSERT_EQ(steps.size(), x.size());
+    for (size_t i = 0; i < x.size(); i++) {
+        EXPECT_NEAR(steps[i].x, x[i], 1e-12) << "step " << i;
+        EXPECT_EQ(steps[i].still, still[i]) << "step " << i;
+    }
 }
 
 // Format #2 with a robot whose odometry comes late and misses a step: by default the steps wait

@@ -19,7 +19,8 @@ namespace mrpt_vslam::core {
  *  - format #1: each `CActionCollection` with the `CSensoryFrame` that follows it; an action
  *    collection with no frame after it is composed (mean and covariance, robot by robot) into
  *    the next step's, so that no odometry is lost; a frame with no action before it (at the
- *    start of a rawlog) has no motion to go with and is passed over;
+ *    start of a rawlog, or right after another frame) was taken where the robot stood: its step
+ *    stands still (see standsStill()), or moves by the odometry carried so far;
  *  - format #2 (observation-only): `CObservationOdometry` readings give the odometry, and every
  *    group of observations with the same timestamp that holds one matching `steps` becomes a
  *    frame, with a `CActionRobotMovement2D` built from the odometry increment since the previous
@@ -49,9 +50,9 @@ class ActionFrameSource {
     void standStillWithoutOdometry() { m_stand_still_without_odometry = true; }
 
     /** Whether `odometry` says the robot has not moved, with certainty (zero increment, zero
-     *  covariance): a robot with no odometry since the last step, under
-     *  standStillWithoutOdometry(). A filter leaves such a robot where it is, unless it has
-     *  readings to fuse. */
+     *  covariance): a format-#1 frame with no action before it, or a robot with no odometry
+     *  since the last step under standStillWithoutOdometry(). A filter leaves such a robot
+     *  where it is, unless it has readings to fuse. */
     static bool standsStill(const mrpt::obs::CActionRobotMovement2D& odometry);
 
     /** The next step. \return false at the end of the rawlog. Throws std::runtime_error naming
@@ -66,6 +67,10 @@ class ActionFrameSource {
     bool pendingIsStep() const;
     /// Whether every robot has had an odometry reading (standStillWithoutOdometry(): any robot).
     bool haveOdometry() const;
+    /// A move of zero mean and zero covariance (standsStill()).
+    static mrpt::obs::CActionRobotMovement2D standingMove();
+    /// One standingMove() per robot.
+    mrpt::obs::CActionCollection::Ptr standingStill() const;
     /// `later`'s odometry after m_carried's, robot by robot (CPosePDFGaussian composition).
     mrpt::obs::CActionCollection::Ptr afterCarried(const mrpt::obs::CActionCollection& later) const;
 
