@@ -71,9 +71,14 @@ ini_copy() {
 # CRawlog::readActionObservationPair, rawlog-edit) skip the first frame and pair the motion of
 # step k with the reading of step k + 1: nSteps - 1 steps, the robot's true pose at reading k + 1
 # being row k + 1 of NAME.rawlog_ground_truth_robot_path.txt (x y z yaw pitch roll, one row per
-# reading). simul-landmarks 2.5.8 stamps the readings with the clock at simulation time (a few
-# microseconds apart): NAME.stamps.txt is rawlog-edit's list of them (6 decimals, as our TUM
-# files), and the ground truth and estimates use those stamps.
+# reading). multirobot-vslam also takes the first frame, taken before any motion, as a step
+# standing at the start (doc/app-conventions.md). simul-landmarks 2.5.8 stamps the readings with
+# the clock at simulation time (a few microseconds apart): NAME.stamps.txt is rawlog-edit's list
+# of them from the second reading on (6 decimals, as our TUM files), and the ground truth and
+# estimates use those stamps. Both tools are scored on those readings only: they are at least
+# 10 µs apart, the first reading about 0.2 ms before the second, and the estimates carry the
+# stamps to the microsecond, so a time tolerance of 5 µs pairs equal stamps and nothing else.
+EVAL_TIME_TOLERANCE=0.000005
 simulate() {  # simulate NAME NOISE IDS(true|false) SIM_SEED
   local name="$1" noise="$2" ids="$3" sim_seed="$4"
   local ini="$DATA/$name.simul-landmarks.ini"
@@ -107,6 +112,21 @@ simulate() {  # simulate NAME NOISE IDS(true|false) SIM_SEED
   # landmarks (CLandmarksMap::saveToTextFile): x y z, three other fields, the ID in column 7
   awk 'BEGIN { print "# id x y z" } NF >= 7 { printf "%d %s %s %s\n", $7, $1, $2, $3 }' \
     "$DATA/$name.rawlog_ground_truth.txt" > "$DATA/$name.landmarks.txt"
+}
+
+# evaluate DIR NAME [ARGS]: vslam-eval's summary of run folder DIR against NAME's ground truth,
+# checking that every pose of the ground truth was scored
+evaluate() {
+  local dir="$1" name="$2"; shift 2
+  "$BIN/vslam-eval" "$dir" --time-tolerance "$EVAL_TIME_TOLERANCE" "$@" > "$dir/summary.txt"
+  local scored expected
+  scored=$(python3 -c 'import json, sys
+m = json.load(open(sys.argv[1]))
+print((m["estimate"] if "estimate" in m else m["robots"]["R1"]["estimate"])["matched_poses"])' \
+    "$dir/metrics.json")
+  expected=$(grep -vc '^#' "$DATA/$name.groundtruth.tum")
+  [ "$scored" = "$expected" ] || {
+    echo "$dir: $scored poses scored, the ground truth has $expected" >&2; exit 1; }
 }
 
 # --- 2. kf-slam --------------------------------------------------------------------------------
@@ -183,7 +203,7 @@ run_kf_slam() {  # run_kf_slam NAME NOISE
   last=$(printf '%05d' $(( steps - 1 )))
   perl -e "$SCENE_TO_MAP" "$dir/kf-slam-out/kf_state_$last.3Dscene" \
     "$dir/kf-slam-out/full_cov_$last.txt" > "$dir/map.txt"
-  "$BIN/vslam-eval" "$dir" --ground-truth "$DATA/$name.rawlog" > "$dir/summary.txt"
+  evaluate "$dir" "$name" --ground-truth "$DATA/$name.rawlog"
 }
 
 # --- 3. multirobot-vslam -----------------------------------------------------------------------
@@ -195,7 +215,7 @@ run_multirobot_vslam() {  # run_multirobot_vslam NAME SEED
     --seed "$seed" --out "$dir" --quiet
   local t1=$EPOCHREALTIME
   awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f\n", b - a }' > "$dir/wall_s.txt"
-  "$BIN/vslam-eval" "$dir" > "$dir/summary.txt"
+  evaluate "$dir" "$name"
 }
 
 # --- 4. table ----------------------------------------------------------------------------------
@@ -282,13 +302,17 @@ mkdir -p "$(dirname "$RESULTS")"
   echo
   first="$PEER/simul-landmarks-noise-${NOISE_LEVELS%% *}.ini"
   echo "Data: stock simul-landmarks (share/mrpt-vslam/config/peer-comparison/), one robot," \
-    "$(ini_value "$first" nSteps) readings ($(( $(ini_value "$first" nSteps) - 1 )) filtered) on a" \
+    "$(ini_value "$first" nSteps) readings on a" \
     "square path with $(awk -v n="$(ini_value "$first" squarePathLength)" 'BEGIN { print (n - 4) * 0.2 }') m" \
     "sides (0.2 m per step, 4 steps per 90° turn)," \
     "$(ini_value "$first" nLandmarks) landmarks, range ≤ $(ini_value "$first" maxSensorDistance) m," \
     "$(ini_value "$first" fieldOfView_deg)° field of view, odometry noise" \
     "$(ini_value "$first" odometryNoiseXY_std) m and $(ini_value "$first" odometryNoisePhi_std_deg)° per" \
-    "step, simulation seeds $SIM_SEEDS (each its own landmarks, odometry and reading noise). IDs kept: every reading carries its" \
+    "step, simulation seeds $SIM_SEEDS (each its own landmarks, odometry and reading noise)." \
+    "kf-slam filters the last $(( $(ini_value "$first" nSteps) - 1 )) readings: like MRPT's readers" \
+    "of action / frame pairs, it passes over the first, read before any motion; multirobot-vslam" \
+    "filters all $(ini_value "$first" nSteps), the first as a step standing at the start. Both are" \
+    "scored on the last $(( $(ini_value "$first" nSteps) - 1 )). IDs kept: every reading carries its" \
     "landmark's ID; hidden: ID −1, so each tool associates by itself (kf-slam: nearest neighbour" \
     "within a $(ini_value "$PEER/kf-slam-2d.ini" data_assoc_IC_chi2_thres) Mahalanobis gate," \
     "kf-slam-2d.ini says why). Position RMSE: vslam-eval's ATE, unaligned, and after the SE(2)" \
@@ -364,11 +388,13 @@ mkdir -p "$(dirname "$RESULTS")"
     echo "The angle [deg] of the SE(2) alignment that fits each path best to the truth (vslam-eval's" \
       '`aligned_se2.alignment.yaw_deg`; multirobot-vslam: the mean over its seeds). Both tools' \
       "start at the true pose; what turns a whole path is the heading the data leave uncertain." \
-      "simul-landmarks' robot stands for its first few readings, with odometry increments of exactly" \
-      "zero that the rawlog still gives $(ini_value "$first" odometryNoisePhi_std_deg)° std each;" \
-      "multirobot-vslam's smoothing takes them as standing (zero_odometry_stands_still," \
-      "doc/multirobot.md), kf-slam as steps of that noise; after them, each step's odometry" \
-      "has that noise." \
+      "What ties the map's heading to the start is what the robot reads there." \
+      "simul-landmarks' robot stands for its first few readings: the first comes before any" \
+      "action, the next ones after odometry increments of exactly zero that the rawlog still gives" \
+      "$(ini_value "$first" odometryNoisePhi_std_deg)° std each. multirobot-vslam reads the first" \
+      "as a step of its own and its smoothing ties the others to it (zero_odometry_stands_still," \
+      "doc/multirobot.md); kf-slam passes over the first and takes the increments as steps of that" \
+      "noise. After them, each step's odometry has that noise." \
       "Where the two tools turn the same way, by amounts of the same order, the turn is the data's," \
       "and it is most of the unaligned RMSE (compare the aligned RMSE)."
     echo
