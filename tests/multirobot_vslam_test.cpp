@@ -63,16 +63,18 @@ TEST_F(MultiRobotVSLAMApp, StereoShortSequenceIsAccurate)
 }
 
 // One robot, unlabelled CObservationBearingRange with its own noise and sensor pose, hidden
-// identities, odometry as actions (format #1) or readings (format #2): the template runs
-// unchanged on both and writes the usual run folder. Measured (seed 1, M = 200, smoothed):
+// identities, odometry as actions (format #1, with or without an action before the first frame)
+// or readings (format #2): the template runs unchanged on each, makes a step of every frame and
+// writes the usual run folder. Measured (seed 1, M = 200, smoothed):
 // position RMSE 0.014 m against odometry 0.26 m; 19 landmarks, all 19 true ones matched, mean
 // error 0.008-0.010 m (the filter's own paths: 0.023-0.061 m over seeds 1-3).
 TEST_F(MultiRobotVSLAMApp, SingleRobotRangeBearingRawlogsRunFromTheTemplate)
 {
     using Log = mrpt_vslam::test::SingleRobotRangeBearingLog;
-    for (const auto format : {Log::Format::ActionsAndFrames, Log::Format::ObservationsOnly}) {
-        const std::string name =
-            format == Log::Format::ActionsAndFrames ? "rb-format1" : "rb-format2";
+    for (const auto& [format, name] :
+         {std::pair{Log::Format::ActionsAndFrames, std::string("rb-format1")},
+          {Log::Format::FrameFirst, std::string("rb-format1-frame-first")},
+          {Log::Format::ObservationsOnly, std::string("rb-format2")}}) {
         Log log;
         log.format = format;
         log.write(out(name));

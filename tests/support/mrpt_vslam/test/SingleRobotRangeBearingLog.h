@@ -25,7 +25,9 @@ namespace mrpt_vslam::test {
  *  odometry as `CActionRobotMovement2D` (format #1) or `CObservationOdometry` (format #2);
  *  `NAME.groundtruth.tum` and `NAME.landmarks.txt` beside it. Deterministic for a seed. */
 struct SingleRobotRangeBearingLog {
-    enum class Format { ActionsAndFrames, ObservationsOnly };
+    /// Format #1 with an action before every frame (the first a zero increment), format #1 in
+    /// simul-landmarks' order (the first frame with no action before it), or format #2.
+    enum class Format { ActionsAndFrames, FrameFirst, ObservationsOnly };
     Format format = Format::ActionsAndFrames;
     size_t steps = 160;
     double std_range = 0.05;                            ///< [m], true noise and sensor_std_range
@@ -93,16 +95,19 @@ struct SingleRobotRangeBearingLog {
                 m.landmarkID = -1;
                 obs->sensedData.push_back(m);
             }
-            if (format == Format::ActionsAndFrames) {
-                mrpt::obs::CActionCollection acts;
-                mrpt::obs::CActionRobotMovement2D move;
-                move.timestamp = stamp;
-                mrpt::obs::CActionRobotMovement2D::TMotionModelOptions model;
-                move.computeFromOdometry(noisy, model);
-                acts.insert(move);
+            if (format != Format::ObservationsOnly) {
+                if (format == Format::ActionsAndFrames || i > 0) {
+                    mrpt::obs::CActionCollection acts;
+                    mrpt::obs::CActionRobotMovement2D move;
+                    move.timestamp = stamp;
+                    mrpt::obs::CActionRobotMovement2D::TMotionModelOptions model;
+                    move.computeFromOdometry(noisy, model);
+                    acts.insert(move);
+                    out << acts;
+                }
                 mrpt::obs::CSensoryFrame sf;
                 sf.insert(obs);
-                out << acts << sf;
+                out << sf;
             } else {
                 mrpt::obs::CObservationOdometry odo;
                 odo.timestamp = stamp;
