@@ -256,7 +256,7 @@ TEST(CCeilingLightsMap, MultiMetricMapCopyKeepsContents)
     expectSameContents(*a, *b);
 }
 
-TEST(CCeilingLightsMap, SavesMapTxtInBriefFormat)
+TEST(CCeilingLightsMap, SavesMapTxtAsALandmarkFile)
 {
     const CCeilingLightsMap map = makePopulatedMap();
     const std::string prefix = mrpt::system::getTempFileName();
