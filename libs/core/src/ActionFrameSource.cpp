@@ -142,9 +142,16 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
                 frame = e.observations;
                 return true;
             }
-            if (!e.actions->getBestMovementEstimation())
-                throw std::runtime_error(m_reader.file() + ": entry " + std::to_string(e.index) +
-                                         " has an action collection without odometry");
+            if (!e.actions->getBestMovementEstimation()) {
+                std::string held;
+                for (const auto& a : *e.actions)
+                    held += std::string(held.empty() ? "" : ", ") + a->GetRuntimeClass()->className;
+                throw std::runtime_error(
+                    m_reader.file() + ": entry " + std::to_string(e.index) +
+                    " has an action collection without a CActionRobotMovement2D (it holds " +
+                    (held.empty() ? std::string("nothing") : held) +
+                    "; planar odometry is needed)");
+            }
             actions = m_carried ? afterCarried(*e.actions) : e.actions;
             m_carried.reset();
             if (!e.observations) {  // no frame to go with: into the next step

@@ -2,6 +2,7 @@
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CActionRobotMovement3D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CSensoryFrame.h>
@@ -179,6 +180,36 @@ TEST(ActionFrameSource, AFrameWithoutAnActionBeforeItStandsStill)
     for (size_t i = 0; i < x.size(); i++) {
         EXPECT_NEAR(steps[i].x, x[i], 1e-12) << "step " << i;
         EXPECT_EQ(steps[i].still, still[i]) << "step " << i;
+    }
+}
+
+// An action collection with no planar odometry (3D odometry, as simul-landmarks writes for a
+// 6D path) stops the run with the entry and what it holds.
+TEST(ActionFrameSource, AnActionWithoutPlanarOdometryIsNamed)
+{
+    mrpt_vslam::test::ScratchFolder scratch("ActionFrameSource_unittest");
+    const std::string file = scratch.file("odometry3d.rawlog");
+    {
+        mrpt::io::CFileGZOutputStream f(file);
+        auto ar = mrpt::serialization::archiveFrom(f);
+        CActionCollection acts;
+        acts.insert(CActionRobotMovement3D());
+        ar << frame() << acts << frame();
+    }
+    RawlogReader reader(file);
+    ActionFrameSource source(reader, {ObservationSelector::of<CObservationBearingRange>("")},
+                             CActionRobotMovement2D::TMotionModelOptions());
+    CActionCollection::Ptr a;
+    CSensoryFrame::Ptr sf;
+    ASSERT_TRUE(source.next(a, sf));  // the first frame, standing
+    try {
+        source.next(a, sf);
+        FAIL() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  file +
+                      ": entry 1 has an action collection without a CActionRobotMovement2D (it "
+                      "holds mrpt::obs::CActionRobotMovement3D; planar odometry is needed)");
     }
 }
 

@@ -56,7 +56,8 @@ class ActionFrameSource {
     static bool standsStill(const mrpt::obs::CActionRobotMovement2D& odometry);
 
     /** The next step. \return false at the end of the rawlog. Throws std::runtime_error naming
-     *  the rawlog for an action collection without odometry. */
+     *  the rawlog, the entry and the classes it holds for an action collection
+     *  without a CActionRobotMovement2D. */
     bool next(mrpt::obs::CActionCollection::Ptr& actions, mrpt::obs::CSensoryFrame::Ptr& frame);
 
   private:
