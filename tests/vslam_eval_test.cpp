@@ -263,3 +263,34 @@ TEST(VslamPlot, PlotsTablesAndRejectsMalformedOnes)
     EXPECT_NE(neg.stderr_text.find("--log-x"), std::string::npos) << neg.stderr_text;
     EXPECT_FALSE(fs::exists(dir / "neg.png"));
 }
+
+// vslam-plot as a scatter plot against y = x (the peer comparison's figure), on log axes; the
+// options that contradict it are one-line errors that leave no image.
+TEST(VslamPlot, ScatterAgainstTheDiagonal)
+{
+    const auto dir = scratch().path() / "scatter";
+    fs::create_directories(dir);
+    std::ofstream(dir / "xy.txt") << "low 0.02 0.01\nlow 0.03 0.02\nhigh 0.2 0.1\nhigh 0.3 0.4\n";
+    const auto plot = [&](const std::string& name, const std::string& options) {
+        return runApp("vslam-plot",
+                      (dir / "xy.txt").string() + " " + (dir / name).string() + " " + options);
+    };
+    const auto ok = plot("ok.png", "--points --diagonal --log-x --log-y");
+    EXPECT_EQ(ok.exit_code, 0) << ok.stderr_text;
+    expectNonEmptyPng(dir / "ok.png");
+    const std::vector<std::pair<std::string, std::string>> bad = {
+        {"--log-y --y-from-zero", "--y-from-zero and --log-y exclude each other"},
+        {"--diagonal --log-x", "--diagonal needs both axes linear or both logarithmic"}};
+    for (const auto& [options, message] : bad) {
+        const auto r = plot("bad.png", options);
+        EXPECT_EQ(r.exit_code, 1) << options;
+        EXPECT_NE(r.stderr_text.find(message), std::string::npos) << r.stderr_text;
+        EXPECT_FALSE(fs::exists(dir / "bad.png")) << options;
+    }
+    std::ofstream(dir / "zero.txt") << "A 1 0\nA 2 1\n";
+    const auto zero = runApp(
+        "vslam-plot", (dir / "zero.txt").string() + " " + (dir / "z.png").string() + " --log-y");
+    EXPECT_EQ(zero.exit_code, 1);
+    EXPECT_NE(zero.stderr_text.find("--log-y: series 'A' has a value <= 0"), std::string::npos)
+        << zero.stderr_text;
+}

@@ -44,7 +44,7 @@ PngFigure::~PngFigure()
 
 void PngFigure::axes(double vx0, double vx1, double vy0, double vy1, double x0, double x1,
                      double y0, double y1, const std::string& x_label, const std::string& y_label,
-                     const std::string& title, bool equal_aspect, bool log_x)
+                     const std::string& title, bool equal_aspect, bool log_x, bool log_y)
 {
     // Equal aspect: the largest viewport in the region where one metre is as long on both axes.
     if (equal_aspect)
@@ -54,9 +54,9 @@ void PngFigure::axes(double vx0, double vx1, double vy0, double vy1, double x0, 
     m_pl->wind(x0, x1, y0, y1);
     m_pl->col0(kLightGray);
     m_pl->width(1.0);
-    m_pl->box(log_x ? "gl" : "g", 0, 0, "g", 0, 0);
+    m_pl->box(log_x ? "gl" : "g", 0, 0, log_y ? "gl" : "g", 0, 0);
     m_pl->col0(kBlack);
-    m_pl->box(log_x ? "bclnst" : "bcnst", 0, 0, "bcnstv", 0, 0);
+    m_pl->box(log_x ? "bclnst" : "bcnst", 0, 0, log_y ? "bclnstv" : "bcnstv", 0, 0);
     m_pl->lab(x_label.c_str(), y_label.c_str(), title.c_str());
 }
 

@@ -38,10 +38,12 @@ class PngFigure {
     plstream& pl() { return *m_pl; }
 
     /// Sets the viewport (normalised page coordinates) and the world window, then draws a grid
-    /// and the labelled axes. With log_x, x0, x1 and every x drawn are log10 of the values.
+    /// and the labelled axes. With log_x (log_y), x0, x1 and every x drawn (y) are log10 of the
+    /// values.
     void axes(double vx0, double vx1, double vy0, double vy1, double x0, double x1, double y0,
               double y1, const std::string& x_label, const std::string& y_label,
-              const std::string& title, bool equal_aspect = false, bool log_x = false);
+              const std::string& title, bool equal_aspect = false, bool log_x = false,
+              bool log_y = false);
 
     /// Polyline; `style` is a PLplot line style (1 solid, 2 dashed, 3 dotted...).
     void line(const std::vector<double>& x, const std::vector<double>& y, int color, int style = 1,
