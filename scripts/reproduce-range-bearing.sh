@@ -12,9 +12,10 @@
 #      folder (estimated_path.tum, map.txt); where it diverges (NaN poses), diverged.txt instead;
 #   3. multirobot-vslam (multirobot-vslam/range-bearing.ini) on each rawlog, per seed, timed;
 #   4. vslam-eval on every run folder, and the table of both to doc/results/range-bearing.md (or
-#      $RESULTS): position RMSE (unaligned and SE(2)-aligned), landmarks mapped vs true, landmark error mean (one-to-one
-#      matching within vslam-eval's 1.5 m), run time (wall clock of the process), and the turn of
-#      each path's best alignment to the truth.
+#      $RESULTS): position RMSE (unaligned and SE(2)-aligned), landmarks mapped vs true, landmark
+#      error mean (one-to-one matching within vslam-eval's 1.5 m), run time (wall clock of the
+#      process), and the turn of each path's best alignment to the truth; the figures of both
+#      tools' RMSE per rawlog beside it (doc/results/range-bearing/).
 # Writes rawlogs, run folders (metrics.json, paths.png, ...) and logs under
 # out/reproduce-range-bearing/ (or $OUT). Builds first (scripts/setup.sh). Takes about 5 min
 # (120 rawlogs; each tool well under a second per rawlog at the default SEEDS).
@@ -39,6 +40,7 @@ SIM_SEEDS="${SIM_SEEDS:-$(seq -s ' ' 1 20)}"
 NOISE_LEVELS="${NOISE_LEVELS:-low medium high}"
 TOOLS="${TOOLS:-kf-slam multirobot-vslam}"
 RESULTS="${RESULTS:-$REPO_DIR/doc/results/range-bearing.md}"
+PLOTS="${RESULTS%.md}"
 OUT="$(mkdir -p "$OUT" && cd "$OUT" && pwd)"
 DATA="$OUT/data"
 mkdir -p "$DATA"
@@ -295,6 +297,28 @@ for entry in "${NAMES[@]}"; do
 done
 
 mkdir -p "$(dirname "$RESULTS")"
+# figures: per IDs setting, kf-slam's RMSE (unaligned and aligned) against multirobot-vslam's, a
+# series per noise level, one point per rawlog where kf-slam finished
+if [[ " $TOOLS " == *" kf-slam "* && " $TOOLS " == *" multirobot-vslam "* ]]; then
+  mkdir -p "$PLOTS"
+  for ids in hidden kept; do
+    for noise in $NOISE_LEVELS; do
+      for sim in $SIM_SEEDS; do
+        name="range-bearing-ids-$ids-noise-$noise-sim$sim"
+        echo "$noise $(metrics "$OUT/kf-slam/$name" | cut -d' ' -f1,2) $(mrv_figures "$name" | cut -d' ' -f1,2)"
+      done
+    done | awk -v rmse="$OUT/rmse-ids-$ids.txt" -v aligned="$OUT/aligned-rmse-ids-$ids.txt" '
+      BEGIN { printf "" > rmse; printf "" > aligned }
+      $2 != "-" && $4 != "-" { print $1, $2, $4 > rmse }
+      $3 != "-" && $5 != "-" { print $1, $3, $5 > aligned }'
+    for kind in rmse aligned-rmse; do
+      label="position RMSE"; [ "$kind" = aligned-rmse ] && label="aligned position RMSE"
+      "$BIN/vslam-plot" "$OUT/$kind-ids-$ids.txt" "$PLOTS/$kind-ids-$ids.png" --points \
+        --diagonal --log-x --log-y --title "IDs $ids: $label per rawlog, by noise level" \
+        --x-label "kf-slam [m]" --y-label "multirobot-vslam [m]"
+    done
+  done
+fi
 {
   results_header "Range-bearing peer comparison: stock kf-slam and multirobot-vslam" "$COMMAND"
   echo "Tools run: $TOOLS (stock kf-slam of mrpt-apps" \
@@ -322,15 +346,6 @@ mkdir -p "$(dirname "$RESULTS")"
     "true (matched one-to-one within 1.5 m); error: mean over the matched ones. Time: wall" \
     "clock of the tool's process (reading, filtering, writing)."
   echo
-  echo "## Per rawlog"
-  echo
-  echo "| rawlog | IDs | noise (σ range, σ bearing) | simulation seed | kf-slam RMSE [m] | kf-slam aligned RMSE [m] | kf-slam landmarks | kf-slam landmark error [m] | kf-slam time [s] | multirobot-vslam RMSE [m] | multirobot-vslam aligned RMSE [m] | multirobot-vslam landmarks | multirobot-vslam landmark error [m] | multirobot-vslam time [s] |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-  for entry in "${NAMES[@]}"; do
-    IFS=: read -r name noise ids sim <<< "$entry"
-    s="$PEER/simul-landmarks-noise-$noise.ini"
-    echo "| $name | $ids | $noise ($(ini_value "$s" stdRange) m, $(ini_value "$s" stdYaw_deg)°) | $sim |$(kf_cells "$name")$(cells $(mrv_dirs "$name"))"
-  done
   if [[ " $TOOLS " == *" kf-slam "* && " $TOOLS " == *" multirobot-vslam "* ]]; then
     echo
     echo "## Over the simulation seeds"
@@ -360,6 +375,15 @@ mkdir -p "$(dirname "$RESULTS")"
       done
     done
     echo
+    for ids in hidden kept; do
+      for kind in rmse aligned-rmse; do
+        echo "![IDs $ids: $kind per rawlog]($(basename "$PLOTS")/$kind-ids-$ids.png)"
+      done
+    done
+    echo
+    echo "Each point is one rawlog (kf-slam's figure across, multirobot-vslam's up; logarithmic" \
+      "axes): below the dashed line y = x, multirobot-vslam's is the smaller."
+    echo
     echo "## What one rawlog says"
     echo
     echo "Given every reading's landmark (IDs kept), a tool can only associate better; yet on a" \
@@ -382,6 +406,17 @@ mkdir -p "$(dirname "$RESULTS")"
         { n++; kk += mm($1) > mm($2); mk += mm($3) > mm($2); mh += mm($4) > mm($2) }
         END { printf "| %s | %d | %d | %d | %d |\n", noise, n, kk, mk, mh }'
     done
+  fi
+  echo "## Per rawlog"
+  echo
+  echo "| rawlog | IDs | noise (σ range, σ bearing) | simulation seed | kf-slam RMSE [m] | kf-slam aligned RMSE [m] | kf-slam landmarks | kf-slam landmark error [m] | kf-slam time [s] | multirobot-vslam RMSE [m] | multirobot-vslam aligned RMSE [m] | multirobot-vslam landmarks | multirobot-vslam landmark error [m] | multirobot-vslam time [s] |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  for entry in "${NAMES[@]}"; do
+    IFS=: read -r name noise ids sim <<< "$entry"
+    s="$PEER/simul-landmarks-noise-$noise.ini"
+    echo "| $name | $ids | $noise ($(ini_value "$s" stdRange) m, $(ini_value "$s" stdYaw_deg)°) | $sim |$(kf_cells "$name")$(cells $(mrv_dirs "$name"))"
+  done
+  if [[ " $TOOLS " == *" kf-slam "* && " $TOOLS " == *" multirobot-vslam "* ]]; then
     echo
     echo "## The turn about the start"
     echo
