@@ -270,6 +270,11 @@ mrv_figures() {
   cells $(mrv_dirs "$1") | tr -d '|' | awk '{ print $1, $2, $8 }'
 }
 
+# figure_label KIND: what a figure of KIND (rmse, aligned-rmse) shows
+figure_label() {
+  if [ "$1" = aligned-rmse ]; then echo "aligned position RMSE"; else echo "position RMSE"; fi
+}
+
 # awk function mm(v): v [m] in whole millimetres, the resolution the tables compare tools at
 MM_AWK='function mm(v) { return int(v * 1000 + 0.5) }'
 
@@ -312,9 +317,8 @@ if [[ " $TOOLS " == *" kf-slam "* && " $TOOLS " == *" multirobot-vslam "* ]]; th
       $2 != "-" && $4 != "-" { print $1, $2, $4 > rmse }
       $3 != "-" && $5 != "-" { print $1, $3, $5 > aligned }'
     for kind in rmse aligned-rmse; do
-      label="position RMSE"; [ "$kind" = aligned-rmse ] && label="aligned position RMSE"
       "$BIN/vslam-plot" "$OUT/$kind-ids-$ids.txt" "$PLOTS/$kind-ids-$ids.png" --points \
-        --diagonal --log-x --log-y --title "IDs $ids: $label per rawlog, by noise level" \
+        --diagonal --log-x --log-y --title "IDs $ids: $(figure_label $kind) per rawlog, by noise level" \
         --x-label "kf-slam [m]" --y-label "multirobot-vslam [m]"
     done
   done
@@ -377,7 +381,7 @@ fi
     echo
     for ids in hidden kept; do
       for kind in rmse aligned-rmse; do
-        echo "![IDs $ids: $kind per rawlog]($(basename "$PLOTS")/$kind-ids-$ids.png)"
+        echo "![IDs $ids: $(figure_label $kind) per rawlog]($(basename "$PLOTS")/$kind-ids-$ids.png)"
       done
     done
     echo
