@@ -116,16 +116,25 @@ simulate() {  # simulate NAME NOISE IDS(true|false) SIM_SEED
     "$DATA/$name.rawlog_ground_truth.txt" > "$DATA/$name.landmarks.txt"
 }
 
+# estimate_value DIR KEY...: a value of the one robot's "estimate" block of DIR/metrics.json
+# (kf-slam's run folder has one robot, multirobot-vslam's robot R1), "-" without metrics.json
+estimate_value() {
+  [ -f "$1/metrics.json" ] || { echo -; return; }
+  python3 -c 'import json, sys
+m = json.load(open(sys.argv[1]))
+v = m["estimate"] if "estimate" in m else m["robots"]["R1"]["estimate"]
+for key in sys.argv[2:]:
+    v = v[key]
+print(v)' "$1/metrics.json" "${@:2}"
+}
+
 # evaluate DIR NAME [ARGS]: vslam-eval's summary of run folder DIR against NAME's ground truth,
 # checking that every pose of the ground truth was scored
 evaluate() {
   local dir="$1" name="$2"; shift 2
   "$BIN/vslam-eval" "$dir" --time-tolerance "$EVAL_TIME_TOLERANCE" "$@" > "$dir/summary.txt"
   local scored expected
-  scored=$(python3 -c 'import json, sys
-m = json.load(open(sys.argv[1]))
-print((m["estimate"] if "estimate" in m else m["robots"]["R1"]["estimate"])["matched_poses"])' \
-    "$dir/metrics.json")
+  scored=$(estimate_value "$dir" matched_poses)
   expected=$(grep -vc '^#' "$DATA/$name.groundtruth.tum")
   [ "$scored" = "$expected" ] || {
     echo "$dir: $scored poses scored, the ground truth has $expected" >&2; exit 1; }
@@ -439,22 +448,16 @@ fi
     echo
     turns="$(for entry in "${NAMES[@]}"; do
       IFS=: read -r name noise ids sim <<< "$entry"
-      python3 - "$OUT/kf-slam/$name" $(mrv_dirs "$name") <<'PY'
-import json, os, sys
-def turn(d):  # one robot: kf-slam's estimate, or multirobot-vslam's R1
-    f = os.path.join(d, "metrics.json")
-    if not os.path.exists(f):
-        return None
-    m = json.load(open(f))
-    e = m["estimate"] if "estimate" in m else m["robots"]["R1"]["estimate"]
-    return e["aligned_se2"]["alignment"]["yaw_deg"]
-kf, mr = turn(sys.argv[1]), [turn(d) for d in sys.argv[2:]]
-mr = None if None in mr else sum(mr) / len(mr)
-cell = lambda v: "-" if v is None else f"{v:+.2f}"
-same = "-" if None in (kf, mr) else ("yes" if kf * mr > 0 else "no")
-print(f"| {os.path.basename(sys.argv[1])} | {cell(kf)} | {cell(mr)} | {same} |")
-PY
-    done)"
+      echo "$name $(estimate_value "$OUT/kf-slam/$name" aligned_se2 alignment yaw_deg)" \
+        "$(for d in $(mrv_dirs "$name"); do estimate_value "$d" aligned_se2 alignment yaw_deg; done |
+          tr '\n' ' ')"
+    done | awk '
+      # rawlog, kf-slam turn, multirobot-vslam turn per seed ("-": no metrics)
+      function cell(v) { return v == "-" ? "-" : sprintf("%+.2f", v) }
+      { mr = 0; for (i = 3; i <= NF; i++) { if ($i == "-") { mr = "-"; break } mr += $i }
+        if (mr != "-") mr /= NF - 2
+        same = ($2 == "-" || mr == "-") ? "-" : ($2 * mr > 0 ? "yes" : "no")
+        printf "| %s | %s | %s | %s |\n", $1, cell($2), cell(mr), same }')"
     echo "The same sign on $(grep -c '| yes |$' <<< "$turns") of the" \
       "$(grep -c -E '\| (yes|no) \|$' <<< "$turns") rawlogs both tools finished."
     echo
