@@ -358,7 +358,6 @@ fi
     "mapped /" \
     "true (matched one-to-one within 1.5 m); error: mean over the matched ones. Time: wall" \
     "clock of the tool's process (reading, filtering, writing)."
-  echo
   if [[ " $TOOLS " == *" kf-slam "* && " $TOOLS " == *" multirobot-vslam "* ]]; then
     echo
     echo "## Over the simulation seeds"
@@ -401,7 +400,7 @@ fi
     echo
     echo "Given every reading's landmark (IDs kept), a tool can only associate better; yet on a" \
       "single rawlog its position RMSE can come out above that of kf-slam without the IDs: how" \
-      "far a whole path turns (next table) depends on the data's draws more than on the tool." \
+      "far a whole path turns (the last table) depends on the data's draws more than on the tool." \
       "Counted to the millimetre, per noise level, on the worlds where kf-slam finished with and" \
       "without the IDs:"
     echo
@@ -420,6 +419,7 @@ fi
         END { printf "| %s | %d | %d | %d | %d |\n", noise, n, kk, mk, mh }'
     done
   fi
+  echo
   echo "## Per rawlog"
   echo
   echo "| rawlog | IDs | noise (σ range, σ bearing) | simulation seed | kf-slam RMSE [m] | kf-slam aligned RMSE [m] | kf-slam landmarks | kf-slam landmark error [m] | kf-slam time [s] | multirobot-vslam RMSE [m] | multirobot-vslam aligned RMSE [m] | multirobot-vslam landmarks | multirobot-vslam landmark error [m] | multirobot-vslam time [s] |"
