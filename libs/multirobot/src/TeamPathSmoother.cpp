@@ -241,6 +241,7 @@ TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticl
         const auto solved = graph.optimize(lsq);
         result.iterations += solved.iterations;
         result.outlier_readings = solved.outlier_readings;
+        result.cost = solved.final_cost;
         for (size_t step = 0; step < path.size(); step++)
             for (size_t k = 0; k < K; k++) path[step][k] = graph.pose(node(step, k));
         for (size_t k = 0; k < result.odometry_scales.size(); k++)

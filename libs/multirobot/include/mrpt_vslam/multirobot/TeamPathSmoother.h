@@ -109,6 +109,8 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
         size_t iterations = 0;        ///< least-squares iterations, all rounds
         size_t outlier_readings = 0;  ///< beyond the Huber threshold after the last round
         size_t reanchored = 0;        ///< parts of paths reanchorAfterGaps() moved, all rounds
+        /// the last round's least-squares cost (PlanarPoseLandmarkGraph::TResult::final_cost)
+        double cost = 0;
         /// per robot (distance, turn), with options.odometry_scale_std > 0
         std::vector<Eigen::Vector2d> odometry_scales;
     };
