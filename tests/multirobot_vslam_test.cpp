@@ -7,6 +7,7 @@
 #include <mrpt_vslam/test/ScratchFolder.h>
 #include <mrpt_vslam/test/SingleRobotRangeBearingLog.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -95,7 +96,20 @@ TEST_F(MultiRobotVSLAMApp, SingleRobotRangeBearingRawlogsRunFromTheTemplate)
         EXPECT_GE(lms["matched"].get<int>(), 17) << name;
         EXPECT_LE(lms["estimated_landmarks"].get<int>(), 21) << name << ": " << lms.dump();
         EXPECT_LT(lms["error_mean_m"].get<double>(), 0.15) << name;
-        EXPECT_EQ(json(dir + "run.json")["counts"]["steps"].get<int>(), 160) << name;
+        const auto runJson = json(dir + "run.json");
+        EXPECT_EQ(runJson["counts"]["steps"].get<int>(), 160) << name;
+        // the template's filter_runs = 4: the kept run is the one of least smoothed cost
+        const auto& runs = runJson["results"]["filter_runs"];
+        ASSERT_EQ(runs.size(), 4u) << name << ": " << runs.dump();
+        std::vector<double> costs;
+        for (const auto& run : runs) costs.push_back(run["smoothing_cost"]);
+        const size_t least = std::min_element(costs.begin(), costs.end()) - costs.begin();
+        EXPECT_EQ(runs[least]["seed"].get<int>(), 1 + static_cast<int>(least)) << name;
+        EXPECT_EQ(runJson["counts"]["kept_seed"].get<size_t>(), 1 + least)
+            << name << ": " << runs.dump();
+        EXPECT_EQ(runJson["results"]["smoothing_cost"].get<double>(), costs[least]) << name;
+        EXPECT_EQ(runs[least]["landmarks"].get<int>(), lms["estimated_landmarks"].get<int>())
+            << name;
         std::printf("%s: RMSE %.3f m (odometry %.3f m), %d landmarks, %d matched, error %.3f m\n",
                     name.c_str(), est, odo, lms["estimated_landmarks"].get<int>(),
                     lms["matched"].get<int>(), lms["error_mean_m"].get<double>());
@@ -200,6 +214,10 @@ TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
         {"TeamPathSmoother.rounds=1000000000", "rounds: must be 1 to 100"},
         {"TeamPathSmoother.reanchor_gap=-1", "reanchor_gap: must be >= 0"},
         {"TeamPathSmoother.reanchor_gain=1", "reanchor_gain: must be in (0, 1)"},
+        {"MultiRobotVSLAM.filter_runs=0", "filter_runs must be an integer from 1 to 64"},
+        {"MultiRobotVSLAM.filter_runs=1.5", "[MultiRobotVSLAM] filter_runs = 1.5: not an integer"},
+        {"MultiRobotVSLAM.filter_runs=2",
+         "filter_runs > 1 needs [TeamPathSmoother] smooth_paths = true"},
         {"MultiRobotVSLAM.smooth_paths_rounds=2",
          "[MultiRobotVSLAM] smooth_paths_rounds: moved to [TeamPathSmoother] rounds"}};
     std::vector<TCommandResult> results = {missing, corrupt, unknown};

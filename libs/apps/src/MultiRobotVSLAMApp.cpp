@@ -80,6 +80,8 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
     std::string odometryLabel;
     std::vector<mrpt::math::TPose2D> startPoses;
     double gtMatchRadius = 0.25;
+    /// Independent filters run side by side; the one whose smoothed paths cost least is kept.
+    size_t filterRuns = 1;
 
     CVisualLandmarksMap mapTemplate;
     CMultiRobotVisualSLAM::TOptions filterOptions;
@@ -88,8 +90,21 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
     team::TeamListener::TOptions listenerOptions;            ///< with --listen
     team::TeamListener* listener = nullptr;                  ///< with --listen, during run()
     std::vector<std::unique_ptr<StereoFrontEnd>> frontEnds;  ///< one per robot, on demand
-    std::unique_ptr<CMultiRobotVisualSLAM> filter;
-    std::unique_ptr<TeamPathSmoother> smoother;  ///< with map_along_path
+    std::unique_ptr<CMultiRobotVisualSLAM> filter;           ///< the kept run's, after endSteps()
+    std::unique_ptr<TeamPathSmoother> smoother;              ///< with map_along_path
+    /// With filter_runs > 1: the other runs, from the seeds after the run's.
+    struct TFilterRun {
+        std::unique_ptr<CMultiRobotVisualSLAM> filter;
+        std::unique_ptr<TeamPathSmoother> smoother;
+    };
+    std::vector<TFilterRun> otherRuns;
+    /// With smooth_paths, per run (by seed): what its smoothing gave.
+    struct TRunOutcome {
+        double cost = 0;                     ///< TeamPathSmoother::TSmoothedTeam::cost
+        size_t landmarks = 0, readings = 0;  ///< of the smoothed map, and readings mapped
+    };
+    std::vector<TRunOutcome> runOutcomes;
+    size_t keptRun = 0;  ///< of runOutcomes
     std::vector<std::optional<core::TumTrajectory>> groundTruth;
     std::vector<mrpt::poses::CPose2D> odometry;  ///< dead reckoning from the start poses
 
@@ -103,7 +118,7 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
         const mrpt::obs::CActionCollection& actions, const mrpt::obs::CSensoryFrame& frame);
     /// Stereo images → landmarks where images are the input; counts the landmark inputs.
     void prepareFrame(mrpt::obs::CSensoryFrame& sf);
-    /// With smooth_paths: the result of TeamPathSmoother::smoothPaths() and its time.
+    /// With smooth_paths: the result of TeamPathSmoother::smoothPaths() and its time (all runs).
     std::optional<TeamPathSmoother::TSmoothedTeam> smoothed;
     double smoothingSeconds = 0;
     std::vector<core::TumTrajectory> filterPaths;  ///< the best particle's, when smoothed
@@ -160,6 +175,10 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
     gtMatchRadius = cfg.read_double(kAppSection, "gt_match_radius", gtMatchRadius);
     odometryLabel = cfg.read_string(kAppSection, "odometry_label", "");
     if (!(gtMatchRadius > 0)) throw usageError("[MultiRobotVSLAM] gt_match_radius must be > 0");
+    const int runs = cfg.read_int(kAppSection, "filter_runs", static_cast<int>(filterRuns));
+    if (runs < 1 || runs > 64)
+        throw usageError("[MultiRobotVSLAM] filter_runs must be an integer from 1 to 64");
+    filterRuns = static_cast<size_t>(runs);
     auto& l = listenerOptions;
     l.reorder_window_s = cfg.read_double(kListenerSection, "reorder_window_s", l.reorder_window_s);
     l.join_window_s = cfg.read_double(kListenerSection, "join_window_s", l.join_window_s);
@@ -196,6 +215,10 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
         startPoses.push_back(v.empty() ? mrpt::math::TPose2D()
                                        : mrpt::math::TPose2D(v[0], v[1], mrpt::DEG2RAD(v[2])));
     }
+    if (filterRuns > 1 && !smootherOptions.smooth_paths)
+        throw usageError("[MultiRobotVSLAM] filter_runs > 1 needs [" +
+                         std::string(kSmootherSection) +
+                         "] smooth_paths = true (runs are compared by their smoothed cost)");
     checkParticleFilterOptions(
         "pfStandardProposal (Gil et al. 2010, Sec. 3.1) or pfOptimalProposal (FastSLAM 2.0 "
         "proposal per robot)");
@@ -297,12 +320,20 @@ void MultiRobotVSLAMApp::Impl::prepare()
 {
     findGroundTruth();
     app.robots = filterOptions.robots;
-    filter = makeFilter<CMultiRobotVisualSLAM>(mapTemplate);
-    filter->options = filterOptions;
-    if (smootherOptions.map_along_path) {
-        smoother = std::make_unique<TeamPathSmoother>(mapTemplate);
-        smoother->options = smootherOptions;
-        filter->setStepObserver(smoother.get());
+    for (size_t run = 0; run < filterRuns; run++) {
+        TFilterRun r{makeFilter<CMultiRobotVisualSLAM>(mapTemplate, static_cast<uint32_t>(run)),
+                     nullptr};
+        r.filter->options = filterOptions;
+        if (smootherOptions.map_along_path) {
+            r.smoother = std::make_unique<TeamPathSmoother>(mapTemplate);
+            r.smoother->options = smootherOptions;
+            r.filter->setStepObserver(r.smoother.get());
+        }
+        if (run == 0) {
+            filter = std::move(r.filter);
+            smoother = std::move(r.smoother);
+        } else
+            otherRuns.push_back(std::move(r));
     }
     for (const auto& p : startPoses) odometry.emplace_back(p);
     app.estimatedPaths.assign(app.robots.size(), {});
@@ -373,8 +404,11 @@ void MultiRobotVSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
     if (robots.size() == 1) actions = singleRobotAction(*actions, frame);
     prepareFrame(frame);
     const double t = mrpt::Clock::toDouble(actions->begin()->get()->timestamp);
-    if (steps == 0) filter->reset(startPoses, t);
-    filterStep(*filter, *actions, frame, timer);
+    std::vector<CMultiRobotVisualSLAM*> runs{filter.get()};
+    for (auto& run : otherRuns) runs.push_back(run.filter.get());
+    if (steps == 0)
+        for (auto* run : runs) run->reset(startPoses, t);
+    filterStep({runs.begin(), runs.end()}, *actions, frame, timer);
 
     for (size_t k = 0; k < robots.size(); k++) {
         const auto move =
@@ -415,11 +449,27 @@ void MultiRobotVSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
     if (measurements == 0)
         throw std::runtime_error(rawlog + ": no landmark measurements (" + inputs +
                                  "); the rawlog has: " + contents.describe());
-    for (size_t k = 0; k < robots.size(); k++) app.estimatedPaths[k] = bestParticlePath(k);
     if (smootherOptions.smooth_paths) {
         const core::RunTimer smoothing;
+        auto outcome = [](const TeamPathSmoother::TSmoothedTeam& s) {
+            return TRunOutcome{s.cost, s.map.size(), s.correspondences.size()};
+        };
         smoothed = smoother->smoothPaths(filter->bestParticle());
+        runOutcomes = {outcome(*smoothed)};
+        for (auto& run : otherRuns) {
+            auto s = run.smoother->smoothPaths(run.filter->bestParticle());
+            runOutcomes.push_back(outcome(s));
+            if (s.cost >= smoothed->cost) continue;
+            smoothed = std::move(s);
+            std::swap(filter, run.filter);
+            std::swap(smoother, run.smoother);
+            keptRun = runOutcomes.size() - 1;
+        }
+        otherRuns.clear();
         smoothingSeconds = smoothing.elapsedSeconds();
+    }
+    for (size_t k = 0; k < robots.size(); k++) app.estimatedPaths[k] = bestParticlePath(k);
+    if (smoothed) {
         filterPaths = app.estimatedPaths;
         for (size_t k = 0; k < robots.size(); k++)
             app.estimatedPaths[k] = asTrajectory(smoothed->paths[k]);
@@ -551,6 +601,18 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     if (smoothed) {
         report.setResult("smoothing_s", smoothingSeconds);
         report.setCount("smoothing_iterations", static_cast<double>(smoothed->iterations));
+        report.setResult("smoothing_cost", smoothed->cost);
+        if (runOutcomes.size() > 1) {
+            std::ostringstream j;
+            j.precision(17);  // the costs as compared
+            for (size_t i = 0; i < runOutcomes.size(); i++)
+                j << (i ? ", " : "[") << "{\"seed\": " << seed + i
+                  << ", \"smoothing_cost\": " << runOutcomes[i].cost
+                  << ", \"landmarks\": " << runOutcomes[i].landmarks
+                  << ", \"readings\": " << runOutcomes[i].readings << "}";
+            report.setResultJson("filter_runs", j.str() + "]");
+            report.setCount("kept_seed", static_cast<double>(seed + keptRun));
+        }
         report.setCount("smoothing_outlier_readings",
                         static_cast<double>(smoothed->outlier_readings));
         report.setCount("smoothing_reanchored", static_cast<double>(smoothed->reanchored));

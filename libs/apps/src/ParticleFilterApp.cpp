@@ -33,13 +33,14 @@ void ParticleFilterApp::checkParticleFilterOptions(const std::string& proposals,
         throw usageError("[ParticleFilter] PF_algorithm must be " + proposals);
 }
 
-void ParticleFilterApp::filterStep(mrpt::bayes::CParticleFilterCapable& filter,
+void ParticleFilterApp::filterStep(const std::vector<mrpt::bayes::CParticleFilterCapable*>& filters,
                                    const mrpt::obs::CActionCollection& actions,
                                    const mrpt::obs::CSensoryFrame& frame,
                                    core::RunTimer& timer) const
 {
-    timedStep(timer, "step " + std::to_string(steps),
-              [&] { pf.executeOn(filter, &actions, &frame); });
+    timedStep(timer, "step " + std::to_string(steps), [&] {
+        for (auto* filter : filters) pf.executeOn(*filter, &actions, &frame);
+    });
 }
 
 }  // namespace mrpt_vslam::apps

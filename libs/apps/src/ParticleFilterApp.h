@@ -72,19 +72,22 @@ class ParticleFilterApp : public SlamApp {
         return *map;
     }
 
-    /// The filter over copies of `mapTemplate`, with sampleSize particles and the run's seed.
+    /// The filter over copies of `mapTemplate`, with sampleSize particles and the run's seed
+    /// (plus `seedOffset`, for a filter run beside the first).
     template <class FILTER, class MAP>
-    std::unique_ptr<FILTER> makeFilter(const MAP& mapTemplate) const
+    std::unique_ptr<FILTER> makeFilter(const MAP& mapTemplate, uint32_t seedOffset = 0) const
     {
-        auto filter = std::make_unique<FILTER>(mapTemplate, pf.m_options.sampleSize, seed);
+        auto filter =
+            std::make_unique<FILTER>(mapTemplate, pf.m_options.sampleSize, seed + seedOffset);
         filter->setThreadCount(args.threads);
         // CParticleFilter's resampling draws from MRPT's global generator.
         mrpt::random::getRandomGenerator().randomize(seed);
         return filter;
     }
 
-    /// One step of `filter` through timedStep(); its errors name the rawlog and the step.
-    void filterStep(mrpt::bayes::CParticleFilterCapable& filter,
+    /// One step of each of `filters`, in order, as one timedStep(); its errors name the rawlog
+    /// and the step.
+    void filterStep(const std::vector<mrpt::bayes::CParticleFilterCapable*>& filters,
                     const mrpt::obs::CActionCollection& actions,
                     const mrpt::obs::CSensoryFrame& frame, core::RunTimer& timer) const;
 
