@@ -145,7 +145,7 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
             if (!e.actions->getBestMovementEstimation()) {
                 std::string held;
                 for (const auto& a : *e.actions)
-                    held += std::string(held.empty() ? "" : ", ") + a->GetRuntimeClass()->className;
+                    held += std::string(held.empty() ? "" : ", ") + shortClassName(*a);
                 throw std::runtime_error(
                     m_reader.file() + ": entry " + std::to_string(e.index) +
                     " has an action collection without a CActionRobotMovement2D (it holds " +

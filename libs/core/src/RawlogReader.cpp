@@ -52,14 +52,6 @@ std::string corruptAfter(size_t entries)
     return "corrupt or truncated rawlog after entry " + std::to_string(entries) + ": ";
 }
 
-std::string shortClassName(const CSerializable& obj)
-{
-    std::string name = obj.GetRuntimeClass()->className;
-    const std::string prefix = "mrpt::obs::";
-    if (name.rfind(prefix, 0) == 0) name.erase(0, prefix.size());
-    return name;
-}
-
 /** The innermost "Message:" of an MRPT exception text, without the stream description. */
 std::string innermostMessage(const std::string& what)
 {
@@ -318,6 +310,14 @@ bool RawlogReader::next(TRawlogEntry& entry)
 }
 
 RawlogEntrySource::~RawlogEntrySource() = default;
+
+std::string shortClassName(const CSerializable& obj)
+{
+    std::string name = obj.GetRuntimeClass()->className;
+    const std::string prefix = "mrpt::obs::";
+    if (name.rfind(prefix, 0) == 0) name.erase(0, prefix.size());
+    return name;
+}
 
 void TRawlogSummary::add(const CSerializable& obj)
 {

@@ -209,7 +209,7 @@ TEST(ActionFrameSource, AnActionWithoutPlanarOdometryIsNamed)
         EXPECT_EQ(std::string(e.what()),
                   file +
                       ": entry 1 has an action collection without a CActionRobotMovement2D (it "
-                      "holds mrpt::obs::CActionRobotMovement3D; planar odometry is needed)");
+                      "holds CActionRobotMovement3D; planar odometry is needed)");
     }
 }
 

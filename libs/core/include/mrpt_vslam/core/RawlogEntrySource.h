@@ -40,6 +40,9 @@ struct TRawlogEntry {
     bool time_barrier = false;
 };
 
+/// The class of `obj` as messages name it: classes of `mrpt::obs` without their namespace.
+std::string shortClassName(const mrpt::serialization::CSerializable& obj);
+
 /** What a rawlog holds, to tell the user what was found when it does not fit the app. */
 struct TRawlogSummary {
     size_t objects = 0;            ///< top-level objects read from the file
