@@ -17,8 +17,8 @@
 #      process), and the turn of each path's best alignment to the truth; the figures of both
 #      tools' RMSE per rawlog beside it (doc/results/range-bearing/).
 # Writes rawlogs, run folders (metrics.json, paths.png, ...) and logs under
-# out/reproduce-range-bearing/ (or $OUT). Builds first (scripts/setup.sh). Takes about 5 min
-# (120 rawlogs; each tool well under a second per rawlog at the default SEEDS).
+# out/reproduce-range-bearing/ (or $OUT). Builds first (scripts/setup.sh). Takes about 6 min
+# (120 rawlogs; each tool about a second or less per rawlog at the default SEEDS).
 # Environment: OUT, SIM_SEEDS (simulation seeds, default 1 to 20: one rawlog per noise level,
 # IDs kept or hidden and seed; twenty worlds, because which tool is the more accurate on a
 # single world changes from one world to the next), SEEDS (multirobot-vslam seeds, default 1;
@@ -335,7 +335,10 @@ fi
 {
   results_header "Range-bearing peer comparison: stock kf-slam and multirobot-vslam" "$COMMAND"
   echo "Tools run: $TOOLS (stock kf-slam of mrpt-apps" \
-    "$(dpkg-query -W -f='${Version}' mrpt-apps 2>/dev/null || echo '?')); multirobot-vslam seeds: $SEEDS."
+    "$(dpkg-query -W -f='${Version}' mrpt-apps 2>/dev/null || echo '?')); multirobot-vslam with" \
+    "share/mrpt-vslam/config/multirobot-vslam/range-bearing.ini (filter_runs =" \
+    "$(ini_value "$CONFIGS/multirobot-vslam/range-bearing.ini" filter_runs): that many filters" \
+    "from each seed on, the one whose smoothed solution costs least kept), seeds: $SEEDS."
   echo
   first="$PEER/simul-landmarks-noise-${NOISE_LEVELS%% *}.ini"
   echo "Data: stock simul-landmarks (share/mrpt-vslam/config/peer-comparison/), one robot," \
