@@ -35,6 +35,7 @@ OUT="${OUT:-$REPO_DIR/out/reproduce-range-bearing}"
 BIN="$BUILD_DIR/bin"
 CONFIGS="$REPO_DIR/share/mrpt-vslam/config"
 PEER="$CONFIGS/peer-comparison"
+MRV_CONFIG="$CONFIGS/multirobot-vslam/range-bearing.ini"
 SEEDS="${SEEDS:-1}"
 SIM_SEEDS="${SIM_SEEDS:-$(seq -s ' ' 1 20)}"
 NOISE_LEVELS="${NOISE_LEVELS:-low medium high}"
@@ -222,7 +223,7 @@ run_multirobot_vslam() {  # run_multirobot_vslam NAME SEED
   local name="$1" seed="$2"
   local dir="$OUT/multirobot-vslam/$name-seed$seed"
   local t0=$EPOCHREALTIME
-  "$BIN/multirobot-vslam" "$CONFIGS/multirobot-vslam/range-bearing.ini" "$DATA/$name.rawlog" \
+  "$BIN/multirobot-vslam" "$MRV_CONFIG" "$DATA/$name.rawlog" \
     --seed "$seed" --out "$dir" --quiet
   local t1=$EPOCHREALTIME
   awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f\n", b - a }' > "$dir/wall_s.txt"
@@ -279,6 +280,9 @@ mrv_figures() {
   cells $(mrv_dirs "$1") | tr -d '|' | awk '{ print $1, $2, $8 }'
 }
 
+# both_tools: whether TOOLS runs kf-slam and multirobot-vslam (the comparisons need both)
+both_tools() { [[ " $TOOLS " == *" kf-slam "* && " $TOOLS " == *" multirobot-vslam "* ]]; }
+
 # figure_label KIND: what a figure of KIND (rmse, aligned-rmse) shows
 figure_label() {
   if [ "$1" = aligned-rmse ]; then echo "aligned position RMSE"; else echo "position RMSE"; fi
@@ -313,7 +317,7 @@ done
 mkdir -p "$(dirname "$RESULTS")"
 # figures: per IDs setting, kf-slam's RMSE (unaligned and aligned) against multirobot-vslam's, a
 # series per noise level, one point per rawlog where kf-slam finished
-if [[ " $TOOLS " == *" kf-slam "* && " $TOOLS " == *" multirobot-vslam "* ]]; then
+if both_tools; then
   mkdir -p "$PLOTS"
   for ids in hidden kept; do
     for noise in $NOISE_LEVELS; do
@@ -336,9 +340,8 @@ fi
   results_header "Range-bearing peer comparison: stock kf-slam and multirobot-vslam" "$COMMAND"
   echo "Tools run: $TOOLS (stock kf-slam of mrpt-apps" \
     "$(dpkg-query -W -f='${Version}' mrpt-apps 2>/dev/null || echo '?')); multirobot-vslam with" \
-    "share/mrpt-vslam/config/multirobot-vslam/range-bearing.ini (filter_runs =" \
-    "$(ini_value "$CONFIGS/multirobot-vslam/range-bearing.ini" filter_runs): that many filters" \
-    "from each seed on, the one whose smoothed solution costs least kept), seeds: $SEEDS."
+    "${MRV_CONFIG#"$REPO_DIR"/} (filter_runs = $(ini_value "$MRV_CONFIG" filter_runs): that many" \
+    "filters from each seed on, the one whose smoothed solution costs least kept), seeds: $SEEDS."
   echo
   first="$PEER/simul-landmarks-noise-${NOISE_LEVELS%% *}.ini"
   echo "Data: stock simul-landmarks (share/mrpt-vslam/config/peer-comparison/), one robot," \
@@ -361,7 +364,7 @@ fi
     "mapped /" \
     "true (matched one-to-one within 1.5 m); error: mean over the matched ones. Time: wall" \
     "clock of the tool's process (reading, filtering, writing)."
-  if [[ " $TOOLS " == *" kf-slam "* && " $TOOLS " == *" multirobot-vslam "* ]]; then
+  if both_tools; then
     echo
     echo "## Over the simulation seeds"
     echo
@@ -432,7 +435,7 @@ fi
     s="$PEER/simul-landmarks-noise-$noise.ini"
     echo "| $name | $ids | $noise ($(ini_value "$s" stdRange) m, $(ini_value "$s" stdYaw_deg)°) | $sim |$(kf_cells "$name")$(cells $(mrv_dirs "$name"))"
   done
-  if [[ " $TOOLS " == *" kf-slam "* && " $TOOLS " == *" multirobot-vslam "* ]]; then
+  if both_tools; then
     echo
     echo "## The turn about the start"
     echo
