@@ -5,7 +5,8 @@
 #      CObservationBearingRange) per noise level (low, medium, high range and bearing std) with
 #      landmark IDs kept and hidden (ID -1): 300 steps on a 7.2 m square, 40 landmarks, one world
 #      per simulation seed;
-#      its ground truth becomes NAME.groundtruth.tum and NAME.landmarks.txt beside NAME.rawlog;
+#      its ground truth becomes NAME.groundtruth.tum and NAME.landmarks.txt beside NAME.rawlog
+#      (scripts/simul-landmarks-ground-truth.sh);
 #   2. stock kf-slam (EKF, CRangeBearingKFSLAM2D, kf-slam-2d.ini with the rawlog's sensor noise;
 #      readings with an ID are associated by it, the others to the nearest landmark within a
 #      Mahalanobis gate) on each rawlog, timed; its printed poses and final 3D scene become a run
@@ -76,9 +77,9 @@ ini_copy() {
 # being row k + 1 of NAME.rawlog_ground_truth_robot_path.txt (x y z yaw pitch roll, one row per
 # reading). multirobot-vslam also takes the first frame, taken before any motion, as a step
 # standing at the start (doc/app-conventions.md). simul-landmarks 2.5.8 stamps the readings with
-# the clock at simulation time (a few microseconds apart): NAME.stamps.txt is rawlog-edit's list
-# of them from the second reading on (6 decimals, as our TUM files), and the ground truth and
-# estimates use those stamps. Both tools are scored on those readings only: they are at least
+# the clock at simulation time (a few microseconds apart): the ground truth has rawlog-edit's list
+# of them from the second reading on (6 decimals, as our TUM files), NAME.stamps.txt holds them
+# for kf-slam's path, and the estimates use them too. Both tools are scored on those readings only: they are at least
 # 10 µs apart, the first reading about 0.2 ms before the second, and the estimates carry the
 # stamps to the microsecond, so a time tolerance of 5 µs pairs equal stamps and nothing else.
 EVAL_TIME_TOLERANCE=0.000005
@@ -95,26 +96,12 @@ simulate() {  # simulate NAME NOISE IDS(true|false) SIM_SEED
     [ -s "$DATA/$f" ] || { echo "simul-landmarks wrote no $DATA/$f:" >&2
       tail -5 "$DATA/$name.simul-landmarks.log" >&2; exit 1; }
   done
-  rawlog-edit -i "$DATA/$name.rawlog" --list-timestamps --text-file-output "$DATA/$name.stamps.txt" \
-    -q > /dev/null 2>&1
+  "$REPO_DIR/scripts/simul-landmarks-ground-truth.sh" "$DATA/$name.rawlog"
+  awk '!/^#/ { print $1 }' "$DATA/$name.groundtruth.tum" > "$DATA/$name.stamps.txt"
   local steps expected
   steps=$(wc -l < "$DATA/$name.stamps.txt")
   expected=$(( $(ini_value "$ini" nSteps) - 1 ))
   [ "$steps" = "$expected" ] || { echo "$name: $steps readings stamped, expected $expected" >&2; exit 1; }
-  awk 'NR > 1 && $1 <= p { print FILENAME ": stamps not increasing at line " NR > "/dev/stderr"; exit 1 }
-       { p = $1 }' "$DATA/$name.stamps.txt"
-  # TUM: the pose of reading k (k >= 1) at the stamp of that reading; planar, so q = (0, 0,
-  # sin(yaw/2), cos(yaw/2)) (pitch and roll are 0)
-  awk 'NR == FNR { t[++n] = $1; next }
-       /^%/ || NF != 6 { next }
-       { if (++r == 1) next; if (r - 1 > n) exit 1
-         printf "%s %.9f %.9f %.9f 0 0 %.9f %.9f\n", t[r - 1], $1, $2, $3, sin($4 / 2), cos($4 / 2) }
-       END { if (r - 1 != n) { print FILENAME ": " r - 1 " poses for " n " stamps" > "/dev/stderr"; exit 1 } }' \
-    "$DATA/$name.stamps.txt" "$DATA/$name.rawlog_ground_truth_robot_path.txt" \
-    | { echo "# timestamp x y z qx qy qz qw"; cat; } > "$DATA/$name.groundtruth.tum"
-  # landmarks (CLandmarksMap::saveToTextFile): x y z, three other fields, the ID in column 7
-  awk 'BEGIN { print "# id x y z" } NF >= 7 { printf "%d %s %s %s\n", $7, $1, $2, $3 }' \
-    "$DATA/$name.rawlog_ground_truth.txt" > "$DATA/$name.landmarks.txt"
 }
 
 # estimate_value DIR KEY...: a value of the one robot's "estimate" block of DIR/metrics.json
