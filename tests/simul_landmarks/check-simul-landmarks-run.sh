@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# A user's own range-bearing rawlog made by MRPT's stock simul-landmarks (hidden landmark IDs,
+# the sensor 0.2 m ahead of the robot and turned 15 deg, both recorded in each observation):
+# scripts/simul-landmarks-ground-truth.sh turns its ground truth into NAME.groundtruth.tum and
+# NAME.landmarks.txt, and multirobot-vslam runs from the range-bearing template with no change,
+# scored against that ground truth. Also the converter's one-line errors.
+# Usage: check-simul-landmarks-run.sh SOURCE_DIR BUILD_DIR [SIM_SEED]
+# Exits 77 (skipped) without mrpt-apps' simul-landmarks and rawlog-edit.
+set -euo pipefail
+src="$(cd "$1" && pwd)"
+build="$(cd "$2" && pwd)"
+sim_seed="${3:-1}"
+for tool in simul-landmarks rawlog-edit; do
+  command -v "$tool" > /dev/null || { echo "skipped: $tool not found (mrpt-apps)"; exit 77; }
+done
+scratch="$(mktemp -d)"
+trap 'rm -rf "$scratch"' EXIT
+fail() { echo "FAILED: $*" >&2; exit 1; }
+convert="$src/scripts/simul-landmarks-ground-truth.sh"
+
+# 300 readings on the 7.2 m square, 40 landmarks, medium noise (0.1 m, 2 deg)
+sed -e "s/^random_seed = .*/random_seed = $sim_seed/" -e 's/^outFile = .*/outFile = user.rawlog/' \
+    -e 's/^sensorDetectsIDs = .*/sensorDetectsIDs = false/' -e 's/^sensorPose_x = .*/sensorPose_x = 0.2/' \
+    -e 's/^sensorPose_yaw_deg = .*/sensorPose_yaw_deg = 15/' \
+    "$src/share/mrpt-vslam/config/peer-comparison/simul-landmarks-noise-medium.ini" > "$scratch/sim.ini"
+(cd "$scratch" && simul-landmarks sim.ini < /dev/null > sim.log 2>&1)
+[ -s "$scratch/user.rawlog_ground_truth_robot_path.txt" ] || { tail -5 "$scratch/sim.log" >&2; fail "simul-landmarks wrote nothing"; }
+
+"$convert" "$scratch/user.rawlog"
+poses=$(grep -vc '^#' "$scratch/user.groundtruth.tum")
+[ "$poses" = 299 ] || fail "user.groundtruth.tum has $poses poses, expected 299 (300 readings, the first passed over)"
+landmarks=$(grep -vc '^#' "$scratch/user.landmarks.txt")
+[ "$landmarks" = 40 ] || fail "user.landmarks.txt has $landmarks landmarks, expected 40"
+
+"$build/bin/multirobot-vslam" "$src/share/mrpt-vslam/config/multirobot-vslam/range-bearing.ini" \
+  "$scratch/user.rawlog" --out "$scratch/run" --seed 1 --quiet
+python3 - "$scratch/run/metrics.json" <<'PY' || fail "multirobot-vslam's metrics.json out of bounds"
+import json, sys
+m = json.load(open(sys.argv[1]))
+e = m["robots"]["R1"]["estimate"] if "robots" in m else m["estimate"]
+lm = m["landmarks"]
+print("ATE RMSE %.3f m over %d poses; landmarks %d estimated, %d matched, error mean %.3f m"
+      % (e["ate_rmse_m"], e["matched_poses"], lm["estimated_landmarks"], lm["matched"], lm["error_mean_m"]))
+ok = (e["matched_poses"] >= 299 and e["ate_rmse_m"] < 0.12 and abs(lm["estimated_landmarks"] - 40) <= 3
+      and lm["matched"] >= 39 and lm["error_mean_m"] < 0.12)
+sys.exit(0 if ok else 1)
+PY
+
+# bad input: one line naming the file, exit 1, nothing written
+rm "$scratch/user.groundtruth.tum" "$scratch/user.landmarks.txt" "$scratch/user.rawlog_ground_truth.txt"
+if "$convert" "$scratch/user.rawlog" 2> "$scratch/err"; then fail "converted without the landmarks file"; fi
+[ "$(wc -l < "$scratch/err")" = 1 ] && grep -q "user.rawlog_ground_truth.txt: missing" "$scratch/err" ||
+  fail "the missing landmarks file gave: $(cat "$scratch/err")"
+[ ! -e "$scratch/user.groundtruth.tum" ] || fail "a ground truth was written without the landmarks"
+echo garbage > "$scratch/g.rawlog"
+cp "$scratch/user.rawlog_ground_truth_robot_path.txt" "$scratch/g.rawlog_ground_truth_robot_path.txt"
+echo "1 2 3 5 0 0 7" > "$scratch/g.rawlog_ground_truth.txt"
+if "$convert" "$scratch/g.rawlog" 2> "$scratch/err"; then fail "converted a rawlog of garbage"; fi
+[ "$(wc -l < "$scratch/err")" = 1 ] && grep -q "g.rawlog: " "$scratch/err" ||
+  fail "the garbage rawlog gave: $(cat "$scratch/err")"
+echo "simul-landmarks run: passed"
