@@ -60,7 +60,7 @@ ini_copy() {
   local kv key n
   for kv in "$@"; do
     key="${kv%%=*}"
-    n=$(grep -c -E "^[[:space:]]*$key[[:space:]]*=" "$dst.tmp" || true)
+    n=$(grep -c -E "^[[:space:]]*${key}[[:space:]]*=" "$dst.tmp" || true)
     [ "$n" = 1 ] || { echo "$src: key $key found $n times, expected once" >&2; exit 1; }
     awk -v k="$key" -v line="$key = ${kv#*=}" \
       '$0 ~ "^[ \t]*" k "[ \t]*=" { print line; next } { print }' "$dst.tmp" > "$dst.tmp2"
@@ -79,9 +79,10 @@ ini_copy() {
 # standing at the start (doc/app-conventions.md). simul-landmarks 2.5.8 stamps the readings with
 # the clock at simulation time (a few microseconds apart): the ground truth has rawlog-edit's list
 # of them from the second reading on (6 decimals, as our TUM files), NAME.stamps.txt holds them
-# for kf-slam's path, and the estimates use them too. Both tools are scored on those readings only: they are at least
-# 10 µs apart, the first reading about 0.2 ms before the second, and the estimates carry the
-# stamps to the microsecond, so a time tolerance of 5 µs pairs equal stamps and nothing else.
+# for kf-slam's path, and the estimates use them too. Both tools are scored on those readings
+# only: they are at least 10 µs apart, the first reading about 0.2 ms before the second, and the
+# estimates carry the stamps to the microsecond, so a time tolerance of 5 µs pairs equal stamps
+# and nothing else.
 EVAL_TIME_TOLERANCE=0.000005
 simulate() {  # simulate NAME NOISE IDS(true|false) SIM_SEED
   local name="$1" noise="$2" ids="$3" sim_seed="$4"

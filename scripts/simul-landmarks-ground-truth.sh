@@ -42,6 +42,8 @@ convert() {
        /^%/ || NF == 0 { next }
        NF != 6 { print f ": line " FNR " has " NF " fields, expected x y z yaw pitch roll" > "/dev/stderr"
                  bad = 1; exit 1 }
+       $5 != 0 || $6 != 0 { print f ": line " FNR " has pitch or roll: a 6D path, and the apps need a planar one" > "/dev/stderr"
+                 bad = 1; exit 1 }
        { if (++r > 1) printf "%s %.9f %.9f %.9f 0 0 %.9f %.9f\n", t[r - 1], $1, $2, $3, sin($4 / 2), cos($4 / 2) }
        END { if (!bad && r - 1 != n) { print f ": " r " poses, the rawlog has " n + 1 " readings" > "/dev/stderr"; exit 1 } }' \
     "$tmp/stamps.txt" "$path" | { echo "# timestamp x y z qx qy qz qw"; cat; } > "$tmp/groundtruth.tum"
