@@ -90,14 +90,17 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
     team::TeamListener::TOptions listenerOptions;            ///< with --listen
     team::TeamListener* listener = nullptr;                  ///< with --listen, during run()
     std::vector<std::unique_ptr<StereoFrontEnd>> frontEnds;  ///< one per robot, on demand
-    std::unique_ptr<CMultiRobotVisualSLAM> filter;           ///< the kept run's, after endSteps()
-    std::unique_ptr<TeamPathSmoother> smoother;              ///< with map_along_path
-    /// With filter_runs > 1: the other runs, from the seeds after the run's.
     struct TFilterRun {
         std::unique_ptr<CMultiRobotVisualSLAM> filter;
-        std::unique_ptr<TeamPathSmoother> smoother;
+        std::unique_ptr<TeamPathSmoother> smoother;  ///< with map_along_path
     };
-    std::vector<TFilterRun> otherRuns;
+    /// filter_runs of them, from the seeds --seed, --seed + 1, ...; after endSteps() the kept one
+    std::vector<TFilterRun> runs;
+    std::vector<mrpt::bayes::CParticleFilterCapable*> stepped;  ///< runs' filters, each step
+    /// The first run during the steps (its figures stand for all: they read the same data), the
+    /// kept one after endSteps().
+    CMultiRobotVisualSLAM& filter() const { return *runs.front().filter; }
+    TeamPathSmoother& smoother() const { return *runs.front().smoother; }
     /// With smooth_paths, per run (by seed): what its smoothing gave.
     struct TRunOutcome {
         double cost = 0;                     ///< TeamPathSmoother::TSmoothedTeam::cost
@@ -329,11 +332,8 @@ void MultiRobotVSLAMApp::Impl::prepare()
             r.smoother->options = smootherOptions;
             r.filter->setStepObserver(r.smoother.get());
         }
-        if (run == 0) {
-            filter = std::move(r.filter);
-            smoother = std::move(r.smoother);
-        } else
-            otherRuns.push_back(std::move(r));
+        stepped.push_back(r.filter.get());
+        runs.push_back(std::move(r));
     }
     for (const auto& p : startPoses) odometry.emplace_back(p);
     app.estimatedPaths.assign(app.robots.size(), {});
@@ -383,7 +383,7 @@ std::vector<std::string> MultiRobotVSLAMApp::Impl::odometryLabels() const
 
 core::TumTrajectory MultiRobotVSLAMApp::Impl::bestParticlePath(size_t robot) const
 {
-    return asTrajectory(CMultiRobotVisualSLAM::pathOf(filter->bestParticle(), robot));
+    return asTrajectory(CMultiRobotVisualSLAM::pathOf(filter().bestParticle(), robot));
 }
 
 void MultiRobotVSLAMApp::Impl::drawTeam(mrpt::opengl::COpenGLScene& scene,
@@ -404,11 +404,9 @@ void MultiRobotVSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
     if (robots.size() == 1) actions = singleRobotAction(*actions, frame);
     prepareFrame(frame);
     const double t = mrpt::Clock::toDouble(actions->begin()->get()->timestamp);
-    std::vector<CMultiRobotVisualSLAM*> runs{filter.get()};
-    for (auto& run : otherRuns) runs.push_back(run.filter.get());
     if (steps == 0)
-        for (auto* run : runs) run->reset(startPoses, t);
-    filterStep({runs.begin(), runs.end()}, *actions, frame, timer);
+        for (auto& run : runs) run.filter->reset(startPoses, t);
+    filterStep(stepped, *actions, frame, timer);
 
     for (size_t k = 0; k < robots.size(); k++) {
         const auto move =
@@ -416,16 +414,16 @@ void MultiRobotVSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
         odometry[k] = odometry[k] + move->poseChange->getMeanVal();
         app.odometryPaths[k].push_back(t, mrpt::math::TPose3D(odometry[k].asTPose()));
     }
-    measurements += filter->lastStepStats.measurements;
-    robotReadings += filter->lastStepStats.robot_readings;
-    nonPositiveRanges += filter->lastStepStats.non_positive_ranges;
+    measurements += filter().lastStepStats.measurements;
+    robotReadings += filter().lastStepStats.robot_readings;
+    nonPositiveRanges += filter().lastStepStats.non_positive_ranges;
 }
 
 void MultiRobotVSLAMApp::Impl::drawLive(mrpt::opengl::COpenGLScene& scene) const
 {
     std::vector<core::TumTrajectory> paths;
     for (size_t k = 0; k < app.robots.size(); k++) paths.push_back(bestParticlePath(k));
-    drawTeam(scene, filter->bestParticle().map, paths);
+    drawTeam(scene, filter().bestParticle().map, paths);
 }
 
 void MultiRobotVSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
@@ -451,21 +449,17 @@ void MultiRobotVSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
                                  "); the rawlog has: " + contents.describe());
     if (smootherOptions.smooth_paths) {
         const core::RunTimer smoothing;
-        auto outcome = [](const TeamPathSmoother::TSmoothedTeam& s) {
-            return TRunOutcome{s.cost, s.map.size(), s.correspondences.size()};
-        };
-        smoothed = smoother->smoothPaths(filter->bestParticle());
-        runOutcomes = {outcome(*smoothed)};
-        for (auto& run : otherRuns) {
-            auto s = run.smoother->smoothPaths(run.filter->bestParticle());
-            runOutcomes.push_back(outcome(s));
-            if (s.cost >= smoothed->cost) continue;
+        for (size_t i = 0; i < runs.size(); i++) {
+            auto s = runs[i].smoother->smoothPaths(runs[i].filter->bestParticle());
+            runOutcomes.push_back({s.cost, s.map.size(), s.correspondences.size()});
+            if (smoothed && s.cost >= smoothed->cost) continue;
             smoothed = std::move(s);
-            std::swap(filter, run.filter);
-            std::swap(smoother, run.smoother);
-            keptRun = runOutcomes.size() - 1;
+            keptRun = i;
         }
-        otherRuns.clear();
+        TFilterRun kept = std::move(runs[keptRun]);
+        runs.clear();
+        runs.push_back(std::move(kept));
+        stepped.clear();
         smoothingSeconds = smoothing.elapsedSeconds();
     }
     for (size_t k = 0; k < robots.size(); k++) app.estimatedPaths[k] = bestParticlePath(k);
@@ -541,7 +535,7 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
                                             mrpt::opengl::COpenGLScene& scene,
                                             core::RunReport& report)
 {
-    const auto& best = filter->bestParticle();
+    const auto& best = filter().bestParticle();
     for (size_t k = 0; k < app.robots.size(); k++) {
         const std::string& r = app.robots[k];
         app.estimatedPaths[k].save(
@@ -562,7 +556,7 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     double alongPathSeconds = 0;
     if (smootherOptions.map_along_path && !smoothed) {
         const core::RunTimer rebuild;
-        alongPath = smoother->mapAlongPath(best, &alongPathCorrespondences);
+        alongPath = smoother().mapAlongPath(best, &alongPathCorrespondences);
         alongPathSeconds = rebuild.elapsedSeconds();
     }
     if (smootherOptions.map_along_path) core::saveMapFiles(best.map, out.path(), "particle_map");
@@ -590,12 +584,12 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     if (nonPositiveRanges > 0 && !args.quiet)
         std::printf("multirobot-vslam: %zu range-bearing readings with a range <= 0 left out\n",
                     nonPositiveRanges);
-    report.setCount("particles", static_cast<double>(filter->particlesCount()));
+    report.setCount("particles", static_cast<double>(filter().particlesCount()));
     report.setCount("landmarks", static_cast<double>(map.size()));
     if (smootherOptions.map_along_path) {
         report.setCount("particle_map_landmarks", static_cast<double>(best.map.size()));
         report.setCount("map_along_path_min_times_seen",
-                        static_cast<double>(smoother->minTimesSeen()));
+                        static_cast<double>(smoother().minTimesSeen()));
     }
     if (alongPath) report.setResult("map_along_path_s", alongPathSeconds);
     if (smoothed) {
