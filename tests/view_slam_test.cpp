@@ -135,6 +135,15 @@ TEST_F(ViewSLAMApp, BadInputGivesOneLineErrors)
     expectError(kConfig + " " MRPT_VSLAM_SOURCE_DIR "/datasets/office-team/team2.rawlog -q --out " +
                     out("e5"),
                 1, "team2.rawlog");
+    // A rawlog of range-bearing readings: no images of the configured label
+    expectError(kConfig +
+                    " " MRPT_VSLAM_SOURCE_DIR
+                    "/datasets/utias-mrclam/mrclam7-r123-0-300.rawlog -q --out " +
+                    out("e8"),
+                1,
+                "mrclam7-r123-0-300.rawlog: no frames with odometry and CObservationImage "
+                "labelled 'OMNICAM' (action / sensory-frame pairs, or CObservationOdometry "
+                "readings); the rawlog has: 488 x CObservationBearingRange (R1_RB)");
     // impossible or misread values
     const std::vector<std::pair<std::string, std::string>> impossible = {
         {"ViewObserver.max_iterations=2000000000", "max_iterations"},

@@ -6,6 +6,7 @@
 #include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/AtomicFile.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
+#include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/OutputDirectory.h>
 #include <mrpt_vslam/core/ProgressReporter.h>
 #include <mrpt_vslam/core/RawlogReader.h>
@@ -126,7 +127,7 @@ mrpt::obs::CObservation::Ptr StereoFrontEndApp::convert(const mrpt::obs::CObserv
                           img->getExternalStorageFileAbsolutePath();
         if (!images.empty()) images += "')";
         throw std::runtime_error(m_args.input + ": entry " + std::to_string(entry_index + 1) +
-                                 ", " + stereo->sensorLabel + images + ": " +
+                                 ", " + core::ObservationSelector::nameOf(*stereo) + images + ": " +
                                  core::oneLineMessage(e));
     }
     const auto& stats = front_end.lastFrameStats();

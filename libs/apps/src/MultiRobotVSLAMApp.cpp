@@ -289,7 +289,8 @@ void MultiRobotVSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
             landmarks = frontEnds[k]->process(*stereo);
         } catch (const std::exception& e) {
             throw std::runtime_error(rawlog + ": step " + std::to_string(steps) + ": cannot use " +
-                                     stereo->sensorLabel + ": " + core::oneLineMessage(e));
+                                     core::ObservationSelector::nameOf(*stereo) + ": " +
+                                     core::oneLineMessage(e));
         }
         // the images' landmarks replace any the frame had
         ObservationSelector::of<mrpt::obs::CObservationVisualLandmarks>(landmarksLabel)

@@ -176,8 +176,8 @@ void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
         bearings = detector->detect(*image, filterOptions.bearings_label);
     } catch (const std::exception& e) {
         const auto& img = image->image;
-        throw std::runtime_error(rawlog + ": frame " + std::to_string(steps) + ": cannot use the " +
-                                 imageLabel + " image" +
+        throw std::runtime_error(rawlog + ": frame " + std::to_string(steps) + ": cannot use " +
+                                 ObservationSelector::nameOf(*image) +
                                  (img.isExternallyStored()
                                       ? " '" + img.getExternalStorageFileAbsolutePath() + "'"
                                       : std::string()) +
@@ -217,15 +217,18 @@ void OmniFastSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
 
 void OmniFastSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
 {
+    using core::ObservationSelector;
+    const std::string inputs =
+        ObservationSelector::of<mrpt::obs::CObservationBearingRange>(filterOptions.bearings_label)
+            .describe() +
+        " or " + ObservationSelector::of<mrpt::obs::CObservationImage>(imageLabel).describe();
     if (steps == 0)
-        throw std::runtime_error(rawlog +
-                                 ": no frames with odometry (action / sensory-frame pairs, or "
-                                 "CObservationOdometry with " +
-                                 filterOptions.bearings_label + " or " + imageLabel +
-                                 "); the rawlog has: " + contents.describe());
+        throw std::runtime_error(rawlog + ": no frames with odometry and " + inputs +
+                                 " (action / sensory-frame pairs, or CObservationOdometry "
+                                 "readings); the rawlog has: " +
+                                 contents.describe());
     if (measurements == 0)
-        throw std::runtime_error(rawlog + ": no ceiling-light measurements (" +
-                                 filterOptions.bearings_label + " or " + imageLabel +
+        throw std::runtime_error(rawlog + ": no ceiling-light measurements (" + inputs +
                                  "); the rawlog has: " + contents.describe());
     app.estimatedPath = asTrajectory(COmniFastSLAM::pathOf(filter->bestParticle()));
     if (smoother) {

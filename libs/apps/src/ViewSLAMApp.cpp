@@ -220,10 +220,11 @@ void ViewSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
 void ViewSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
 {
     if (framesWithImages == 0)
-        throw std::runtime_error(rawlog + ": no frames with odometry and a " + imageLabel +
-                                 " image (action / sensory-frame pairs, or CObservationOdometry "
-                                 "with CObservationImage); the rawlog has: " +
-                                 contents.describe());
+        throw std::runtime_error(
+            rawlog + ": no frames with odometry and " +
+            core::ObservationSelector::of<mrpt::obs::CObservationImage>(imageLabel).describe() +
+            " (action / sensory-frame pairs, or CObservationOdometry readings); the rawlog has: " +
+            contents.describe());
     stepTable->commit();
     observationTable->commit();
 }

@@ -311,12 +311,17 @@ bool RawlogReader::next(TRawlogEntry& entry)
 
 RawlogEntrySource::~RawlogEntrySource() = default;
 
-std::string shortClassName(const CSerializable& obj)
+std::string shortClassName(const mrpt::rtti::TRuntimeClassId& cls)
 {
-    std::string name = obj.GetRuntimeClass()->className;
+    std::string name = cls.className;
     const std::string prefix = "mrpt::obs::";
     if (name.rfind(prefix, 0) == 0) name.erase(0, prefix.size());
     return name;
+}
+
+std::string shortClassName(const CSerializable& obj)
+{
+    return shortClassName(*obj.GetRuntimeClass());
 }
 
 void TRawlogSummary::add(const CSerializable& obj)

@@ -1,6 +1,7 @@
 #include <mrpt/core/format.h>
 #include <mrpt/maps/CLandmarksMap.h>
 #include <mrpt/obs/CObservationVisualLandmarks.h>
+#include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/multirobot/LandmarkMeasurement.h>
 
 #include <Eigen/Cholesky>
@@ -24,8 +25,8 @@ std::vector<TLandmarkMeasurement> measurementsFromObservation(
     out.reserve(obs.landmarks.landmarks.size());
     for (const auto& lm : obs.landmarks.landmarks) {
         const auto fail = [&](const std::string& what) {
-            throw std::runtime_error(obs.sensorLabel + ": landmark " + std::to_string(lm.ID) + " " +
-                                     what);
+            throw std::runtime_error(core::ObservationSelector::nameOf(obs) + ": landmark " +
+                                     std::to_string(lm.ID) + " " + what);
         };
         if (lm.features.empty() || !lm.features[0].descriptors.SURF ||
             lm.features[0].descriptors.SURF->size() != core::USurfDescriptor::kSize)
@@ -57,8 +58,7 @@ std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
     size_t* non_positive)
 {
     const auto fail = [&](const std::string& what) {
-        throw std::runtime_error(
-            (obs.sensorLabel.empty() ? "CObservationBearingRange" : obs.sensorLabel) + ": " + what);
+        throw std::runtime_error(core::ObservationSelector::nameOf(obs) + ": " + what);
     };
     const double sr = noise.std_range.value_or(obs.sensor_std_range);
     const double sb = noise.std_bearing.value_or(obs.sensor_std_yaw);

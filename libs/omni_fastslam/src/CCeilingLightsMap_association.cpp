@@ -1,6 +1,7 @@
 #include <mrpt/core/format.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt_vslam/core/HungarianAssignment.h>
+#include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
 #include <mrpt_vslam/omni_fastslam/RayCrossPoint.h>
 
@@ -25,8 +26,7 @@ std::vector<TBearingMeasurement> CCeilingLightsMap::measurementsFromObservation(
     const mrpt::obs::CObservationBearingRange& obs) const
 {
     const auto fail = [&](const std::string& what) {
-        throw std::runtime_error(
-            (obs.sensorLabel.empty() ? "CObservationBearingRange" : obs.sensorLabel) + ": " + what);
+        throw std::runtime_error(core::ObservationSelector::nameOf(obs) + ": " + what);
     };
     for (const auto& [name, v] :
          {std::pair<const char*, double>{"sensor_std_yaw", obs.sensor_std_yaw},

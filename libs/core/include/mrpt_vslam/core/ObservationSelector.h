@@ -3,6 +3,7 @@
 #include <mrpt/obs/CObservation.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/rtti/CObject.h>
+#include <mrpt_vslam/core/RawlogEntrySource.h>
 
 #include <string>
 #include <vector>
@@ -29,6 +30,19 @@ struct ObservationSelector {
     {
         return obs.GetRuntimeClass()->derivedFrom(cls) &&
                (label.empty() || obs.sensorLabel == label);
+    }
+
+    /// For messages: the class name, and the label when there is one
+    /// ("CObservationImage", "CObservationImage labelled 'CAMERA'").
+    std::string describe() const
+    {
+        return shortClassName(*cls) + (label.empty() ? "" : " labelled '" + label + "'");
+    }
+
+    /// For messages: an observation's sensor label, or its class name when it has none.
+    static std::string nameOf(const mrpt::obs::CObservation& obs)
+    {
+        return obs.sensorLabel.empty() ? shortClassName(obs) : obs.sensorLabel;
     }
 
     /// Removes the observations of `frame` that match; returns how many.

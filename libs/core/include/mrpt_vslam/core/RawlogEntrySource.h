@@ -40,7 +40,9 @@ struct TRawlogEntry {
     bool time_barrier = false;
 };
 
-/// The class of `obj` as messages name it: classes of `mrpt::obs` without their namespace.
+/// A class as messages name it: classes of `mrpt::obs` without their namespace.
+std::string shortClassName(const mrpt::rtti::TRuntimeClassId& cls);
+/// The class of `obj` as messages name it (shortClassName() of its class).
 std::string shortClassName(const mrpt::serialization::CSerializable& obj);
 
 /** What a rawlog holds, to tell the user what was found when it does not fit the app. */
