@@ -1,3 +1,4 @@
+#include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt_vslam/core/HungarianAssignment.h>
@@ -40,6 +41,10 @@ std::vector<TBearingMeasurement> CCeilingLightsMap::measurementsFromObservation(
         if (!std::isfinite(s.yaw) || !std::isfinite(s.pitch) || std::isinf(s.range))
             fail(which + " has a non-finite bearing, pitch or range");
         if (s.range < 0) fail(which + " has a negative range");
+        if (sensorOptions.measurement_model == TMeasurementModelKind::Spherical && !(s.pitch < 0))
+            fail(which + " has pitch " + mrpt::format("%g", mrpt::RAD2DEG(s.pitch)) +
+                 " deg, at or below the camera's horizon: an upward camera sees ceiling lights "
+                 "above it (pitch < 0); azimuths alone need measurement_model = planar");
         if (obs.validCovariances &&
             (!s.covariance.asEigen().allFinite() ||
              !(s.covariance(0, 0) >= 0 && s.covariance(1, 1) >= 0 && s.covariance(2, 2) >= 0)))

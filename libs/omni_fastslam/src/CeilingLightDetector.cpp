@@ -97,7 +97,8 @@ mrpt::obs::CObservationBearingRange::Ptr CeilingLightDetector::detect(
     const double var_px = m_options.pixel_std * m_options.pixel_std;
     for (const auto& blob : detectBlobs(obs.image)) {
         const auto z = m_lut.lookup(blob.u, blob.v);
-        if (!z.valid) continue;
+        // a blob at or below the horizon (a camera wider than 180°) is not a ceiling light
+        if (!z.valid || !(z.theta < M_PI / 2)) continue;
         // Q = J⁻¹ Σ_px J⁻ᵀ + diag(h²)/3 (step 4); J is singular at the image centre, where φ
         // carries no information: its variance is then capped at that of a uniform on [−π, π).
         const Eigen::Matrix2d J = cam.projectJacobian(z.phi, z.theta);

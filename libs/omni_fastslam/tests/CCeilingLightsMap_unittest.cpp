@@ -380,3 +380,30 @@ TEST(CCeilingLightsMap, RejectsNonFiniteOrNegativeReadingsNamingTheSensor)
     stds.sensor_std_pitch = -1;
     EXPECT_EQ(messageFor(stds), "CAM: sensor_std_pitch = -1: must be finite and >= 0");
 }
+
+TEST(CCeilingLightsMap, SphericalModelRefusesReadingsAtOrBelowTheHorizon)
+{
+    // a planar range-bearing rawlog (pitch 0) given to the ceiling-lights map
+    mrpt::obs::CObservationBearingRange obs;
+    obs.sensedData.resize(2);
+    obs.sensedData[0].pitch = -0.5f;
+    obs.sensedData[1].landmarkID = 3;
+    for (const float pitch : {0.0f, 0.2f}) {
+        obs.sensedData[1].pitch = pitch;
+        CCeilingLightsMap spherical;
+        try {
+            spherical.measurementsFromObservation(obs);
+            ADD_FAILURE() << "pitch " << pitch << " accepted";
+        } catch (const std::runtime_error& e) {
+            EXPECT_EQ(std::string(e.what()).rfind("CObservationBearingRange: measurement of "
+                                                  "landmark 3 has pitch ",
+                                                  0),
+                      0u)
+                << e.what();
+            EXPECT_NE(std::string(e.what()).find("measurement_model = planar"), std::string::npos);
+        }
+        CCeilingLightsMap planar;
+        planar.sensorOptions.measurement_model = TMeasurementModelKind::Planar;
+        EXPECT_EQ(planar.measurementsFromObservation(obs).size(), 2u);
+    }
+}

@@ -2,6 +2,7 @@
 // blobs: centroids and bearings back within the stated pixel noise, blobs outside the area
 // limits rejected, saturated lights located by their centre.
 #include <gtest/gtest.h>
+#include <mrpt/core/bits_math.h>
 #include <mrpt/img/CImage.h>
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/obs/CObservationImage.h>
@@ -78,6 +79,24 @@ TEST(CeilingLightDetector, BearingsComeBackWithinTheStatedNoise)
         EXPECT_GT(std::sqrt(Q(1, 1)), 1e-4);
         EXPECT_LT(std::sqrt(Q(1, 1)), 0.02);
     }
+}
+
+// A camera wider than 180°: a blob below the horizon (θ > 90°) is not a ceiling light.
+TEST(CeilingLightDetector, ReportsOnlyBlobsAboveTheHorizon)
+{
+    mrpt_vslam::core::PajdlaBaksteinCamera cam;
+    cam.max_theta = mrpt::DEG2RAD(100.0);
+    const CeilingLightDetector detector(cam, CeilingLightDetector::TOptions());
+    mrpt::obs::CObservationImage obs;
+    obs.image = darkImage(cam);
+    for (const double theta_deg : {60.0, 95.0}) {
+        const Eigen::Vector2d uv = cam.project(0.0, mrpt::DEG2RAD(theta_deg));
+        drawBlob(obs.image, uv.x(), uv.y(), 1.5, 200);
+    }
+    ASSERT_EQ(detector.detectBlobs(obs.image).size(), 2u);
+    const auto bearings = detector.detect(obs, "LIGHTS");
+    ASSERT_EQ(bearings->sensedData.size(), 1u);
+    EXPECT_NEAR(bearings->sensedData[0].pitch, mrpt::DEG2RAD(60.0 - 90.0), mrpt::DEG2RAD(1.0));
 }
 
 // Blobs smaller than min_blob_area (hot pixels) and larger than max_blob_area (windows,
