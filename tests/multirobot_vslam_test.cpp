@@ -2,6 +2,7 @@
 // (accuracy against ground truth, stereo vs pre-extracted input, outputs and errors) and on a
 // user's own single-robot range-bearing rawlog in both MRPT formats, from the template.
 #include <gtest/gtest.h>
+#include <mrpt/core/format.h>
 #include <mrpt_vslam/test/RunCommand.h>
 #include <mrpt_vslam/test/RunFiles.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
@@ -220,7 +221,26 @@ TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
          "filter_runs > 1 needs [TeamPathSmoother] smooth_paths = true"},
         {"MultiRobotVSLAM.smooth_paths_rounds=2",
          "[MultiRobotVSLAM] smooth_paths_rounds: moved to [TeamPathSmoother] rounds"}};
-    std::vector<TCommandResult> results = {missing, corrupt, unknown};
+    // a single-robot rawlog without the classes the app reads: the message says what it holds
+    const std::string images = MRPT_VSLAM_SOURCE_DIR "/datasets/omni-views/rooms.rawlog";
+    const std::string expected =
+        "rooms.rawlog: no landmark measurements (odometry (CActionRobotMovement2D, or "
+        "CObservationOdometry) and CObservationBearingRange, CObservationVisualLandmarks or "
+        "CObservationStereoImages%s); the rawlog has: 40 x CActionRobotMovement2D, 40 x "
+        "CObservationImage (OMNICAM)";
+    const TCommandResult noLandmarks =
+        run(kConfigs + "range-bearing.ini " + images + " -q --out " + out("e-images"));
+    EXPECT_EQ(noLandmarks.exit_code, 1);
+    EXPECT_NE(noLandmarks.out.find(mrpt::format(expected.c_str(), "")), std::string::npos)
+        << noLandmarks.out;
+    const TCommandResult noLabel =
+        run(kConfigs + "range-bearing.ini " + images +
+            " -q --set MultiRobotVSLAM.sensor_label=LIDAR --out " + out("e-label"));
+    EXPECT_NE(noLabel.out.find(mrpt::format(expected.c_str(), " labelled 'LIDAR'")),
+              std::string::npos)
+        << noLabel.out;
+
+    std::vector<TCommandResult> results = {missing, corrupt, unknown, noLandmarks, noLabel};
     for (size_t i = 0; i < impossible.size(); i++) {
         const auto& [setting, message] = impossible[i];
         results.push_back(run(cfg + kData + "team2.rawlog -q --set " + setting + " --out " +
