@@ -123,9 +123,9 @@ mrpt::obs::CObservation::Ptr StereoFrontEndApp::convert(const mrpt::obs::CObserv
         std::string images;
         for (const auto* img : {&stereo->imageLeft, &stereo->imageRight})
             if (img->isExternallyStored())
-                images += (images.empty() ? " (images '" : "', '") +
-                          img->getExternalStorageFileAbsolutePath();
-        if (!images.empty()) images += "')";
+                images += (images.empty() ? " (images " : ", ") +
+                          core::RawlogReader::describeExternalImage(*img, m_args.input);
+        if (!images.empty()) images += ")";
         throw std::runtime_error(m_args.input + ": entry " + std::to_string(entry_index + 1) +
                                  ", " + core::ObservationSelector::nameOf(*stereo) + images + ": " +
                                  core::oneLineMessage(e));

@@ -12,6 +12,7 @@
 #include <mrpt_vslam/core/KLDSampling.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/PajdlaBaksteinCamera.h>
+#include <mrpt_vslam/core/RawlogReader.h>
 #include <mrpt_vslam/core/RunOutputs.h>
 #include <mrpt_vslam/core/SingleRobotStart.h>
 #include <mrpt_vslam/omni_fastslam/COmniFastSLAM.h>
@@ -179,7 +180,7 @@ void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
         throw std::runtime_error(rawlog + ": frame " + std::to_string(steps) + ": cannot use " +
                                  ObservationSelector::nameOf(*image) +
                                  (img.isExternallyStored()
-                                      ? " '" + img.getExternalStorageFileAbsolutePath() + "'"
+                                      ? " " + core::RawlogReader::describeExternalImage(img, rawlog)
                                       : std::string()) +
                                  ": " + core::oneLineMessage(e));
     }

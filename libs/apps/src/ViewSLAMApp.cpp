@@ -12,6 +12,7 @@
 #include <mrpt_vslam/core/AtomicFile.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
+#include <mrpt_vslam/core/RawlogReader.h>
 #include <mrpt_vslam/core/RunOutputs.h>
 #include <mrpt_vslam/core/SingleRobotStart.h>
 #include <mrpt_vslam/viewmap/COmniViewSLAM.h>
@@ -169,8 +170,9 @@ void ViewSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
     const double ms = timedStep(
         timer,
         "frame " + std::to_string(steps) +
-            (externalImage ? ": image '" + image->image.getExternalStorageFileAbsolutePath() + "'"
-                           : std::string()),
+            (externalImage
+                 ? ": image " + core::RawlogReader::describeExternalImage(image->image, rawlog)
+                 : std::string()),
         [&] {
             if (image) slam->useCameraPoseOf(image->cameraPose);
             r = slam->processStep(

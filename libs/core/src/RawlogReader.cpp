@@ -156,6 +156,18 @@ std::string RawlogReader::imagesDirectory(const std::string& file)
     return (dir / "Images").string();
 }
 
+std::string RawlogReader::describeExternalImage(const mrpt::img::CImage& image,
+                                                const std::string& file)
+{
+    if (!image.isExternallyStored()) return "";
+    const std::string path = image.getExternalStorageFileAbsolutePath();
+    if (std::filesystem::exists(path)) return "'" + path + "'";
+    const std::filesystem::path rawlog(file);
+    return "'" + path + "' (no such file: the external images of " + rawlog.filename().string() +
+           " are read from the folder " + rawlog.stem().string() +
+           "_Images beside it, else from Images)";
+}
+
 RawlogReader::~RawlogReader() = default;
 
 void RawlogReader::validate(const std::string& file)

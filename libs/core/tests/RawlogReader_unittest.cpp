@@ -288,3 +288,22 @@ TEST(RawlogReader, ExternalImagesFolderIsDetected)
     EXPECT_EQ(RawlogReader::imagesDirectory((scratchDir() / "other.rawlog").string()),
               (scratchDir() / "Images").string());
 }
+
+TEST(RawlogReader, MessagesSayWhereAMissingExternalImageWasLookedFor)
+{
+    const fs::path images = scratchDir() / "described_Images";
+    fs::create_directories(images);
+    mrpt::img::CImage::setImagesPathBase(images.string());
+    mrpt::img::CImage stored(4, 4, mrpt::img::CH_GRAY);
+    EXPECT_EQ(RawlogReader::describeExternalImage(stored, "described.rawlog"), "");
+    stored.saveToFile((images / "present.png").string());
+    mrpt::img::CImage present, missing;
+    present.setExternalStorage("present.png");
+    missing.setExternalStorage("missing.png");
+    EXPECT_EQ(RawlogReader::describeExternalImage(present, "dir/described.rawlog"),
+              "'" + (images / "present.png").string() + "'");
+    EXPECT_EQ(RawlogReader::describeExternalImage(missing, "dir/described.rawlog"),
+              "'" + (images / "missing.png").string() +
+                  "' (no such file: the external images of described.rawlog are read from the "
+                  "folder described_Images beside it, else from Images)");
+}

@@ -6,6 +6,10 @@
 #include <memory>
 #include <string>
 
+namespace mrpt::img {
+class CImage;
+}
+
 namespace mrpt_vslam::core {
 
 /** Reads a rawlog entry by entry, in either format, and fails loudly: every problem is an
@@ -52,6 +56,11 @@ class RawlogReader : public RawlogEntrySource {
      *  of `DIR/NAME_Images`, `DIR/NAME_images`, `DIR/NAME_IMAGES`, else `DIR/Images`.
      *  (`CRawlog::detectImagesDirectory` of MRPT 2.5.8 drops the separator after DIR.) */
     static std::string imagesDirectory(const std::string& file);
+
+    /** For messages: `'<path>'` of an externally stored image of the rawlog `file`, and where
+     *  such images are looked for when it is missing; empty for an image stored in the rawlog. */
+    static std::string describeExternalImage(const mrpt::img::CImage& image,
+                                             const std::string& file);
 
     /** Reads a whole rawlog and returns its summary. */
     static TRawlogSummary summarize(const std::string& file);
