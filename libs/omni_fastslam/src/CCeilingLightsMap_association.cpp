@@ -44,7 +44,8 @@ std::vector<TBearingMeasurement> CCeilingLightsMap::measurementsFromObservation(
         if (sensorOptions.measurement_model == TMeasurementModelKind::Spherical && !(s.pitch < 0))
             fail(which + " has pitch " + mrpt::format("%g", mrpt::RAD2DEG(s.pitch)) +
                  " deg, at or below the camera's horizon: an upward camera sees ceiling lights "
-                 "above it (pitch < 0); azimuths alone need measurement_model = planar");
+                 "above it (pitch < 0); for azimuths alone set measurement_model = planar in the "
+                 "map's _creationOpts section");
         if (obs.validCovariances &&
             (!s.covariance.asEigen().allFinite() ||
              !(s.covariance(0, 0) >= 0 && s.covariance(1, 1) >= 0 && s.covariance(2, 2) >= 0)))
