@@ -240,7 +240,27 @@ TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
               std::string::npos)
         << noLabel.out;
 
-    std::vector<TCommandResult> results = {missing, corrupt, unknown, noLandmarks, noLabel};
+    // a stereo rawlog copied without its images folder
+    fs::create_directories(s_scratch->path() / "alone");
+    fs::copy_file(kData + "team2-stereo-short.rawlog",
+                  s_scratch->path() / "alone" / "team2-stereo-short.rawlog",
+                  fs::copy_options::overwrite_existing);
+    const TCommandResult noImages =
+        run(cfg + (s_scratch->path() / "alone" / "team2-stereo-short.rawlog").string() +
+            " -q --out " + out("e-stereo"));
+    EXPECT_EQ(noImages.exit_code, 1);
+    EXPECT_NE(
+        noImages.out.find("team2-stereo-short.rawlog: step 0: cannot use R1_STEREO (images '"),
+        std::string::npos)
+        << noImages.out;
+    EXPECT_NE(noImages.out.find("(no such file: the external images of team2-stereo-short.rawlog "
+                                "are read from the folder team2-stereo-short_Images beside it, "
+                                "else from Images)"),
+              std::string::npos)
+        << noImages.out;
+
+    std::vector<TCommandResult> results = {missing,     corrupt, unknown,
+                                           noLandmarks, noLabel, noImages};
     for (size_t i = 0; i < impossible.size(); i++) {
         const auto& [setting, message] = impossible[i];
         results.push_back(run(cfg + kData + "team2.rawlog -q --set " + setting + " --out " +

@@ -363,8 +363,8 @@ TEST_F(StereoFrontendApp, BadDataExitsWith1AndLeavesNoOutput)
     EXPECT_EQ(lineCount(broken.out), 1) << broken.out;
     EXPECT_NE(broken.out.find("walls.rawlog: entry 14, R1_STEREO (images '"), std::string::npos)
         << broken.out;
-    EXPECT_NE(broken.out.find("R1_R3.png' (no such file: the external images of walls.rawlog are "
-                              "read from the folder walls_Images beside it, else from Images)"),
+    EXPECT_NE(broken.out.find("R1_R3.png'; the external images of walls.rawlog are read from the "
+                              "folder walls_Images beside it, else from Images)"),
               std::string::npos)
         << broken.out;
     EXPECT_FALSE(fs::exists(out("r3/x.rawlog")));

@@ -120,14 +120,11 @@ mrpt::obs::CObservation::Ptr StereoFrontEndApp::convert(const mrpt::obs::CObserv
         landmarks = front_end.process(*stereo);
         m_timer.endStep();
     } catch (const std::exception& e) {
-        std::string images;
-        for (const auto* img : {&stereo->imageLeft, &stereo->imageRight})
-            if (img->isExternallyStored())
-                images += (images.empty() ? " (images " : ", ") +
-                          core::RawlogReader::describeExternalImage(*img, m_args.input);
-        if (!images.empty()) images += ")";
+        const std::string images =
+            core::RawlogReader::describeExternalImages(*stereo, m_args.input);
         throw std::runtime_error(m_args.input + ": entry " + std::to_string(entry_index + 1) +
-                                 ", " + core::ObservationSelector::nameOf(*stereo) + images + ": " +
+                                 ", " + core::ObservationSelector::nameOf(*stereo) +
+                                 (images.empty() ? "" : " (" + images + ")") + ": " +
                                  core::oneLineMessage(e));
     }
     const auto& stats = front_end.lastFrameStats();

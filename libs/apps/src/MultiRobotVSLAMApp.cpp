@@ -10,6 +10,7 @@
 #include <mrpt_vslam/core/EvalInputs.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
+#include <mrpt_vslam/core/RawlogReader.h>
 #include <mrpt_vslam/core/RunOutputs.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
 #include <mrpt_vslam/multirobot/LandmarkIdentityTally.h>
@@ -288,8 +289,10 @@ void MultiRobotVSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
         try {
             landmarks = frontEnds[k]->process(*stereo);
         } catch (const std::exception& e) {
+            const std::string images = core::RawlogReader::describeExternalImages(*stereo, rawlog);
             throw std::runtime_error(rawlog + ": step " + std::to_string(steps) + ": cannot use " +
-                                     core::ObservationSelector::nameOf(*stereo) + ": " +
+                                     core::ObservationSelector::nameOf(*stereo) +
+                                     (images.empty() ? "" : " (" + images + ")") + ": " +
                                      core::oneLineMessage(e));
         }
         // the images' landmarks replace any the frame had

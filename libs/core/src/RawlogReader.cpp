@@ -1,5 +1,6 @@
 #include <mrpt/img/CImage.h>
 #include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/obs/CObservationStereoImages.h>
 #include <mrpt/obs/CRawlog.h>
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt/system/filesystem.h>
@@ -156,16 +157,38 @@ std::string RawlogReader::imagesDirectory(const std::string& file)
     return (dir / "Images").string();
 }
 
+namespace {
+/// The images of `images` stored as files, as `'<path>', ...`, then, when some are missing,
+/// which and where external images are looked for.
+std::string describeImageFiles(std::initializer_list<const mrpt::img::CImage*> images,
+                               const std::string& file)
+{
+    std::string listed, missing;
+    for (const auto* image : images) {
+        if (!image->isExternallyStored()) continue;
+        const std::string path = image->getExternalStorageFileAbsolutePath();
+        listed += (listed.empty() ? "'" : ", '") + path + "'";
+        if (!std::filesystem::exists(path)) missing += (missing.empty() ? "'" : ", '") + path + "'";
+    }
+    if (missing.empty()) return listed;
+    const std::filesystem::path rawlog(file);
+    return listed + " (no such file: " + (missing == listed ? "" : missing + "; ") +
+           "the external images of " + rawlog.filename().string() + " are read from the folder " +
+           rawlog.stem().string() + "_Images beside it, else from Images)";
+}
+}  // namespace
+
 std::string RawlogReader::describeExternalImage(const mrpt::img::CImage& image,
                                                 const std::string& file)
 {
-    if (!image.isExternallyStored()) return "";
-    const std::string path = image.getExternalStorageFileAbsolutePath();
-    if (std::filesystem::exists(path)) return "'" + path + "'";
-    const std::filesystem::path rawlog(file);
-    return "'" + path + "' (no such file: the external images of " + rawlog.filename().string() +
-           " are read from the folder " + rawlog.stem().string() +
-           "_Images beside it, else from Images)";
+    return describeImageFiles({&image}, file);
+}
+
+std::string RawlogReader::describeExternalImages(const mrpt::obs::CObservationStereoImages& stereo,
+                                                 const std::string& file)
+{
+    const std::string images = describeImageFiles({&stereo.imageLeft, &stereo.imageRight}, file);
+    return images.empty() ? "" : "images " + images;
 }
 
 RawlogReader::~RawlogReader() = default;

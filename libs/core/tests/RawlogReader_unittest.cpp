@@ -6,6 +6,7 @@
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/obs/CObservationStereoImages.h>
 #include <mrpt/obs/CRawlog.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
@@ -306,4 +307,15 @@ TEST(RawlogReader, MessagesSayWhereAMissingExternalImageWasLookedFor)
               "'" + (images / "missing.png").string() +
                   "' (no such file: the external images of described.rawlog are read from the "
                   "folder described_Images beside it, else from Images)");
+    // a stereo pair names both images and which is missing
+    mrpt::obs::CObservationStereoImages stereo;
+    EXPECT_EQ(RawlogReader::describeExternalImages(stereo, "described.rawlog"), "");
+    stereo.imageLeft.setExternalStorage("present.png");
+    stereo.imageRight.setExternalStorage("missing.png");
+    const std::string left = "'" + (images / "present.png").string() + "'";
+    const std::string right = "'" + (images / "missing.png").string() + "'";
+    EXPECT_EQ(RawlogReader::describeExternalImages(stereo, "described.rawlog"),
+              "images " + left + ", " + right + " (no such file: " + right +
+                  "; the external images of described.rawlog are read from the folder "
+                  "described_Images beside it, else from Images)");
 }

@@ -9,6 +9,9 @@
 namespace mrpt::img {
 class CImage;
 }
+namespace mrpt::obs {
+class CObservationStereoImages;
+}
 
 namespace mrpt_vslam::core {
 
@@ -61,6 +64,10 @@ class RawlogReader : public RawlogEntrySource {
      *  such images are looked for when it is missing; empty for an image stored in the rawlog. */
     static std::string describeExternalImage(const mrpt::img::CImage& image,
                                              const std::string& file);
+    /// describeExternalImage() of a stereo pair: `images 'L', 'R'`; empty when both are stored
+    /// in the rawlog.
+    static std::string describeExternalImages(const mrpt::obs::CObservationStereoImages& stereo,
+                                              const std::string& file);
 
     /** Reads a whole rawlog and returns its summary. */
     static TRawlogSummary summarize(const std::string& file);
