@@ -259,8 +259,27 @@ TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
               std::string::npos)
         << noImages.out;
 
-    std::vector<TCommandResult> results = {missing,     corrupt, unknown,
-                                           noLandmarks, noLabel, noImages};
+    // readings without noise in the observations (sensor_std_range = 0): the key that sets it
+    mrpt_vslam::test::SingleRobotRangeBearingLog exact;
+    exact.std_range = 0;
+    exact.steps = 20;
+    exact.write(out("rb-exact"));
+    const TCommandResult noNoise = run(kConfigs + "range-bearing.ini " + out("rb-exact.rawlog") +
+                                       " -q --out " + out("e-noise"));
+    EXPECT_EQ(noNoise.exit_code, 1);
+    EXPECT_NE(noNoise.out.find("rb-exact.rawlog: step 0: CObservationBearingRange: no usable range "
+                               "noise (sensor_std_range = 0): set it in the observations, or "
+                               "MultiRobotVSLAM.range_bearing_std_range in the config"),
+              std::string::npos)
+        << noNoise.out;
+    EXPECT_EQ(
+        run(kConfigs + "range-bearing.ini " + out("rb-exact.rawlog") +
+            " -q --set MultiRobotVSLAM.range_bearing_std_range=0.05 --out " + out("e-noise-set"))
+            .exit_code,
+        0);
+
+    std::vector<TCommandResult> results = {missing, corrupt,  unknown, noLandmarks,
+                                           noLabel, noImages, noNoise};
     for (size_t i = 0; i < impossible.size(); i++) {
         const auto& [setting, message] = impossible[i];
         results.push_back(run(cfg + kData + "team2.rawlog -q --set " + setting + " --out " +

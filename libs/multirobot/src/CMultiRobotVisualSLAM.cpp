@@ -43,6 +43,7 @@ void loadNoise(const mrpt::config::CConfigFileBase& cfg, const std::string& sect
     readStd(prefix + "_std_bearing_deg", mrpt::DEG2RAD(1.0), noise.std_bearing);
     readStd(prefix + "_std_pitch_deg", mrpt::DEG2RAD(1.0), noise.std_pitch);
     noise.std_height = cfg.read_double(section, prefix + "_std_height", noise.std_height);
+    noise.config_keys = section + "." + prefix;
     requireKey(noise.std_height > 0 && std::isfinite(noise.std_height), section,
                (prefix + "_std_height").c_str(), "must be > 0");
 }

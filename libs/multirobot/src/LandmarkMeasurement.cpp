@@ -63,14 +63,18 @@ std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
     const double sr = noise.std_range.value_or(obs.sensor_std_range);
     const double sb = noise.std_bearing.value_or(obs.sensor_std_yaw);
     const double sp = noise.std_pitch.value_or(obs.sensor_std_pitch);
-    const auto requireStd = [&](double v, const char* field) {
+    const auto requireStd = [&](double v, const char* what, const char* field, const char* key) {
         if (!(v > 0 && std::isfinite(v)))
-            fail(std::string("no usable ") + field + " (" + mrpt::format("%g", v) +
-                 "): set it in the observations or the config's *_std_* keys");
+            fail(std::string("no usable ") + what + " (" + field + " = " + mrpt::format("%g", v) +
+                 "): set it in the observations" +
+                 (noise.config_keys.empty()
+                      ? std::string()
+                      : ", or " + noise.config_keys + key + " in the config"));
     };
-    requireStd(sr, "range noise sensor_std_range");
-    requireStd(sb, "bearing noise sensor_std_yaw");
-    if (!(sp >= 0 && std::isfinite(sp))) requireStd(sp, "pitch noise sensor_std_pitch");
+    requireStd(sr, "range noise", "sensor_std_range", "_std_range");
+    requireStd(sb, "bearing noise", "sensor_std_yaw", "_std_bearing_deg");
+    if (!(sp >= 0 && std::isfinite(sp)))
+        requireStd(sp, "pitch noise", "sensor_std_pitch", "_std_pitch_deg");
     const bool spatial = sp > 0;
     const Eigen::Vector3d variances(sr * sr, sb * sb, sp * sp);
 

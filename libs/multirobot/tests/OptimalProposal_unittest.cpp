@@ -93,7 +93,7 @@ struct TOneMeasurementCase {
 struct TRobotReadingCase {
     mrpt::math::TPose2D seen{2.0, 0.6, 0.3};  // R2's start pose
     float range = 2.14f, bearing = 0.30f;     // true R1 pose ≈ (−0.05, 0.03, −1°)
-    TRangeBearingNoise noise{0.04, mrpt::DEG2RAD(1.0), 0.01, {}};
+    TRangeBearingNoise noise{0.04, mrpt::DEG2RAD(1.0), 0.01, {}, ""};
     double std_xy = 0.06, std_phi = mrpt::DEG2RAD(3.0);
 
     mrpt::obs::CObservationBearingRange::Ptr observation() const

@@ -66,7 +66,7 @@ TEST(RangeBearingMeasurement, PointAndCovarianceMatchTheClosedForm)
 
 TEST(RangeBearingMeasurement, BadMeasurementsNameTheLabel)
 {
-    const TRangeBearingNoise noise{0.1, 0.05, 0.01, {}};
+    const TRangeBearingNoise noise{0.1, 0.05, 0.01, {}, ""};
     for (const auto& obs : {observation({{std::nan(""), 0.1, -1}}),
                             observation({{1, std::nan(""), -1}}), observation({{2e5, 0.1, -1}})}) {
         try {
@@ -96,7 +96,19 @@ TEST(RangeBearingMeasurement, NoiseIsTheObservationsUnlessTheConfigSetsIt)
         measurementsFromBearingRange(obs, TRangeBearingNoise());
         FAIL() << "accepted measurements without noise";
     } catch (const std::runtime_error& e) {
-        EXPECT_NE(std::string(e.what()).find("R1_RB"), std::string::npos) << e.what();
+        EXPECT_EQ(std::string(e.what()),
+                  "R1_RB: no usable range noise (sensor_std_range = 0): set it in the "
+                  "observations");
+    }
+    TRangeBearingNoise fromIni;
+    fromIni.config_keys = "S.rb";
+    try {
+        measurementsFromBearingRange(obs, fromIni);
+        FAIL() << "accepted measurements without noise";
+    } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "R1_RB: no usable range noise (sensor_std_range = 0): set it in the "
+                  "observations, or S.rb_std_range in the config");
     }
     obs.sensor_std_range = 0.3f;
     obs.sensor_std_yaw = 0.02f;
@@ -120,7 +132,7 @@ TEST(RangeBearingMeasurement, SpatialModelMatchesTheSphericalCoordinates)
     auto obs = observation({{r, b, 4}});
     obs.sensedData[0].pitch = static_cast<float>(p);
     obs.sensorLocationOnRobot = mrpt::poses::CPose3D(0.2, 0, 0.5, 0.1, 0, 0);
-    const TRangeBearingNoise noise{0.05, 0.01, 0.01, 0.02};
+    const TRangeBearingNoise noise{0.05, 0.01, 0.01, 0.02, ""};
     const auto z = measurementsFromBearingRange(obs, noise);
     ASSERT_EQ(z.size(), 1u);
     const float rf = static_cast<float>(r), bf = static_cast<float>(b), pf = static_cast<float>(p);

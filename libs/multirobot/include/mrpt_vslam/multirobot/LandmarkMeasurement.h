@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace mrpt_vslam::multirobot {
@@ -52,6 +53,9 @@ struct TRangeBearingNoise {
     std::optional<double> std_bearing;  ///< [rad]
     double std_height = 0.01;           ///< [m], planar model only
     std::optional<double> std_pitch;    ///< [rad]
+    /// For messages: `SECTION.PREFIX` of the ini keys that set these σ (PREFIX_std_range, ...),
+    /// as `--set` takes them; empty when they do not come from an ini file.
+    std::string config_keys;
 };
 
 /** The measurements of a `CObservationBearingRange` in the robot frame: the point
