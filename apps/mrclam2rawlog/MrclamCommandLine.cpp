@@ -105,7 +105,7 @@ TMrclamCommandLine TMrclamCommandLine::parse(int argc, const char* const* argv)
         return c;
     }
     const auto usage_error = [](const std::string& why) {
-        return core::UsageError(std::string(kApp) + ": " + why + " (see " + kApp + " --help)");
+        return core::UsageError(why + " (see " + kApp + " --help)");
     };
     c.dataset_dir = dir.getValue();
     c.out_rawlog = out.getValue();

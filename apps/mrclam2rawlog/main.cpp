@@ -27,10 +27,10 @@ int main(int argc, char** argv)
         if (!args.quiet) std::cout << summary.describe(args.out_rawlog, timer.Tac());
         return 0;
     } catch (const core::UsageError& e) {
-        std::cerr << e.what() << "\n";
+        std::cerr << "mrclam2rawlog: error: " << e.what() << "\n";
         return 2;
     } catch (const std::exception& e) {
-        std::cerr << "mrclam2rawlog: " << core::oneLineMessage(e) << "\n";
+        std::cerr << "mrclam2rawlog: error: " << core::oneLineMessage(e) << "\n";
         return 1;
     }
 }

@@ -1,47 +1,23 @@
 #include "EvalCommandLine.h"
 
 #include <mrpt/3rdparty/tclap/CmdLine.h>
+#include <mrpt_vslam/core/TclapParse.h>
 #include <mrpt_vslam/core/Version.h>
 
+#include <iostream>
 #include <limits>
-#include <stdexcept>
 
 namespace mrpt_vslam::eval {
-namespace {
-
-/// Keeps TCLAP's --help text; records a parse error instead of printing a usage block.
-class ErrorCapturingOutput : public TCLAP::StdOutput {
-  public:
-    void failure(TCLAP::CmdLineInterface&, TCLAP::ArgException& e) override
-    {
-        error = e.argId().empty() ? e.error() : e.argId() + ": " + e.error();
-    }
-    std::string error;
-};
-
-/// A CmdLine writing to `output`. (TCLAP's setOutput() alone would leak the default output.)
-class EvalCmdLine : public TCLAP::CmdLine {
-  public:
-    EvalCmdLine(const std::string& message, TCLAP::CmdLineOutput* output)
-        : TCLAP::CmdLine(message, ' ', mrpt_vslam::core::projectVersion())
-    {
-        delete _output;
-        setOutput(output);
-    }
-};
-
-}  // namespace
 
 std::optional<core::TEvalParams> parseEvalCommandLine(int argc, char** argv)
 {
-    ErrorCapturingOutput output;
-    EvalCmdLine cmd(
+    TCLAP::CmdLine cmd(
         "vslam-eval: trajectory and map metrics of a SLAM run against ground truth, with PNG "
         "plots.\n"
         "  vslam-eval RUN_DIR [--ground-truth NAME|NAME.rawlog|GT.tum] [--out DIR]\n"
         "  vslam-eval --estimate EST.tum --ground-truth GT.tum [--landmarks-gt L.txt] "
         "[--map map.txt] --out DIR",
-        &output);
+        ' ', core::projectVersion());
     TCLAP::UnlabeledValueArg<std::string> runDir(
         "RUN_DIR", "Run folder with estimated_path*.tum [odometry_path*.tum, map.txt, run.json]",
         false, "", "RUN_DIR", cmd);
@@ -76,12 +52,18 @@ std::optional<core::TEvalParams> parseEvalCommandLine(int argc, char** argv)
         false, -std::numeric_limits<double>::infinity(), "T", cmd);
     TCLAP::SwitchArg align("", "align",
                            "Plot the SE(2)-aligned estimate (metrics.json always has both)", cmd);
-    if (!cmd.parse(argc, argv)) {
-        if (!output.error.empty()) throw std::runtime_error(output.error);
-        return std::nullopt;
+    std::string help;
+    switch (core::parseTclap(cmd, argc, argv, "vslam-eval", help)) {
+        case core::TclapOutcome::ShowHelp:
+            std::cout << help;
+            return std::nullopt;
+        case core::TclapOutcome::ShowVersion:
+            std::cout << "vslam-eval " << core::projectVersion() << " (MRPT " << core::mrptVersion()
+                      << ")\n";
+            return std::nullopt;
+        case core::TclapOutcome::Parsed:
+            break;
     }
-    if (runDir.getValue().rfind('-', 0) == 0)
-        throw std::runtime_error(runDir.getValue() + ": unknown option (see --help)");
     core::TEvalParams p;
     p.run_dir = runDir.getValue();
     p.estimate_file = estimate.getValue();

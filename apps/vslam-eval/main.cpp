@@ -1,4 +1,5 @@
 #include <mrpt_vslam/core/ErrorMessage.h>
+#include <mrpt_vslam/core/UsageError.h>
 
 #include <iostream>
 
@@ -14,6 +15,9 @@ int main(int argc, char** argv)
         app.params = *params;
         app.run();
         return 0;
+    } catch (const mrpt_vslam::core::UsageError& e) {
+        std::cerr << "vslam-eval: error: " << e.what() << "\n";
+        return 2;
     } catch (const std::exception& e) {
         std::cerr << "vslam-eval: error: " << mrpt_vslam::core::oneLineMessage(e) << "\n";
     }

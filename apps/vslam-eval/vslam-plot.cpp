@@ -3,6 +3,8 @@
 // scripts/reproduce-*.sh).
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
+#include <mrpt_vslam/core/TclapParse.h>
+#include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/core/Version.h>
 #include <plstream.h>
 
@@ -110,15 +112,26 @@ int main(int argc, char** argv)
         TCLAP::SwitchArg points("", "points", "Markers only, no lines (a scatter plot)", cmd);
         TCLAP::SwitchArg diagonal("", "diagonal",
                                   "Draw the line y = x, both axes on one range and scale", cmd);
-        cmd.parse(argc, argv);
+        std::string help;
+        switch (mrpt_vslam::core::parseTclap(cmd, argc, argv, "vslam-plot", help)) {
+            case mrpt_vslam::core::TclapOutcome::ShowHelp:
+                std::cout << help;
+                return 0;
+            case mrpt_vslam::core::TclapOutcome::ShowVersion:
+                std::cout << "vslam-plot " << mrpt_vslam::core::projectVersion() << " (MRPT "
+                          << mrpt_vslam::core::mrptVersion() << ")\n";
+                return 0;
+            case mrpt_vslam::core::TclapOutcome::Parsed:
+                break;
+        }
         TPlotOptions o;
         o.title = title.getValue(), o.x_label = xl.getValue(), o.y_label = yl.getValue();
         o.log_x = logx.getValue(), o.log_y = logy.getValue(), o.y_from_zero = zero.getValue();
         o.points = points.getValue(), o.diagonal = diagonal.getValue();
         plot(SeriesTable::load(table.getValue()), out.getValue(), o);
         return 0;
-    } catch (const TCLAP::ArgException& e) {
-        std::cerr << "vslam-plot: error: " << e.argId() << ": " << e.error() << "\n";
+    } catch (const mrpt_vslam::core::UsageError& e) {
+        std::cerr << "vslam-plot: error: " << e.what() << "\n";
         return 2;
     } catch (const std::exception& e) {
         std::cerr << "vslam-plot: error: " << mrpt_vslam::core::oneLineMessage(e) << "\n";

@@ -80,7 +80,8 @@ int main(int argc, char** argv)
             return 0;
         }
         if (outcome == core::TclapOutcome::ShowVersion) {
-            std::cout << app << " " << core::projectVersion() << "\n";
+            std::cout << app << " " << core::projectVersion() << " (MRPT " << core::mrptVersion()
+                      << ")\n";
             return 0;
         }
         if (!(rate.getValue() > 0 && std::isfinite(rate.getValue())))

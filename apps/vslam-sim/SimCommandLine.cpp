@@ -1,23 +1,14 @@
 #include "SimCommandLine.h"
 
 #include <mrpt/3rdparty/tclap/CmdLine.h>
+#include <mrpt_vslam/core/TclapParse.h>
 #include <mrpt_vslam/core/UsageError.h>
+#include <mrpt_vslam/core/Version.h>
 #include <mrpt_vslam/sim/ScenarioFactory.h>
 
-namespace {
+#include <iostream>
 
-/// Keeps TCLAP's usage text for --help but turns parse failures into one exception line.
-class OneLineErrorOutput : public TCLAP::StdOutput {
-  public:
-    void failure(TCLAP::CmdLineInterface&, TCLAP::ArgException& e) override
-    {
-        error = e.argId().empty() || e.argId() == " " ? e.error() : e.argId() + ": " + e.error();
-        // TCLAP's "Argument: (--x)" identifiers read better without the prefix.
-        const std::string prefix = "Argument: ";
-        if (error.rfind(prefix, 0) == 0) error = error.substr(prefix.size());
-    }
-    std::string error;
-};
+namespace {
 
 std::string scenarioList()
 {
@@ -32,11 +23,7 @@ std::string scenarioList()
 std::optional<TSimCommandLine> parseSimCommandLine(int argc, char** argv)
 {
     TCLAP::CmdLine cmd("vslam-sim: writes a simulated dataset (rawlog, images, ground truth)", ' ',
-                       "0.1");
-    OneLineErrorOutput output;
-    // setOutput() does not free the default output CmdLine allocated; free it here.
-    delete cmd.getOutput();
-    cmd.setOutput(&output);
+                       mrpt_vslam::core::projectVersion());
     TCLAP::UnlabeledValueArg<std::string> scenario("scenario", "Scenario: " + scenarioList(), true,
                                                    "", "SCENARIO", cmd);
     TCLAP::ValueArg<std::string> out("o", "out", "Output prefix DIR/NAME (writes NAME.rawlog, ...)",
@@ -63,19 +50,32 @@ std::optional<TSimCommandLine> parseSimCommandLine(int argc, char** argv)
     TCLAP::SwitchArg no_images("", "no-images", "Do not render nor store images", cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "No progress output", cmd);
 
-    if (!cmd.parse(argc, argv)) {
-        if (output.error == "One or more required arguments missing!")
-            throw mrpt_vslam::core::UsageError(
-                "SCENARIO and --out DIR/NAME are required (see --help)");
-        if (!output.error.empty()) throw mrpt_vslam::core::UsageError(output.error);
-        return std::nullopt;
+    using mrpt_vslam::core::TclapOutcome;
+    const auto usage_error = [](const std::string& why) {
+        return mrpt_vslam::core::UsageError(why + " (see vslam-sim --help)");
+    };
+    std::string help;
+    try {
+        switch (mrpt_vslam::core::parseTclap(cmd, argc, argv, "vslam-sim", help)) {
+            case TclapOutcome::ShowHelp:
+                std::cout << help;
+                return std::nullopt;
+            case TclapOutcome::ShowVersion:
+                std::cout << "vslam-sim " << mrpt_vslam::core::projectVersion() << " (MRPT "
+                          << mrpt_vslam::core::mrptVersion() << ")\n";
+                return std::nullopt;
+            case TclapOutcome::Parsed:
+                break;
+        }
+    } catch (const mrpt_vslam::core::UsageError& e) {
+        if (std::string(e.what()).rfind("One or more required arguments missing!", 0) == 0)
+            throw usage_error("SCENARIO and --out DIR/NAME are required");
+        throw;
     }
-    if (seed.getValue() < 0) throw mrpt_vslam::core::UsageError("--seed must be >= 0");
-    if (frames.isSet() && frames.getValue() <= 0)
-        throw mrpt_vslam::core::UsageError("--frames must be > 0");
-    if (robots.isSet() && robots.getValue() <= 0)
-        throw mrpt_vslam::core::UsageError("--robots must be > 0");
-    if (out.getValue().empty()) throw mrpt_vslam::core::UsageError("--out must not be empty");
+    if (seed.getValue() < 0) throw usage_error("--seed must be >= 0");
+    if (frames.isSet() && frames.getValue() <= 0) throw usage_error("--frames must be > 0");
+    if (robots.isSet() && robots.getValue() <= 0) throw usage_error("--robots must be > 0");
+    if (out.getValue().empty()) throw usage_error("--out must not be empty");
 
     TSimCommandLine c;
     c.scenario = scenario.getValue();

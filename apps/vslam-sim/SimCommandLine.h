@@ -19,6 +19,6 @@ struct TSimCommandLine {
     bool quiet = false;             ///< --quiet
 };
 
-/** Parses argv. Returns nullopt when --help was printed; throws core::UsageError with a
- *  one-line reason on bad arguments. */
+/** Parses argv. Returns nullopt when --help or --version was printed; throws core::UsageError
+ *  with a one-line reason on bad arguments. */
 std::optional<TSimCommandLine> parseSimCommandLine(int argc, char** argv);

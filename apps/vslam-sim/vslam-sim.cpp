@@ -34,7 +34,7 @@ int main(int argc, char** argv)
 {
     try {
         const std::optional<TSimCommandLine> cli = parseSimCommandLine(argc, argv);
-        if (!cli) return 0;  // --help
+        if (!cli) return 0;  // --help or --version
 
         auto scenario = mrpt_vslam::sim::createScenario(cli->scenario);
         const std::string config_file =

@@ -89,7 +89,7 @@ AppArguments AppArguments::parse(int argc, const char* const* argv, const std::s
     a.appName = appName;
     a.commandLine.assign(argv, argv + argc);
     const auto usage_error = [&](const std::string& why) {
-        return UsageError(appName + ": " + why + " (see " + appName + " --help)");
+        return UsageError(why + " (see " + appName + " --help)");
     };
 
     std::string help;

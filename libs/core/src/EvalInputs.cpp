@@ -1,4 +1,5 @@
 #include <mrpt_vslam/core/EvalInputs.h>
+#include <mrpt_vslam/core/UsageError.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -94,7 +95,7 @@ TEvalInputs resolveInputs(const TEvalParams& p)
         in.robots.push_back({"", p.estimate_file, p.odometry_file, ""});
     } else {
         if (p.run_dir.empty())
-            throw std::runtime_error("give RUN_DIR or --estimate FILE (see --help)");
+            throw UsageError("give RUN_DIR or --estimate FILE (see vslam-eval --help)");
         in.robots = robotsInRunDir(p.run_dir);
     }
     const auto gtArg = groundTruthArgument(p);
@@ -122,7 +123,7 @@ TEvalInputs resolveInputs(const TEvalParams& p)
         in.map_file = (fs::path(p.run_dir) / "map.txt").string();
     in.out_dir = !p.out_dir.empty() ? p.out_dir : p.run_dir;
     if (in.out_dir.empty())
-        throw std::runtime_error(p.estimate_file + ": --out DIR is required with --estimate");
+        throw UsageError("--out DIR is required with --estimate (see vslam-eval --help)");
     return in;
 }
 

@@ -52,7 +52,7 @@ TclapOutcome parseTclap(TCLAP::CmdLine& cmd, int argc, const char* const* argv,
                         const std::string& app_name, std::string& help)
 {
     const auto usage_error = [&](const std::string& why) {
-        return UsageError(app_name + ": " + why + " (see " + app_name + " --help)");
+        return UsageError(why + " (see " + app_name + " --help)");
     };
     std::ostringstream help_text;
     CapturingOutput output(help_text);

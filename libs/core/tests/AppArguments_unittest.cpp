@@ -94,7 +94,7 @@ TEST(AppArguments, UsageErrorsAreOneLineAndPrintNothing)
     const std::string extra = usageErrorOf({"omni-fastslam", "a.ini", "b.rawlog", "c"});
     EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
     for (const auto& m : {missing, unknown, extra}) {
-        EXPECT_EQ(m.rfind("omni-fastslam: ", 0), 0u) << m;
+        EXPECT_EQ(m.find("omni-fastslam: "), std::string::npos) << m;  // the app prints its name
         EXPECT_NE(m.find("(see omni-fastslam --help)"), std::string::npos) << m;
         EXPECT_EQ(m.find('\n'), std::string::npos) << m;
     }

@@ -16,7 +16,7 @@ namespace mrpt_vslam::core {
  *
  *  Usage in main():
  *  1. `auto args = AppArguments::parse(argc, argv, "omni-fastslam", "FastSLAM 2.0 with ...");`
- *     inside `try { } catch (const UsageError& e) { print e.what(); return 2; }`;
+ *     inside `try { } catch (const UsageError& e) { print "APP: error: " + e.what(); return 2; }`;
  *  2. if `args.request != Request::Run`, print `args.message` on stdout and return 0;
  *  3. otherwise hand `args` to the app object.
  *  Parsing never prints and never exits.

@@ -14,7 +14,7 @@ enum class TclapOutcome { Parsed, ShowHelp, ShowVersion };
 /** Parses argv with `cmd` (already given its arguments) without printing anything:
  *  - `--help` returns ShowHelp with TCLAP's usage text in `help`; `--version` returns ShowVersion;
  *  - an unknown option (TCLAP would take "--qiet" as a positional) or any parse error throws
- *    UsageError "APP: reason (see APP --help)".
+ *    UsageError "reason (see APP --help)".
  *  Replaces the output object of `cmd` with one that lives only during the call. */
 TclapOutcome parseTclap(TCLAP::CmdLine& cmd, int argc, const char* const* argv,
                         const std::string& app_name, std::string& help);

@@ -1,0 +1,44 @@
+// Every app's command line behaves alike (doc/app-conventions.md): --help and --version on
+// stdout with exit 0, and a usage error as one line "APP: error: REASON (see APP --help)" with
+// exit 2.
+#include <gtest/gtest.h>
+#include <mrpt_vslam/core/Version.h>
+#include <mrpt_vslam/test/RunCommand.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
+
+#include <string>
+
+namespace {
+const char* const kApps[] = {"omni-fastslam",   "multirobot-vslam", "view-slam",
+                             "stereo-frontend", "vslam-sim",        "vslam-eval",
+                             "vslam-plot",      "mrclam2rawlog",    "vslam-robot-node"};
+
+mrpt_vslam::test::TCommandResult runApp(const std::string& app, const std::string& args)
+{
+    static const mrpt_vslam::test::ScratchFolder scratch("app_command_line_test");
+    return mrpt_vslam::test::runCommand(std::string(MRPT_VSLAM_BIN_DIR) + "/" + app + " " + args,
+                                        scratch.path() / (app + ".log"));
+}
+}  // namespace
+
+TEST(AppCommandLine, AnUnknownOptionIsOneLineAndExitCodeTwo)
+{
+    for (const std::string app : kApps) {
+        const auto r = runApp(app, "--bogus");
+        EXPECT_EQ(r.exit_code, 2) << app;
+        EXPECT_EQ(r.out, app + ": error: unknown option --bogus (see " + app + " --help)\n");
+    }
+}
+
+TEST(AppCommandLine, VersionAndHelpGoToStdoutWithExitCodeZero)
+{
+    for (const std::string app : kApps) {
+        const auto version = runApp(app, "--version 2>/dev/null");
+        EXPECT_EQ(version.exit_code, 0) << app;
+        EXPECT_EQ(version.out, app + " " + mrpt_vslam::core::projectVersion() + " (MRPT " +
+                                   mrpt_vslam::core::mrptVersion() + ")\n");
+        const auto help = runApp(app, "--help 2>/dev/null");
+        EXPECT_EQ(help.exit_code, 0) << app;
+        EXPECT_NE(help.out.find("--version"), std::string::npos) << app << "\n" << help.out;
+    }
+}
