@@ -100,8 +100,7 @@ TMrclamCommandLine TMrclamCommandLine::parse(int argc, const char* const* argv)
     }
     if (outcome == core::TclapOutcome::ShowVersion) {
         c.request = Request::ShowVersion;
-        c.message = std::string(kApp) + " " + core::projectVersion() + " (MRPT " +
-                    core::mrptVersion() + ")\n";
+        c.message = core::versionLine(kApp);
         return c;
     }
     const auto usage_error = [](const std::string& why) {

@@ -45,8 +45,7 @@ TFrontEndCommandLine TFrontEndCommandLine::parse(int argc, const char* const* ar
         }
         if (word == "--version") {
             c.request = Request::ShowVersion;
-            c.message = "stereo-frontend " + core::projectVersion() + " (MRPT " +
-                        core::mrptVersion() + ")\n";
+            c.message = core::versionLine("stereo-frontend");
             return c;
         }
         if (word == "-q" || word == "--quiet") {

@@ -58,8 +58,7 @@ std::optional<core::TEvalParams> parseEvalCommandLine(int argc, char** argv)
             std::cout << help;
             return std::nullopt;
         case core::TclapOutcome::ShowVersion:
-            std::cout << "vslam-eval " << core::projectVersion() << " (MRPT " << core::mrptVersion()
-                      << ")\n";
+            std::cout << core::versionLine("vslam-eval");
             return std::nullopt;
         case core::TclapOutcome::Parsed:
             break;

@@ -118,8 +118,7 @@ int main(int argc, char** argv)
                 std::cout << help;
                 return 0;
             case mrpt_vslam::core::TclapOutcome::ShowVersion:
-                std::cout << "vslam-plot " << mrpt_vslam::core::projectVersion() << " (MRPT "
-                          << mrpt_vslam::core::mrptVersion() << ")\n";
+                std::cout << mrpt_vslam::core::versionLine("vslam-plot");
                 return 0;
             case mrpt_vslam::core::TclapOutcome::Parsed:
                 break;

@@ -80,8 +80,7 @@ int main(int argc, char** argv)
             return 0;
         }
         if (outcome == core::TclapOutcome::ShowVersion) {
-            std::cout << app << " " << core::projectVersion() << " (MRPT " << core::mrptVersion()
-                      << ")\n";
+            std::cout << core::versionLine(app);
             return 0;
         }
         if (!(rate.getValue() > 0 && std::isfinite(rate.getValue())))

@@ -61,8 +61,7 @@ std::optional<TSimCommandLine> parseSimCommandLine(int argc, char** argv)
                 std::cout << help;
                 return std::nullopt;
             case TclapOutcome::ShowVersion:
-                std::cout << "vslam-sim " << mrpt_vslam::core::projectVersion() << " (MRPT "
-                          << mrpt_vslam::core::mrptVersion() << ")\n";
+                std::cout << mrpt_vslam::core::versionLine("vslam-sim");
                 return std::nullopt;
             case TclapOutcome::Parsed:
                 break;

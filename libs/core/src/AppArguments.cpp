@@ -101,7 +101,7 @@ AppArguments AppArguments::parse(int argc, const char* const* argv, const std::s
     }
     if (outcome == TclapOutcome::ShowVersion) {
         a.request = Request::ShowVersion;
-        a.message = appName + " " + projectVersion() + " (MRPT " + mrptVersion() + ")\n";
+        a.message = versionLine(appName);
         return a;
     }
     try {

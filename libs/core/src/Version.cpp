@@ -13,4 +13,9 @@ std::string mrptVersion()
     return v;
 }
 
+std::string versionLine(const std::string& app)
+{
+    return app + " " + projectVersion() + " (MRPT " + mrptVersion() + ")\n";
+}
+
 }  // namespace mrpt_vslam::core

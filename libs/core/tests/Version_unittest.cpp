@@ -29,3 +29,10 @@ TEST(Version, MrptVersionMatchesHeaders)
                   (MRPT_VERSION >> 4) & 0xF, MRPT_VERSION & 0xF);
     EXPECT_EQ(v, expected);
 }
+
+TEST(Version, VersionLineNamesTheAppAndBothVersions)
+{
+    EXPECT_EQ(mrpt_vslam::core::versionLine("vslam-eval"),
+              "vslam-eval " + mrpt_vslam::core::projectVersion() + " (MRPT " +
+                  mrpt_vslam::core::mrptVersion() + ")\n");
+}

@@ -10,4 +10,7 @@ std::string projectVersion();
 /** Version of the MRPT libraries the program runs with, e.g. "2.5.8". */
 std::string mrptVersion();
 
+/** What `APP --version` prints: "APP VERSION (MRPT x.y.z)" and a newline. */
+std::string versionLine(const std::string& app);
+
 }  // namespace mrpt_vslam::core
