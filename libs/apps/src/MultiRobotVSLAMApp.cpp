@@ -439,10 +439,10 @@ void MultiRobotVSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
     const std::string inputs =
         robots.size() == 1
             ? "odometry (CActionRobotMovement2D, or CObservationOdometry" +
-                  (odoLabels.empty() ? std::string() : " labelled '" + odoLabels + "'") +
+                  core::ObservationSelector::labelled(odoLabels) +
                   ") and CObservationBearingRange, CObservationVisualLandmarks or "
                   "CObservationStereoImages" +
-                  (o.sensor_label.empty() ? std::string() : " labelled '" + o.sensor_label + "'")
+                  core::ObservationSelector::labelled(o.sensor_label)
             : "observation-only rawlog with " + odoLabels + " and <ROBOT>" + o.landmarks_suffix +
                   ", <ROBOT>" + o.range_bearing_suffix + " or <ROBOT>_STEREO";
     if (steps == 0)

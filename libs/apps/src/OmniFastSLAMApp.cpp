@@ -176,13 +176,10 @@ void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
     try {
         bearings = detector->detect(*image, filterOptions.bearings_label);
     } catch (const std::exception& e) {
-        const auto& img = image->image;
+        const std::string file = core::RawlogReader::describeExternalImage(image->image, rawlog);
         throw std::runtime_error(rawlog + ": frame " + std::to_string(steps) + ": cannot use " +
                                  ObservationSelector::nameOf(*image) +
-                                 (img.isExternallyStored()
-                                      ? " " + core::RawlogReader::describeExternalImage(img, rawlog)
-                                      : std::string()) +
-                                 ": " + core::oneLineMessage(e));
+                                 (file.empty() ? "" : " " + file) + ": " + core::oneLineMessage(e));
     }
     // the image's bearings replace any the frame had
     ObservationSelector::of<mrpt::obs::CObservationBearingRange>(filterOptions.bearings_label)

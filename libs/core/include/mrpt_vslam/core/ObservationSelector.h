@@ -34,9 +34,12 @@ struct ObservationSelector {
 
     /// For messages: the class name, and the label when there is one
     /// ("CObservationImage", "CObservationImage labelled 'CAMERA'").
-    std::string describe() const
+    std::string describe() const { return shortClassName(*cls) + labelled(label); }
+
+    /// For messages: " labelled 'LABEL'", or nothing for an empty label (any label).
+    static std::string labelled(const std::string& label)
     {
-        return shortClassName(*cls) + (label.empty() ? "" : " labelled '" + label + "'");
+        return label.empty() ? "" : " labelled '" + label + "'";
     }
 
     /// For messages: an observation's sensor label, or its class name when it has none.
