@@ -25,15 +25,7 @@ RESULTS="${RESULTS:-$REPO_DIR/doc/results/fuzz.md}"
 
 # the project's own packages (scripts/setup.sh without building), then clang's fuzzer runtime
 source "$REPO_DIR/scripts/setup.sh" --packages-only
-missing=()
-for p in clang libclang-rt-14-dev; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
-fi
+install_missing_packages clang libclang-rt-14-dev
 
 generator=()
 command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)

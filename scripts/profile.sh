@@ -7,11 +7,7 @@
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 source "$REPO_DIR/scripts/setup.sh"
-if ! command -v perf >/dev/null 2>&1; then
-  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends linux-perf
-fi
+install_missing_packages linux-perf
 source "$REPO_DIR/scripts/results-header.sh"
 COMMAND="$(results_command scripts/profile.sh OUT TOP RESULTS)"
 

@@ -22,9 +22,12 @@ DEBIAN_PACKAGES=(
   libzmq3-dev cppzmq-dev
 )
 
+# Installs those of the given Debian packages that are missing. Another apt run (a second set-up,
+# unattended-upgrades after boot) may hold apt's locks: the install waits up to 10 min for the dpkg
+# lock; the package lists, whose lock apt does not wait for, are retried for a minute.
 install_missing_packages() {
   local missing=()
-  for p in "${DEBIAN_PACKAGES[@]}"; do
+  for p in "$@"; do
     if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
       missing+=("$p")
     fi
@@ -35,8 +38,15 @@ install_missing_packages() {
   echo "Installing missing Debian packages: ${missing[*]}"
   local SUDO=""
   if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  local tries=1
+  until $SUDO apt-get update -qq; do
+    if [ $tries -ge 6 ]; then return 1; fi
+    tries=$((tries + 1))
+    echo "apt-get update failed (another apt run holding its lock?): try $tries of 6 in 10 s" >&2
+    sleep 10
+  done
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends \
+    -o DPkg::Lock::Timeout=600 "${missing[@]}"
 }
 
 configure_and_build() {
@@ -53,6 +63,6 @@ configure_and_build() {
   cmake --build "$BUILD_DIR" -j "$JOBS" ${BUILD_TARGETS:+--target $BUILD_TARGETS}
 }
 
-install_missing_packages
+install_missing_packages "${DEBIAN_PACKAGES[@]}"
 # `source scripts/setup.sh --packages-only`: the packages, no build (scripts/fuzz.sh builds its own)
 [ "${1:-}" = --packages-only ] || configure_and_build
