@@ -117,6 +117,50 @@ TEST_F(MultiRobotVSLAMApp, SingleRobotRangeBearingRawlogsRunFromTheTemplate)
     }
 }
 
+// At the end of a run the app says where its results are and, with ground truth, the figures of
+// metrics.json; without ground truth, that there are none; with --quiet, nothing.
+TEST_F(MultiRobotVSLAMApp, EndOfRunSaysWhereTheResultsAreAndTheirErrors)
+{
+    mrpt_vslam::test::SingleRobotRangeBearingLog().write(out("end"));
+    const std::string dir = out("end-run");
+    const TCommandResult r =
+        run(kConfigs + "range-bearing.ini " + out("end.rawlog") + " --seed 1 --out " + dir);
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_NE(r.out.find("multirobot-vslam: results in " + dir +
+                         " (final.3Dscene opens in SceneViewer3D); against ground truth " +
+                         out("end") + " (metrics.json):\n"),
+              std::string::npos)
+        << r.out;
+    const auto metrics = json(dir + "/metrics.json");
+    const auto& estimate = metrics["robots"]["R1"]["estimate"];
+    EXPECT_NE(r.out.find(mrpt::format("R1 estimate:           ATE RMSE %.3f m (max %.3f m)",
+                                      estimate["ate_rmse_m"].get<double>(),
+                                      estimate["ate_max_m"].get<double>())),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find(mrpt::format("landmarks:             19 true, %d estimated: %d matched",
+                                      metrics["landmarks"]["estimated_landmarks"].get<int>(),
+                                      metrics["landmarks"]["matched"].get<int>())),
+              std::string::npos)
+        << r.out;
+
+    fs::copy_file(out("end.rawlog"), out("alone.rawlog"));  // no ground truth beside it
+    const TCommandResult alone =
+        run(kConfigs + "range-bearing.ini " + out("alone.rawlog") + " --out " + out("alone-run"));
+    ASSERT_EQ(alone.exit_code, 0) << alone.out;
+    EXPECT_NE(alone.out.find("multirobot-vslam: results in " + out("alone-run") +
+                             " (final.3Dscene opens in SceneViewer3D); no ground truth, no "
+                             "metrics.json\n"),
+              std::string::npos)
+        << alone.out;
+    EXPECT_FALSE(fs::exists(out("alone-run/metrics.json")));
+
+    const TCommandResult quiet =
+        run(kConfigs + "range-bearing.ini " + out("end.rawlog") + " -q --out " + out("quiet"));
+    ASSERT_EQ(quiet.exit_code, 0) << quiet.out;
+    EXPECT_EQ(quiet.out, "");
+}
+
 // The stereo-frontend app's landmarks give the same estimate as the built-in front-end.
 TEST_F(MultiRobotVSLAMApp, PreExtractedInputMatchesStereoInput)
 {

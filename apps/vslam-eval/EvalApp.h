@@ -2,8 +2,6 @@
 
 #include <mrpt_vslam/core/RunEvaluation.h>
 
-#include <ostream>
-
 namespace mrpt_vslam::eval {
 
 /** vslam-eval: evaluates a run folder or loose files against ground truth and writes
@@ -13,10 +11,9 @@ class EvalApp {
   public:
     core::TEvalParams params;
     core::TEvalResult result;
-    /// Loads, evaluates and writes everything; throws std::runtime_error "FILE: problem".
+    /// Loads, evaluates and writes everything, and prints core::printEvalSummary(); throws
+    /// std::runtime_error "FILE: problem".
     void run();
-    /// One line per trajectory and one for the landmarks, for people.
-    void printSummary(std::ostream& os) const;
 };
 
 }  // namespace mrpt_vslam::eval

@@ -10,6 +10,7 @@
 #include <mrpt_vslam/core/SceneFraming.h>
 
 #include <cstdio>
+#include <iostream>
 #include <opencv2/core/version.hpp>
 #include <stdexcept>
 
@@ -120,16 +121,22 @@ void SlamApp::writeRunFolder(const core::OutputDirectory& out, const core::RunTi
     cfg.writeEffectiveConfig(out.file("config.ini"));
     describeRun(report, timer);
     const auto groundTruth = groundTruthName();
+    std::optional<core::TEvalResult> evaluation;
     if (groundTruth) {
         report.setGroundTruth(*groundTruth);
         core::TEvalParams eval;
         eval.run_dir = out.path();
         eval.ground_truth = *groundTruth;
-        core::evaluateRunFolder(eval);
+        evaluation = core::evaluateRunFolder(eval);
     }
     // last: a run.json that says completed stands for a whole folder
     report.setCompleted();
     report.write(out.file("run.json"));
+    if (args.quiet) return;
+    std::cout << name << ": results in " << out.path() << " (final.3Dscene opens in SceneViewer3D)"
+              << (evaluation ? "; against ground truth " + *groundTruth + " (metrics.json):\n"
+                             : "; no ground truth, no metrics.json\n");
+    if (evaluation) core::printEvalSummary(std::cout, *evaluation);
 }
 
 void SlamApp::describeRun(core::RunReport& report, const core::RunTimer& timer) const

@@ -36,7 +36,8 @@ namespace mrpt_vslam::apps {
  *    or, with `--listen`, the readings streamed to the app, openInput())
  *    with the progress line, the step timer and the window redrawn after each step; then the
  *    app's results, `final.3Dscene`, `config.ini`, `run.json` and, with ground truth,
- *    `metrics.json`; last, with `--gui` and without `--quiet`, the window until it is closed.
+ *    `metrics.json`, then (without `--quiet`) where they are and the evaluation's figures;
+ *    last, with `--gui` and without `--quiet`, the window until it is closed.
  *  The implementation of each app derives from it (through ParticleFilterApp for the particle
  *  filters). */
 class SlamApp {
@@ -135,7 +136,8 @@ class SlamApp {
     /// `NAME` of the ground truth the run is evaluated against, if there is one.
     virtual std::optional<std::string> groundTruthName() const = 0;
 
-    /// The results, `final.3Dscene`, `config.ini`, `run.json` and `metrics.json`.
+    /// The results, `final.3Dscene`, `config.ini`, `run.json` and `metrics.json`; then, without
+    /// `--quiet`, the folder and the evaluation's summary (core::printEvalSummary()) on stdout.
     void writeRunFolder(const core::OutputDirectory& out, const core::RunTimer& timer);
     /// What ran (inputs, effective config, seed, versions) and its timing, in `report`: the
     /// part of run.json that a failed run writes too.

@@ -1,4 +1,5 @@
 #include <mrpt/core/bits_math.h>
+#include <mrpt/core/format.h>
 #include <mrpt_vslam/core/MetricsJson.h>
 #include <mrpt_vslam/core/RunEvaluation.h>
 
@@ -69,6 +70,29 @@ TEvalResult evaluateRunFolder(const TEvalParams& params)
     writeMetricsJson(result, inputs, params,
                      (std::filesystem::path(inputs.out_dir) / "metrics.json").string());
     return result;
+}
+
+void printEvalSummary(std::ostream& os, const TEvalResult& result)
+{
+    const auto line = [&](const std::string& what, const TTrajectoryMetrics& m) {
+        os << mrpt::format(
+            "%-22s ATE RMSE %.3f m (max %.3f m), heading RMSE %.2f deg, %.0f%% of "
+            "frames under the heading threshold\n",
+            what.c_str(), m.ate_rmse, m.ate_max, mrpt::RAD2DEG(m.heading_rmse),
+            100 * m.heading_share_under_threshold);
+    };
+    for (const auto& r : result.robots) {
+        const std::string robot = r.files.robot.empty() ? "" : r.files.robot + " ";
+        line(robot + "estimate:", r.estimate.unaligned);
+        line(robot + "estimate aligned:", r.estimate.aligned);
+        if (r.odometry) line(robot + "odometry:", r.odometry->unaligned);
+    }
+    if (const auto& l = result.landmarks)
+        os << mrpt::format(
+            "landmarks:             %zu true, %zu estimated: %zu matched, %zu "
+            "false (%zu duplicated), %zu missed; error mean %.3f m, max %.3f m\n",
+            l->num_true, l->num_estimated, l->num_matched, l->num_false, l->num_duplicates,
+            l->num_missed, l->error_mean, l->error_max);
 }
 
 }  // namespace mrpt_vslam::core

@@ -7,6 +7,7 @@
 #include <mrpt_vslam/core/TumTrajectory.h>
 
 #include <optional>
+#include <ostream>
 
 namespace mrpt_vslam::core {
 
@@ -40,5 +41,9 @@ TEvalResult evaluateRun(const TEvalInputs& inputs, const TEvalParams& params);
 
 /** resolveInputs(), evaluateRun() and writeMetricsJson() into `<out_dir>/metrics.json`. */
 TEvalResult evaluateRunFolder(const TEvalParams& params);
+
+/** `result` for people: one line per trajectory (estimate, SE(2)-aligned estimate, odometry) and
+ *  one for the landmarks. vslam-eval prints it, and the driver apps at the end of a run. */
+void printEvalSummary(std::ostream& os, const TEvalResult& result);
 
 }  // namespace mrpt_vslam::core
