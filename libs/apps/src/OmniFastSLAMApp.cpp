@@ -220,11 +220,7 @@ void OmniFastSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
         ObservationSelector::of<mrpt::obs::CObservationBearingRange>(filterOptions.bearings_label)
             .describe() +
         " or " + ObservationSelector::of<mrpt::obs::CObservationImage>(imageLabel).describe();
-    if (steps == 0)
-        throw std::runtime_error(rawlog + ": no frames with odometry and " + inputs +
-                                 " (action / sensory-frame pairs, or CObservationOdometry "
-                                 "readings); the rawlog has: " +
-                                 contents.describe());
+    if (steps == 0) throw noFramesError(inputs, contents);
     if (measurements == 0)
         throw std::runtime_error(rawlog + ": no ceiling-light measurements (" + inputs +
                                  "); the rawlog has: " + contents.describe());

@@ -98,6 +98,15 @@ void SlamApp::run()
     if (m_window && !args.quiet) m_window->waitUntilClosed();
 }
 
+std::runtime_error SlamApp::noFramesError(const std::string& inputs,
+                                          const core::TRawlogSummary& contents) const
+{
+    return std::runtime_error(rawlog + ": no frames with odometry and " + inputs +
+                              " (action / sensory-frame pairs, or CObservationOdometry readings); "
+                              "the rawlog has: " +
+                              contents.describe());
+}
+
 double SlamApp::timedStep(core::RunTimer& timer, const std::string& where,
                           const std::function<void()>& update) const
 {

@@ -21,6 +21,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -78,6 +79,12 @@ class SlamApp {
         throw usageError("[" + m_section + "] " + key + " must be " + names + ", not '" + given +
                          "'");
     }
+
+    /** For endSteps() when the rawlog gave no step: "<rawlog>: no frames with odometry and
+     *  <inputs> (action / sensory-frame pairs, or CObservationOdometry readings); the rawlog has:
+     *  <contents>". */
+    std::runtime_error noFramesError(const std::string& inputs,
+                                     const core::TRawlogSummary& contents) const;
 
     /** Runs `update`, one step of the filter, timed by `timer`; an exception becomes a
      *  std::runtime_error "<rawlog>: <where>: <message>". \return the step's duration [ms] */

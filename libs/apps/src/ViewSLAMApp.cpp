@@ -222,11 +222,9 @@ void ViewSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
 void ViewSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
 {
     if (framesWithImages == 0)
-        throw std::runtime_error(
-            rawlog + ": no frames with odometry and " +
-            core::ObservationSelector::of<mrpt::obs::CObservationImage>(imageLabel).describe() +
-            " (action / sensory-frame pairs, or CObservationOdometry readings); the rawlog has: " +
-            contents.describe());
+        throw noFramesError(
+            core::ObservationSelector::of<mrpt::obs::CObservationImage>(imageLabel).describe(),
+            contents);
     stepTable->commit();
     observationTable->commit();
 }
