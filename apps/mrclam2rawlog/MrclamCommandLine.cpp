@@ -100,7 +100,6 @@ TMrclamCommandLine TMrclamCommandLine::parse(int argc, const char* const* argv)
     }
     if (outcome == core::TclapOutcome::ShowVersion) {
         c.request = Request::ShowVersion;
-        c.message = core::versionLine(kApp);
         return c;
     }
     const auto usage_error = [](const std::string& why) {

@@ -52,16 +52,10 @@ std::optional<core::TEvalParams> parseEvalCommandLine(int argc, char** argv)
         false, -std::numeric_limits<double>::infinity(), "T", cmd);
     TCLAP::SwitchArg align("", "align",
                            "Plot the SE(2)-aligned estimate (metrics.json always has both)", cmd);
-    std::string help;
-    switch (core::parseTclap(cmd, argc, argv, "vslam-eval", help)) {
-        case core::TclapOutcome::ShowHelp:
-            std::cout << help;
-            return std::nullopt;
-        case core::TclapOutcome::ShowVersion:
-            std::cout << core::versionLine("vslam-eval");
-            return std::nullopt;
-        case core::TclapOutcome::Parsed:
-            break;
+    std::string message;
+    if (core::parseTclap(cmd, argc, argv, "vslam-eval", message) != core::TclapOutcome::Parsed) {
+        std::cout << message;  // --help or --version
+        return std::nullopt;
     }
     core::TEvalParams p;
     p.run_dir = runDir.getValue();

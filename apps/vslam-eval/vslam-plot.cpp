@@ -112,16 +112,11 @@ int main(int argc, char** argv)
         TCLAP::SwitchArg points("", "points", "Markers only, no lines (a scatter plot)", cmd);
         TCLAP::SwitchArg diagonal("", "diagonal",
                                   "Draw the line y = x, both axes on one range and scale", cmd);
-        std::string help;
-        switch (mrpt_vslam::core::parseTclap(cmd, argc, argv, "vslam-plot", help)) {
-            case mrpt_vslam::core::TclapOutcome::ShowHelp:
-                std::cout << help;
-                return 0;
-            case mrpt_vslam::core::TclapOutcome::ShowVersion:
-                std::cout << mrpt_vslam::core::versionLine("vslam-plot");
-                return 0;
-            case mrpt_vslam::core::TclapOutcome::Parsed:
-                break;
+        std::string message;
+        if (mrpt_vslam::core::parseTclap(cmd, argc, argv, "vslam-plot", message) !=
+            mrpt_vslam::core::TclapOutcome::Parsed) {
+            std::cout << message;  // --help or --version
+            return 0;
         }
         TPlotOptions o;
         o.title = title.getValue(), o.x_label = xl.getValue(), o.y_label = yl.getValue();

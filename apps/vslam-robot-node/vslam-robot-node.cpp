@@ -73,14 +73,9 @@ int main(int argc, char** argv)
             "wait for it.",
             false, 0, "S", cmd);
         TCLAP::SwitchArg quiet("q", "quiet", "No progress line.", cmd, false);
-        std::string help;
-        const auto outcome = core::parseTclap(cmd, argc, argv, app, help);
-        if (outcome == core::TclapOutcome::ShowHelp) {
-            std::cout << help;
-            return 0;
-        }
-        if (outcome == core::TclapOutcome::ShowVersion) {
-            std::cout << core::versionLine(app);
+        std::string message;
+        if (core::parseTclap(cmd, argc, argv, app, message) != core::TclapOutcome::Parsed) {
+            std::cout << message;  // --help or --version
             return 0;
         }
         if (!(rate.getValue() > 0 && std::isfinite(rate.getValue())))

@@ -54,17 +54,12 @@ std::optional<TSimCommandLine> parseSimCommandLine(int argc, char** argv)
     const auto usage_error = [](const std::string& why) {
         return mrpt_vslam::core::UsageError(why + " (see vslam-sim --help)");
     };
-    std::string help;
+    std::string message;
     try {
-        switch (mrpt_vslam::core::parseTclap(cmd, argc, argv, "vslam-sim", help)) {
-            case TclapOutcome::ShowHelp:
-                std::cout << help;
-                return std::nullopt;
-            case TclapOutcome::ShowVersion:
-                std::cout << mrpt_vslam::core::versionLine("vslam-sim");
-                return std::nullopt;
-            case TclapOutcome::Parsed:
-                break;
+        if (mrpt_vslam::core::parseTclap(cmd, argc, argv, "vslam-sim", message) !=
+            TclapOutcome::Parsed) {
+            std::cout << message;  // --help or --version
+            return std::nullopt;
         }
     } catch (const mrpt_vslam::core::UsageError& e) {
         if (std::string(e.what()).rfind("One or more required arguments missing!", 0) == 0)

@@ -92,16 +92,13 @@ AppArguments AppArguments::parse(int argc, const char* const* argv, const std::s
         return UsageError(why + " (see " + appName + " --help)");
     };
 
-    std::string help;
-    const TclapOutcome outcome = parseTclap(cmd, argc, argv, appName, help);
+    const TclapOutcome outcome = parseTclap(cmd, argc, argv, appName, a.message);
     if (outcome == TclapOutcome::ShowHelp) {
         a.request = Request::ShowHelp;
-        a.message = help;
         return a;
     }
     if (outcome == TclapOutcome::ShowVersion) {
         a.request = Request::ShowVersion;
-        a.message = versionLine(appName);
         return a;
     }
     try {

@@ -1,6 +1,7 @@
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt_vslam/core/TclapParse.h>
 #include <mrpt_vslam/core/UsageError.h>
+#include <mrpt_vslam/core/Version.h>
 
 #include <sstream>
 #include <vector>
@@ -49,7 +50,7 @@ void rejectUnknownOptions(const std::vector<const char*>& args, TCLAP::CmdLine& 
 }  // namespace
 
 TclapOutcome parseTclap(TCLAP::CmdLine& cmd, int argc, const char* const* argv,
-                        const std::string& app_name, std::string& help)
+                        const std::string& app_name, std::string& message)
 {
     const auto usage_error = [&](const std::string& why) {
         return UsageError(why + " (see " + app_name + " --help)");
@@ -68,10 +69,13 @@ TclapOutcome parseTclap(TCLAP::CmdLine& cmd, int argc, const char* const* argv,
     }
     if (cmd.parse(argc, args.data())) return TclapOutcome::Parsed;
     if (output.helpShown) {
-        help = help_text.str();
+        message = help_text.str();
         return TclapOutcome::ShowHelp;
     }
-    if (output.versionShown) return TclapOutcome::ShowVersion;
+    if (output.versionShown) {
+        message = versionLine(app_name);
+        return TclapOutcome::ShowVersion;
+    }
     throw usage_error(output.error);
 }
 
