@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -159,6 +160,39 @@ TEST_F(MultiRobotVSLAMApp, EndOfRunSaysWhereTheResultsAreAndTheirErrors)
         run(kConfigs + "range-bearing.ini " + out("end.rawlog") + " -q --out " + out("quiet"));
     ASSERT_EQ(quiet.exit_code, 0) << quiet.out;
     EXPECT_EQ(quiet.out, "");
+}
+
+// A run into the folder of an earlier run leaves the files a run into an empty folder leaves,
+// and the user's own files: none of the earlier run's stays beside it (here, the second robot's
+// path of a two-robot run before a one-robot one, which the evaluation took for this run's).
+TEST_F(MultiRobotVSLAMApp, ARunReplacesAnEarlierRunInItsFolder)
+{
+    const std::string dir = out("reused");
+    ASSERT_EQ(run(kConfigs + "office-team-2.ini " + kData +
+                  "team2-stereo-short.rawlog --seed 1 -q --out " + dir)
+                  .exit_code,
+              0);
+    ASSERT_TRUE(fs::exists(dir + "/estimated_path_R2.tum"));
+    s_scratch->write("reused/notes.txt", "the user's own file");
+
+    mrpt_vslam::test::SingleRobotRangeBearingLog().write(out("one-robot"));
+    for (const std::string& folder : {dir, out("fresh")}) {
+        const TCommandResult r = run(kConfigs + "range-bearing.ini " + out("one-robot.rawlog") +
+                                     " --seed 1 -q --out " + folder);
+        ASSERT_EQ(r.exit_code, 0) << folder << ": " << r.out;
+    }
+    const auto names = [](const std::string& folder) {
+        std::set<std::string> files;
+        for (const auto& entry : fs::directory_iterator(folder))
+            files.insert(entry.path().filename().string());
+        return files;
+    };
+    std::set<std::string> expected = names(out("fresh"));
+    expected.insert("notes.txt");
+    EXPECT_EQ(names(dir), expected);
+    const auto robots = json(dir + "/metrics.json")["robots"];
+    EXPECT_EQ(robots.size(), 1u) << robots.dump();
+    EXPECT_EQ(bytes(dir + "/estimated_path_R1.tum"), bytes(out("fresh/estimated_path_R1.tum")));
 }
 
 // The stereo-frontend app's landmarks give the same estimate as the built-in front-end.

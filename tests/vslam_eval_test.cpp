@@ -147,6 +147,13 @@ TEST(VslamEval, LooseFilesGiveTheKnownOffset)
     expectNonEmptyPng(out / "errors.png");
     expectNonEmptyPng(out / "landmark_errors.png");
     EXPECT_FALSE(fs::exists(out / "metrics.json.tmp"));
+    // evaluated again without landmarks: the earlier landmark plot does not stay beside it
+    ASSERT_EQ(runEval("--estimate " + (dir / "est.tum").string() + " --ground-truth " +
+                      (dir / "gt.tum").string() + " --out " + out.string())
+                  .exit_code,
+              0);
+    EXPECT_TRUE(readJson(out / "metrics.json")["landmarks"].is_null());
+    EXPECT_FALSE(fs::exists(out / "landmark_errors.png"));
 
     // --after: the poses later than t = 504.05 s only (504.1 to 505.9)
     const auto after = dir / "after";

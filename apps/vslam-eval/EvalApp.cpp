@@ -1,5 +1,6 @@
 #include "EvalApp.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
@@ -13,8 +14,11 @@ void EvalApp::run()
     const auto out = std::filesystem::path(core::resolveInputs(params).out_dir);
     plotPaths(result, params.align, (out / "paths.png").string());
     plotErrors(result, params.align, (out / "errors.png").string());
+    const auto landmarkErrors = (out / "landmark_errors.png").string();
     if (result.landmarks)
-        plotLandmarkErrors(*result.landmarks, (out / "landmark_errors.png").string());
+        plotLandmarkErrors(*result.landmarks, landmarkErrors);
+    else
+        std::remove(landmarkErrors.c_str());  // an earlier evaluation's, with landmarks
     core::printEvalSummary(std::cout, result);
 }
 

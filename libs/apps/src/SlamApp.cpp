@@ -9,7 +9,6 @@
 #include <mrpt_vslam/core/RunOutputs.h>
 #include <mrpt_vslam/core/SceneFraming.h>
 
-#include <cstdio>
 #include <iostream>
 #include <opencv2/core/version.hpp>
 #include <stdexcept>
@@ -66,8 +65,7 @@ std::unique_ptr<core::RawlogEntrySource> SlamApp::openInput()
 void SlamApp::run()
 {
     core::OutputDirectory out(args.outDir);
-    // a previous run's report must not stand for this one
-    for (const char* report : {"run.json", "metrics.json"}) std::remove(out.file(report).c_str());
+    out.removeEarlierRun();  // no file of an earlier run stands beside this one's
     core::RunTimer timer;
     try {
         const auto input = openInput();

@@ -1,24 +1,65 @@
 #include <mrpt_vslam/core/OutputDirectory.h>
 
+#include <array>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
+#include <vector>
 
 namespace mrpt_vslam::core {
+
+namespace fs = std::filesystem;
 
 OutputDirectory::OutputDirectory(const std::string& dir) : m_dir(dir)
 {
     if (dir.empty()) throw std::runtime_error("output folder name is empty");
     std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (!ec && !std::filesystem::is_directory(dir, ec))
-        ec = std::make_error_code(std::errc::not_a_directory);
+    fs::create_directories(dir, ec);
+    if (!ec && !fs::is_directory(dir, ec)) ec = std::make_error_code(std::errc::not_a_directory);
     if (ec) throw std::runtime_error(dir + ": cannot create output folder: " + ec.message());
 }
 
 std::string OutputDirectory::file(const std::string& name) const
 {
-    return (std::filesystem::path(m_dir) / name).string();
+    return (fs::path(m_dir) / name).string();
+}
+
+bool OutputDirectory::isRunFile(const std::string& name)
+{
+    static constexpr std::array kNames = {
+        "run.json",  "metrics.json",     "config.ini", "final.3Dscene", "final_map.gz",
+        "steps.txt", "observations.txt", "paths.png",  "errors.png",    "landmark_errors.png"};
+    for (const char* n : kNames)
+        if (name == n) return true;
+    // STEM.ext or STEM_<X>.ext
+    const auto stemmed = [&name](const char* stem, const std::string& ext) {
+        const std::string s = stem;
+        if (name.size() < s.size() + ext.size() || name.rfind(s, 0) != 0 ||
+            name.compare(name.size() - ext.size(), ext.size(), ext) != 0)
+            return false;
+        const size_t middle = name.size() - s.size() - ext.size();
+        return middle == 0 || (middle >= 2 && name[s.size()] == '_');
+    };
+    for (const char* stem : {"estimated_path", "odometry_path", "filter_path"})
+        if (stemmed(stem, ".tum")) return true;
+    for (const char* stem : {"map", "particle_map", "filter_map"})
+        if (stemmed(stem, ".txt")) return true;
+    return false;
+}
+
+size_t OutputDirectory::removeEarlierRun() const
+{
+    std::error_code ec;
+    std::vector<fs::path> files;
+    for (fs::directory_iterator it(m_dir, ec), end; !ec && it != end; it.increment(ec))
+        if (!it->is_directory() && isRunFile(it->path().filename().string()))
+            files.push_back(it->path());
+    if (ec) throw std::runtime_error(m_dir + ": cannot list the output folder: " + ec.message());
+    for (const auto& f : files) {
+        if (!fs::remove(f, ec) && ec)
+            throw std::runtime_error(f.string() + ": cannot remove: " + ec.message());
+    }
+    return files.size();
 }
 
 }  // namespace mrpt_vslam::core

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 using mrpt_vslam::core::OutputDirectory;
@@ -49,5 +50,55 @@ TEST(OutputDirectory, FailsClearlyWhenAFileIsInTheWay)
         }
     }
     EXPECT_THROW(OutputDirectory(""), std::runtime_error);
+    fs::remove_all(root);
+}
+
+TEST(OutputDirectory, RunFilesAreTheNamesTheAppsWrite)
+{
+    for (const char* name : {"run.json",
+                             "metrics.json",
+                             "config.ini",
+                             "final.3Dscene",
+                             "final_map.gz",
+                             "steps.txt",
+                             "observations.txt",
+                             "paths.png",
+                             "errors.png",
+                             "landmark_errors.png",
+                             "estimated_path.tum",
+                             "estimated_path_R1.tum",
+                             "odometry_path_R12.tum",
+                             "filter_path.tum",
+                             "filter_path_R2.tum",
+                             "map.txt",
+                             "map_descriptors.txt",
+                             "map_views.txt",
+                             "particle_map.txt",
+                             "particle_map_descriptors.txt",
+                             "filter_map.txt"})
+        EXPECT_TRUE(OutputDirectory::isRunFile(name)) << name;
+    for (const char* name :
+         {"hall.rawlog", "hall.groundtruth.tum", "hall.landmarks.txt", "notes.txt", "mapping.txt",
+          "map.tum", "estimated_path", "estimated_path_.tum", "estimated_paths.tum",
+          "estimated_path.txt", "map_.txt", "run.json.tmp", "final.3Dscene.tmp", "my_config.ini",
+          "paths.png.bak", "my_map.txt", ""})
+        EXPECT_FALSE(OutputDirectory::isRunFile(name)) << name;
+}
+
+TEST(OutputDirectory, RemovesAnEarlierRunAndNothingElse)
+{
+    const fs::path root = scratch();
+    const OutputDirectory out(root.string());
+    const std::vector<std::string> run = {"run.json", "estimated_path_R2.tum", "map.txt",
+                                          "final.3Dscene", "filter_path.tum"};
+    const std::vector<std::string> others = {"hall.rawlog", "notes.txt", "map.txt.tmp"};
+    for (const auto& name : run) std::ofstream(out.file(name)) << "x";
+    for (const auto& name : others) std::ofstream(out.file(name)) << "x";
+    fs::create_directories(out.file("paths.png"));  // a folder of that name stays
+    EXPECT_EQ(out.removeEarlierRun(), run.size());
+    for (const auto& name : run) EXPECT_FALSE(fs::exists(out.file(name))) << name;
+    for (const auto& name : others) EXPECT_TRUE(fs::exists(out.file(name))) << name;
+    EXPECT_TRUE(fs::is_directory(out.file("paths.png")));
+    EXPECT_EQ(out.removeEarlierRun(), 0u);
     fs::remove_all(root);
 }
