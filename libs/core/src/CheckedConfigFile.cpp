@@ -34,6 +34,7 @@ std::map<std::pair<std::string, std::string>, int> keyLines(const std::string& t
     std::istringstream in(text);
     std::string raw, section;
     for (int line_no = 1; std::getline(in, raw); ++line_no) {
+        if (!raw.empty() && raw.back() == '\r') raw.pop_back();  // Windows line endings
         const std::string line = mrpt::system::trim(raw);
         if (line.empty() || line[0] == ';' || line[0] == '#' || line[0] == '@' ||
             startsWith(line, "//"))
@@ -137,10 +138,13 @@ void CheckedConfigFile::loadText(const std::string& text, const std::string& nam
 {
     clear();
     m_valueError.clear();
-    CConfigFileMemory::setContent(text);
+    // the byte order mark some Windows editors start a UTF-8 file with is not part of line 1
+    const std::string bom = "\xEF\xBB\xBF";
+    const std::string content = text.rfind(bom, 0) == 0 ? text.substr(bom.size()) : text;
+    CConfigFileMemory::setContent(content);
     m_name = name;
     m_overrides = overrides;
-    m_line_of_key = keyLines(text, name);
+    m_line_of_key = keyLines(content, name);
     m_overridden.clear();
     for (const auto& o : overrides) {
         CConfigFileMemory::writeString(o.section, o.key, o.value);

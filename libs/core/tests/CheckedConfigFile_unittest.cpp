@@ -263,3 +263,24 @@ TEST(CheckedConfigFile, LinesThatAreNotKeysSectionsOrCommentsAreErrors)
         }
     }
 }
+
+// A config saved by a Windows editor (line endings CR LF, a UTF-8 byte order mark before a
+// section or a comment) reads as the same file with Unix line endings and no mark.
+TEST(CheckedConfigFile, WindowsLineEndingsAndByteOrderMarkReadAsUnixText)
+{
+    for (const std::string first : {"", "[Filter]\n"}) {
+        std::string windows = "\xEF\xBB\xBF";
+        for (const char c : first + kIni + "[Names]\nlabel = OMNICAM\n")
+            windows += c == '\n' ? std::string("\r\n") : std::string(1, c);
+        CheckedConfigFile cfg;
+        cfg.loadText(windows, "windows.ini");
+        TFilterOptions opts;
+        opts.loadFromConfigFile(cfg, "Filter");
+        EXPECT_EQ(opts.sampleSize, 100);
+        EXPECT_DOUBLE_EQ(opts.sigma_xy, 0.05);
+        EXPECT_DOUBLE_EQ(cfg.read_double("Camera", "fx", 0), 400.0);
+        EXPECT_EQ(cfg.read_string("Names", "label", ""), "OMNICAM");
+        EXPECT_EQ(messageOf(cfg), "windows.ini: unknown key [Camera] fxx (line " +
+                                      std::to_string(first.empty() ? 8 : 9) + ")");
+    }
+}
