@@ -2,6 +2,7 @@
 #include <mrpt/system/filesystem.h>
 #include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/AppArguments.h>
+#include <mrpt_vslam/core/EvalInputs.h>
 #include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/core/TclapParse.h>
 #include <mrpt_vslam/core/UsageError.h>
@@ -69,8 +70,10 @@ AppArguments AppArguments::parse(int argc, const char* const* argv, const std::s
     TCLAP::MultiArg<std::string> set("", "set", "Overrides (or adds) a config key; repeatable.",
                                      false, "SECTION.KEY=VALUE", cmd);
     TCLAP::ValueArg<std::string> ground_truth(
-        "", "ground-truth", "Ground truth NAME (default: found beside the rawlog).", false, "",
-        "NAME", cmd);
+        "", "ground-truth",
+        "Ground truth NAME, NAME.rawlog or NAME.groundtruth.tum (default: found beside "
+        "the rawlog).",
+        false, "", "NAME", cmd);
     // declared only where the app offers it, so that --help lists it only there
     std::optional<TCLAP::ValueArg<std::string>> listen;
     if (live)
@@ -149,12 +152,7 @@ std::string AppArguments::resolveRawlog(const CheckedConfigFile& cfg,
 
 std::string AppArguments::groundTruthPrefix(const std::string& rawlog) const
 {
-    if (!groundTruth.empty()) return groundTruth;
-    const std::string ext = ".rawlog";
-    if (rawlog.size() > ext.size() &&
-        mrpt::system::strCmpI(rawlog.substr(rawlog.size() - ext.size()), ext))
-        return rawlog.substr(0, rawlog.size() - ext.size());
-    return rawlog;
+    return groundTruthPrefixOf(groundTruth.empty() ? rawlog : groundTruth);
 }
 
 void AppArguments::describeInputs(RunReport& report, const std::string& effective_config,

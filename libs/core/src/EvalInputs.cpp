@@ -1,3 +1,4 @@
+#include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/EvalInputs.h>
 #include <mrpt_vslam/core/UsageError.h>
 
@@ -42,14 +43,6 @@ std::string groundTruthArgument(const TEvalParams& p)
     return gt;
 }
 
-/// Prefix NAME of a ground-truth argument `NAME.rawlog[.gz]` or `NAME`.
-std::string groundTruthPrefix(const std::string& arg)
-{
-    for (const char* ext : {".rawlog.gz", ".rawlog"})
-        if (endsWith(arg, ext)) return arg.substr(0, arg.size() - std::string(ext).size());
-    return arg;
-}
-
 /// Robots of a run folder: "" for estimated_path.tum, R for estimated_path_R.tum (sorted).
 std::vector<TRobotFiles> robotsInRunDir(const std::string& run_dir)
 {
@@ -79,6 +72,15 @@ std::vector<TRobotFiles> robotsInRunDir(const std::string& run_dir)
 }
 
 }  // namespace
+
+std::string groundTruthPrefixOf(const std::string& name)
+{
+    for (const std::string ext : {".rawlog.gz", ".rawlog", ".groundtruth.tum"})
+        if (name.size() > ext.size() &&
+            mrpt::system::strCmpI(name.substr(name.size() - ext.size()), ext))
+            return name.substr(0, name.size() - ext.size());
+    return name;
+}
 
 std::string groundTruthFileOf(const std::string& prefix, const std::string& robot, bool only_robot)
 {
@@ -110,7 +112,7 @@ TEvalInputs resolveInputs(const TEvalParams& p)
                                      " robots; pass the prefix NAME instead");
         in.robots[0].ground_truth = gtArg;
     } else {
-        const auto prefix = groundTruthPrefix(gtArg);
+        const auto prefix = groundTruthPrefixOf(gtArg);
         for (auto& r : in.robots)
             r.ground_truth = groundTruthFileOf(prefix, r.robot, in.robots.size() == 1);
         if (p.landmarks_gt.empty() && fs::exists(prefix + ".landmarks.txt"))

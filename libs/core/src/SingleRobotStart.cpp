@@ -1,5 +1,6 @@
 #include <mrpt/core/bits_math.h>
 #include <mrpt/system/filesystem.h>
+#include <mrpt_vslam/core/EvalInputs.h>
 #include <mrpt_vslam/core/SingleRobotStart.h>
 
 #include <stdexcept>
@@ -20,8 +21,7 @@ void SingleRobotStart::resolve(const AppArguments& args, const std::string& rawl
                                const std::string& robot)
 {
     groundTruthPrefix = args.groundTruthPrefix(rawlog);
-    const std::string tum =
-        groundTruthPrefix + (robot.empty() ? ".groundtruth.tum" : ".groundtruth_" + robot + ".tum");
+    const std::string tum = groundTruthFileOf(groundTruthPrefix, robot, false);
     if (mrpt::system::fileExists(tum))
         groundTruth = TumTrajectory::load(tum);
     else if (!args.groundTruth.empty())

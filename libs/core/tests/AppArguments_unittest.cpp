@@ -142,6 +142,22 @@ TEST(AppArguments, DefaultOutDirUsesConfigStem)
     EXPECT_EQ(AppArguments::defaultOutDir("view-slam", "plain"), "out/view-slam-plain");
 }
 
+// The ground truth is looked for beside the rawlog, compressed or not, or where --ground-truth
+// says, by the rawlog, the trajectory or the prefix (vslam-eval takes the same forms).
+TEST(AppArguments, GroundTruthPrefixComesFromTheRawlogOrTheGivenName)
+{
+    const auto beside = parseArgs({"omni-fastslam", "c.ini"});
+    for (const char* rawlog :
+         {"data/hall.rawlog", "data/hall.rawlog.gz", "data/hall.RAWLOG", "data/hall"})
+        EXPECT_EQ(beside.groundTruthPrefix(rawlog), "data/hall") << rawlog;
+    EXPECT_EQ(beside.groundTruthPrefix("data/hall.log"), "data/hall.log");
+    for (const char* given :
+         {"gt/hall", "gt/hall.rawlog", "gt/hall.rawlog.gz", "gt/hall.groundtruth.tum"}) {
+        const auto a = parseArgs({"omni-fastslam", "c.ini", "--ground-truth", given});
+        EXPECT_EQ(a.groundTruthPrefix("data/hall.rawlog"), "gt/hall") << given;
+    }
+}
+
 // --listen only where the app offers it (and its --help lists it), and not with a RAWLOG.
 TEST(AppArguments, ListenIsForLiveAppsAndReplacesTheRawlog)
 {

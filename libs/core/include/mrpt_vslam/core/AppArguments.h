@@ -61,8 +61,8 @@ class AppArguments {
      *  Throws UsageError "CONFIG: no rawlog given (...)" when neither is there. */
     std::string resolveRawlog(const CheckedConfigFile& cfg, const std::string& section) const;
 
-    /** Prefix `NAME` of the ground-truth files (doc/data-formats.md): `--ground-truth` if given,
-     *  else the rawlog's path without its `.rawlog` extension. */
+    /** Prefix `NAME` of the ground-truth files (doc/data-formats.md): groundTruthPrefixOf()
+     *  `--ground-truth` if given, else of the rawlog's path. */
     std::string groundTruthPrefix(const std::string& rawlog) const;
 
     /** Records this run's inputs in its report: the command line, the configuration (file and

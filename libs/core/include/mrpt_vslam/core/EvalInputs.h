@@ -37,6 +37,11 @@ struct TEvalInputs {
     std::string out_dir;
 };
 
+/** The prefix NAME of the ground-truth files (doc/data-formats.md, "Ground truth") that `name`
+ *  stands for: a rawlog `NAME.rawlog` or `NAME.rawlog.gz`, a trajectory `NAME.groundtruth.tum`
+ *  (extensions in any case), or NAME itself. */
+std::string groundTruthPrefixOf(const std::string& name);
+
 /** The ground-truth file of `robot` for the prefix NAME: NAME.groundtruth.tum for a
  *  single-robot run (`robot` empty), else NAME.groundtruth_<robot>.tum, or, for the only robot
  *  of a run (`only_robot`) when that file does not exist, NAME.groundtruth.tum. */
