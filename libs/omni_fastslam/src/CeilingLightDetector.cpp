@@ -1,4 +1,5 @@
 #include <mrpt/config/CConfigFileBase.h>
+#include <mrpt_vslam/core/ImageSize.h>
 #include <mrpt_vslam/omni_fastslam/CeilingLightDetector.h>
 
 #include <Eigen/Dense>
@@ -84,6 +85,8 @@ std::vector<CeilingLightDetector::TBlob> CeilingLightDetector::detectBlobs(
 mrpt::obs::CObservationBearingRange::Ptr CeilingLightDetector::detect(
     const mrpt::obs::CObservationImage& obs, const std::string& sensor_label) const
 {
+    const auto& cam = m_lut.camera();
+    core::requireImageSize(obs.image, cam.width, cam.height);
     auto out = mrpt::obs::CObservationBearingRange::Create();
     out->timestamp = obs.timestamp;
     out->sensorLabel = sensor_label;
@@ -93,7 +96,6 @@ mrpt::obs::CObservationBearingRange::Ptr CeilingLightDetector::detect(
     out->fieldOfView_yaw = 2 * M_PI;
     out->fieldOfView_pitch = m_lut.camera().max_theta;
 
-    const auto& cam = m_lut.camera();
     const double var_px = m_options.pixel_std * m_options.pixel_std;
     for (const auto& blob : detectBlobs(obs.image)) {
         const auto z = m_lut.lookup(blob.u, blob.v);

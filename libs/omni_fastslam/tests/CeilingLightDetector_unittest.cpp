@@ -149,4 +149,10 @@ TEST(CeilingLightDetector, RefusesImagesItCannotRead)
     EXPECT_THROW(detector.detectBlobs(mrpt::img::CImage()), std::invalid_argument);
     EXPECT_THROW(detector.detectBlobs(mrpt::img::CImage(64, 48, mrpt::img::CH_RGB)),
                  std::invalid_argument);
+    // an image of another size than the camera model's: its blobs would get wrong bearings
+    mrpt::obs::CObservationImage obs;
+    obs.image = mrpt::img::CImage(2 * cam.width, 2 * cam.height, mrpt::img::CH_GRAY);
+    EXPECT_THROW(detector.detect(obs), std::invalid_argument);
+    obs.image = darkImage(cam);
+    EXPECT_NO_THROW(detector.detect(obs));
 }

@@ -1,6 +1,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/format.h>
 #include <mrpt/img/CImage.h>
+#include <mrpt_vslam/core/ImageSize.h>
 #include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/viewmap/OmniFeatureExtractor.h>
 
@@ -188,12 +189,7 @@ std::optional<OmniFeatureExtractor::TDescribed> OmniFeatureExtractor::describe(
 
 TViewFeatures OmniFeatureExtractor::extract(const mrpt::img::CImage& image) const
 {
-    if (image.getWidth() != size_t(m_camera.width) ||
-        image.getHeight() != size_t(m_camera.height)) {
-        throw std::invalid_argument(
-            mrpt::format("OmniFeatureExtractor: the image is %zux%zu but the camera is %dx%d",
-                         image.getWidth(), image.getHeight(), m_camera.width, m_camera.height));
-    }
+    core::requireImageSize(image, m_camera.width, m_camera.height);
     const core::IntegralImage integral(image);  // grayscale, 8-bit check
     std::vector<core::FastHessianDetector::TKeypoint> keypoints =
         m_detector.detect(integral, m_threads);

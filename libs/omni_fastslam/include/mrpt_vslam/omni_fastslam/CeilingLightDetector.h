@@ -53,6 +53,8 @@ class CeilingLightDetector {
 
     /// Steps 1-4 on an `OMNICAM` observation; the output keeps its timestamp and camera pose
     /// and has label `sensor_label`. Blobs whose pixel has no LUT entry are dropped.
+    /// \throw std::invalid_argument as detectBlobs(), or for an image of another size than the
+    /// camera model's (core::requireImageSize).
     mrpt::obs::CObservationBearingRange::Ptr detect(
         const mrpt::obs::CObservationImage& obs,
         const std::string& sensor_label = "OMNICAM_BEARINGS") const;
