@@ -49,10 +49,10 @@ std::vector<CeilingLightDetector::TBlob> CeilingLightDetector::detectBlobs(
     const mrpt::img::CImage& image) const
 {
     if (image.isEmpty()) throw std::invalid_argument("empty image");
-    if (image.isColor()) throw std::invalid_argument("expected an 8-bit grayscale image");
+    const mrpt::img::CImage gray_image(image, mrpt::img::FAST_REF_OR_CONVERT_TO_GRAY);
     cv::Mat gray;
-    image.asCvMat(gray, mrpt::img::SHALLOW_COPY);
-    if (gray.type() != CV_8UC1) throw std::invalid_argument("expected an 8-bit grayscale image");
+    gray_image.asCvMat(gray, mrpt::img::SHALLOW_COPY);
+    if (gray.type() != CV_8UC1) throw std::invalid_argument("expected an 8-bit image");
 
     cv::Mat mask, labels, stats, centroids;
     cv::threshold(gray, mask, m_options.intensity_threshold, 255, cv::THRESH_BINARY);

@@ -142,13 +142,33 @@ TEST(CeilingLightDetector, LocatesSaturatedLightsByTheirCentre)
     }
 }
 
+// A colour image (an IR image saved in colour, say) gives the blobs of its grayscale.
+TEST(CeilingLightDetector, ReadsAColourImageAsItsGrayscale)
+{
+    const mrpt_vslam::core::PajdlaBaksteinCamera cam;
+    const CeilingLightDetector detector(cam, CeilingLightDetector::TOptions());
+    auto gray = darkImage(cam);
+    drawBlob(gray, 250.3, 180.7, 2.0, 240);
+    drawBlob(gray, 400.5, 300.2, 3.0, 200);
+    const auto expected = detector.detectBlobs(gray);
+    ASSERT_EQ(expected.size(), 2u);
+    const auto blobs = detector.detectBlobs(gray.colorImage());
+    ASSERT_EQ(blobs.size(), expected.size());
+    for (size_t i = 0; i < blobs.size(); i++) {
+        EXPECT_NEAR(blobs[i].u, expected[i].u, 1e-9);
+        EXPECT_NEAR(blobs[i].v, expected[i].v, 1e-9);
+        EXPECT_EQ(blobs[i].area, expected[i].area);
+    }
+}
+
 TEST(CeilingLightDetector, RefusesImagesItCannotRead)
 {
     const mrpt_vslam::core::PajdlaBaksteinCamera cam;
     const CeilingLightDetector detector(cam, CeilingLightDetector::TOptions());
     EXPECT_THROW(detector.detectBlobs(mrpt::img::CImage()), std::invalid_argument);
-    EXPECT_THROW(detector.detectBlobs(mrpt::img::CImage(64, 48, mrpt::img::CH_RGB)),
-                 std::invalid_argument);
+    mrpt::img::CImage deep;
+    deep.resize(64, 48, mrpt::img::CH_GRAY, mrpt::img::PixelDepth::D16U);
+    EXPECT_THROW(detector.detectBlobs(deep), std::invalid_argument);
     // an image of another size than the camera model's: its blobs would get wrong bearings
     mrpt::obs::CObservationImage obs;
     obs.image = mrpt::img::CImage(2 * cam.width, 2 * cam.height, mrpt::img::CH_GRAY);

@@ -48,7 +48,8 @@ class CeilingLightDetector {
     /// Builds the look-up table once for `camera` (the camera's parameters are validated).
     CeilingLightDetector(const core::PajdlaBaksteinCamera& camera, const TOptions& options);
 
-    /// Steps 1-3. \throw std::invalid_argument for an empty image or one that is not 8-bit gray.
+    /// Steps 1-3; a colour image is read as its grayscale (MRPT's conversion).
+    /// \throw std::invalid_argument for an empty image or one that is not 8-bit.
     std::vector<TBlob> detectBlobs(const mrpt::img::CImage& image) const;
 
     /// Steps 1-4 on an `OMNICAM` observation; the output keeps its timestamp and camera pose
