@@ -237,6 +237,13 @@ mrv_dirs() {
   for seed in $SEEDS; do echo "$OUT/multirobot-vslam/$1-seed$seed"; done
 }
 
+# mrv_cells NAME: cells of multirobot-vslam's run folders on rawlog NAME
+mrv_cells() {
+  local dirs
+  mapfile -t dirs < <(mrv_dirs "$1")
+  cells "${dirs[@]}"
+}
+
 # cells DIR...: " RMSE | aligned RMSE | landmarks | error | time |" of one tool (mean over the run
 # folders when several; "-" where a run has no number)
 cells() {
@@ -265,7 +272,7 @@ kf_cells() {
 # mrv_figures NAME: "rmse aligned_rmse error_mean" of multirobot-vslam on rawlog NAME, as its
 # table cells show them (mean over the seeds, rounded)
 mrv_figures() {
-  cells $(mrv_dirs "$1") | tr -d '|' | awk '{ print $1, $2, $8 }'
+  mrv_cells "$1" | tr -d '|' | awk '{ print $1, $2, $8 }'
 }
 
 # both_tools: whether TOOLS runs kf-slam and multirobot-vslam (the comparisons need both)
@@ -421,7 +428,7 @@ fi
   for entry in "${NAMES[@]}"; do
     IFS=: read -r name noise ids sim <<< "$entry"
     s="$PEER/simul-landmarks-noise-$noise.ini"
-    echo "| $name | $ids | $noise ($(ini_value "$s" stdRange) m, $(ini_value "$s" stdYaw_deg)°) | $sim |$(kf_cells "$name")$(cells $(mrv_dirs "$name"))"
+    echo "| $name | $ids | $noise ($(ini_value "$s" stdRange) m, $(ini_value "$s" stdYaw_deg)°) | $sim |$(kf_cells "$name")$(mrv_cells "$name")"
   done
   if both_tools; then
     echo

@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Sourced by the reproduce and bench scripts: how a results file under doc/results/ says where
 # its figures come from. Source it before the script's environment variables are changed.
 

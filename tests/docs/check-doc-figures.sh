@@ -14,7 +14,9 @@ known="$(mktemp)"
 trap 'rm -f "$known"' EXIT
 {
   numbers doc/results/*.md
-  numbers $(find share -name '*.ini') $(find libs -path '*/tests' -prune -o \( -name '*.h' -o -name '*.cpp' \) -print)
+  mapfile -t sources < <(find share -name '*.ini'
+    find libs -path '*/tests' -prune -o \( -name '*.h' -o -name '*.cpp' \) -print)
+  numbers "${sources[@]}"
 } | sort -u > "$known"
 status=0
 for page in "${pages[@]}"; do
