@@ -7,6 +7,7 @@
 #include <mrpt_vslam/test/ScratchFolder.h>
 
 #include <string>
+#include <utility>
 
 namespace {
 const char* const kApps[] = {"omni-fastslam",   "multirobot-vslam", "view-slam",
@@ -41,4 +42,26 @@ TEST(AppCommandLine, VersionAndHelpGoToStdoutWithExitCodeZero)
         EXPECT_EQ(help.exit_code, 0) << app;
         EXPECT_NE(help.out.find("--version"), std::string::npos) << app << "\n" << help.out;
     }
+}
+
+// A SLAM app given another one's config (its template, say) says whose it is, in one line.
+TEST(AppCommandLine, ASlamAppNamesTheAppAnotherAppsConfigIsFor)
+{
+    const std::string configs = MRPT_VSLAM_SOURCE_DIR "/share/mrpt-vslam/config/";
+    const std::pair<std::string, std::string> apps[] = {{"omni-fastslam", "OmniFastSLAM"},
+                                                        {"multirobot-vslam", "MultiRobotVSLAM"},
+                                                        {"view-slam", "ViewSLAM"}};
+    const std::string templates[] = {"omni-fastslam/template.ini",
+                                     "multirobot-vslam/range-bearing.ini",
+                                     "view-slam/template.ini"};
+    for (size_t i = 0; i < 3; i++)
+        for (size_t j = 0; j < 3; j++) {
+            if (i == j) continue;
+            const auto& [app, section] = apps[i];
+            const std::string config = configs + templates[j];
+            const auto r = runApp(app, config + " none.rawlog");
+            EXPECT_EQ(r.exit_code, 2) << app << " " << config;
+            EXPECT_EQ(r.out, app + ": error: " + config + ": a config of " + apps[j].first + " ([" +
+                                 apps[j].second + "]), not of " + app + " ([" + section + "])\n");
+        }
 }

@@ -15,6 +15,14 @@
 
 namespace mrpt_vslam::apps {
 
+namespace {
+/// Each SLAM app and the section of its own keys, to tell a config of another app.
+constexpr std::pair<const char*, const char*> kAppSections[] = {
+    {"omni-fastslam", "OmniFastSLAM"},
+    {"multirobot-vslam", "MultiRobotVSLAM"},
+    {"view-slam", "ViewSLAM"}};
+}  // namespace
+
 SlamApp::SlamApp(core::AppArguments arguments, std::string appName, std::string section)
     : name(std::move(appName)), args(std::move(arguments)), m_section(std::move(section))
 {
@@ -37,6 +45,11 @@ core::UsageError SlamApp::configError(const std::exception& e) const
 void SlamApp::initialize()
 {
     cfg.loadFile(args.configFile, args.overrides);
+    if (!cfg.sectionExists(m_section))
+        for (const auto& [app, section] : kAppSections)
+            if (app != name && cfg.sectionExists(section))
+                throw usageError(std::string("a config of ") + app + " ([" + section +
+                                 "]), not of " + name + " ([" + m_section + "])");
     rawlog = args.resolveRawlog(cfg, m_section);
     seed = args.resolveSeed(static_cast<uint32_t>(cfg.read_int(m_section, "random_seed", 0)));
     loadConfig();
