@@ -407,7 +407,7 @@ void MultiRobotVSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
     const auto& robots = app.robots;
     if (robots.size() == 1) actions = singleRobotAction(*actions, frame);
     prepareFrame(frame);
-    const double t = mrpt::Clock::toDouble(actions->begin()->get()->timestamp);
+    const double t = stepTime(actions->begin()->get()->timestamp);
     if (steps == 0)
         for (auto& run : runs) run.filter->reset(startPoses, t);
     filterStep(stepped, *actions, frame, timer);

@@ -203,8 +203,8 @@ void OmniFastSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
                                  mrpt::obs::CSensoryFrame& frame, core::RunTimer& timer)
 {
     prepareFrame(frame);
-    const double t = mrpt::Clock::toDouble(frame.size() ? (*frame.begin())->timestamp
-                                                        : actions->begin()->get()->timestamp);
+    const double t =
+        stepTime(frame.size() ? (*frame.begin())->timestamp : actions->begin()->get()->timestamp);
     if (steps == 0) filter->reset(start.pose, t);
     filterStep({filter.get()}, *actions, frame, timer);
 

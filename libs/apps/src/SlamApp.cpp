@@ -1,5 +1,6 @@
 #include "SlamApp.h"
 
+#include <mrpt/core/format.h>
 #include <mrpt/system/filesystem.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
@@ -107,6 +108,23 @@ void SlamApp::run()
         throw;
     }
     if (m_window && !args.quiet) m_window->waitUntilClosed();
+}
+
+double SlamApp::stepTime(mrpt::Clock::time_point stamp)
+{
+    const auto seconds = [](mrpt::Clock::time_point t) {
+        return mrpt::format("%.6f s", mrpt::Clock::toDouble(t));
+    };
+    const std::string step = rawlog + ": step " + std::to_string(steps);
+    if (stamp == INVALID_TIMESTAMP)
+        throw std::runtime_error(step +
+                                 " has no timestamp: the paths are stamped with the steps' times");
+    if (m_lastStepStamp && stamp <= *m_lastStepStamp)
+        throw std::runtime_error(step + " at " + seconds(stamp) + " is not after step " +
+                                 std::to_string(steps - 1) + " at " + seconds(*m_lastStepStamp) +
+                                 ": the paths are stamped with the steps' times");
+    m_lastStepStamp = stamp;
+    return mrpt::Clock::toDouble(stamp);
 }
 
 std::runtime_error SlamApp::noFramesError(const std::string& inputs,

@@ -91,6 +91,11 @@ class SlamApp {
     double timedStep(core::RunTimer& timer, const std::string& where,
                      const std::function<void()>& update) const;
 
+    /** The time [s] of the current step, `stamp`: the time of what the step observes, else of
+     *  its odometry, as the app takes it. The paths are stamped with it, so a step without one,
+     *  or not after the step before it, is a std::runtime_error naming the rawlog and the step. */
+    double stepTime(mrpt::Clock::time_point stamp);
+
     /// A path of (timestamp, pose) as a trajectory, one pose per timestamp (the first kept).
     static core::TumTrajectory asTrajectory(
         const std::vector<std::pair<double, mrpt::math::TPose2D>>& path);
@@ -153,7 +158,8 @@ class SlamApp {
     const std::string m_section;
     /// Motion model of the actions built for observation-only rawlogs ([MotionModel]).
     mrpt::obs::CActionRobotMovement2D::TMotionModelOptions m_motionModel;
-    std::unique_ptr<LiveView> m_window;  ///< --gui
+    std::unique_ptr<LiveView> m_window;                      ///< --gui
+    std::optional<mrpt::Clock::time_point> m_lastStepStamp;  ///< stepTime() of the step before
 };
 
 }  // namespace mrpt_vslam::apps

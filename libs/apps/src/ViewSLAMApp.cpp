@@ -161,8 +161,7 @@ void ViewSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
     mrpt::math::CMatrixDouble33 Q;
     mrpt::poses::CPose2D u;
     move->poseChange->getCovarianceAndMean(Q, u);
-    const double t =
-        mrpt::Clock::toDouble(image ? image->timestamp : actions->begin()->get()->timestamp);
+    const double t = stepTime(image ? image->timestamp : actions->begin()->get()->timestamp);
     if (steps == 0) slam->reset(start.pose);
     if (image) framesWithImages++;
     const bool externalImage = image && image->image.isExternallyStored();

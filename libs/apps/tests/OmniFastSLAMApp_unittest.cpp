@@ -150,6 +150,43 @@ TEST(OmniFastSLAMApp, RefusesAFrameWithTooManyBearings)
     }
 }
 
+// The paths are stamped with the steps' times: a frame stamped as the one before it, or not at
+// all, stops the run with one line naming the step (its frames are stamped 1 s apart).
+TEST(OmniFastSLAMApp, RefusesStepsWithoutTimesAfterTheStepBefore)
+{
+    const test::ScratchFolder scratch("OmniFastSLAMApp_stamps");
+    for (const bool unstamped : {false, true}) {
+        const std::string rawlog = scratch.file(unstamped ? "unstamped.rawlog" : "same.rawlog");
+        {
+            mrpt::io::CFileGZOutputStream f(rawlog);
+            auto ar = mrpt::serialization::archiveFrom(f);
+            core::RawlogReader reader(kRawlog);
+            mrpt::Clock::time_point previous;
+            for (core::TRawlogEntry e; reader.next(e);) {
+                ASSERT_TRUE(e.actions && e.observations);
+                if (e.index == 5)
+                    for (auto& obs : *e.observations)
+                        obs->timestamp = unstamped ? INVALID_TIMESTAMP : previous;
+                previous = (*e.observations->begin())->timestamp;
+                ar << *e.actions << *e.observations;
+            }
+        }
+        apps::OmniFastSLAMApp app(args({kConfig, rawlog, "--out", scratch.file("out"), "-q"}));
+        app.initialize();
+        try {
+            app.run();
+            ADD_FAILURE() << rawlog << ": ran";
+        } catch (const std::runtime_error& e) {
+            EXPECT_EQ(std::string(e.what()),
+                      rawlog +
+                          (unstamped ? ": step 5 has no timestamp"
+                                     : ": step 5 at 1325376004.000000 s is not after step 4 at "
+                                       "1325376004.000000 s") +
+                          ": the paths are stamped with the steps' times");
+        }
+    }
+}
+
 // Impossible or misread values: a usage error naming the key and the problem, in one line.
 TEST(OmniFastSLAMApp, RejectsImpossibleValuesNamingTheKey)
 {

@@ -134,7 +134,10 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
 {
     for (TRawlogEntry e; m_reader.next(e);) {
         if (e.actions || e.observations) {  // format #1
+            // an empty frame holds nothing to step on
+            const bool noFrame = !e.observations || e.observations->size() == 0;
             if (!e.actions) {
+                if (noFrame) continue;
                 // no action since the previous frame (or the start): the robot has not moved,
                 // unless by odometry carried from an action without a frame
                 actions = m_carried ? m_carried : standingStill();
@@ -154,7 +157,7 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
             }
             actions = m_carried ? afterCarried(*e.actions) : e.actions;
             m_carried.reset();
-            if (!e.observations) {  // no frame to go with: into the next step
+            if (noFrame) {  // no frame to go with: into the next step
                 m_carried = actions;
                 continue;
             }

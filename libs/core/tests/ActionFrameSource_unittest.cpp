@@ -150,6 +150,33 @@ TEST(ActionFrameSource, OdometryWithoutAFrameIsComposedIntoTheNextStep)
     EXPECT_NEAR(steps[1].mean.x(), 0.5, 1e-12);
 }
 
+// An empty sensory frame (as rawlog-edit --cut writes after a last action) holds nothing to
+// step on: it is passed over, and the odometry before it goes into the next step.
+TEST(ActionFrameSource, AnEmptyFrameIsNotAStep)
+{
+    mrpt_vslam::test::ScratchFolder scratch("ActionFrameSource_unittest");
+    const std::string file = scratch.file("empty.rawlog");
+    {
+        mrpt::io::CFileGZOutputStream f(file);
+        auto ar = mrpt::serialization::archiveFrom(f);
+        ar << CSensoryFrame() << forward(1.0) << CSensoryFrame() << forward(2.0) << frame();
+        ar << forward(0.5) << CSensoryFrame();
+    }
+    RawlogReader reader(file);
+    ActionFrameSource source(reader, {ObservationSelector::of<CObservationBearingRange>("")},
+                             CActionRobotMovement2D::TMotionModelOptions());
+    std::vector<mrpt::poses::CPosePDFGaussian> steps;
+    CActionCollection::Ptr acts;
+    CSensoryFrame::Ptr sf;
+    while (source.next(acts, sf)) {
+        EXPECT_EQ(sf->size(), 1u);
+        steps.emplace_back(*acts->getBestMovementEstimation()->poseChange);
+    }
+    ASSERT_EQ(steps.size(), 1u);
+    EXPECT_NEAR(steps[0].mean.x(), 1.0, 1e-12);  // (1, 0, 90°) ⊕ (2, 0, 90°) = (1, 2, 180°)
+    EXPECT_NEAR(steps[0].mean.y(), 2.0, 1e-12);
+}
+
 // A frame with no action before it: at the start, or right after another frame, the robot has
 // not moved (a step that stands still); after an action with no frame of its own, it moves by
 // that action's odometry.

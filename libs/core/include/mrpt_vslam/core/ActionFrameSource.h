@@ -17,8 +17,9 @@ namespace mrpt_vslam::core {
 /** Filter steps (odometry action + sensory frame) from a rawlog in either format
  *  (doc/data-formats.md):
  *  - format #1: each `CActionCollection` with the `CSensoryFrame` that follows it; an action
- *    collection with no frame after it is composed (mean and covariance, robot by robot) into
- *    the next step's, so that no odometry is lost; a frame with no action before it (at the
+ *    collection with no frame after it, or an empty one, is composed (mean and covariance, robot
+ *    by robot) into the next step's, so that no odometry is lost (an empty frame is no step);
+ *    a frame with no action before it (at the
  *    start of a rawlog, or right after another frame) was taken where the robot stood: its step
  *    stands still (see standsStill()), or moves by the odometry carried so far;
  *  - format #2 (observation-only): `CObservationOdometry` readings give the odometry, and every
