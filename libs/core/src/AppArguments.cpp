@@ -1,6 +1,5 @@
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/system/filesystem.h>
-#include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/EvalInputs.h>
 #include <mrpt_vslam/core/ParallelFor.h>
