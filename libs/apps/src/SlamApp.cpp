@@ -79,6 +79,10 @@ std::unique_ptr<core::RawlogEntrySource> SlamApp::openInput()
 void SlamApp::run()
 {
     core::OutputDirectory out(args.outDir);
+    for (const std::string& input : {args.configFile, rawlog})
+        if (out.holdsRunFile(input))
+            throw core::UsageError(input + ": a file the run writes in its folder " + out.path() +
+                                   ": rename it, or choose another --out");
     out.removeEarlierRun();  // no file of an earlier run stands beside this one's
     core::RunTimer timer;
     try {

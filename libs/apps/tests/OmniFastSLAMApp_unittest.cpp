@@ -19,6 +19,7 @@
 #include <mrpt_vslam/test/ScratchFolder.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <utility>
@@ -148,6 +149,29 @@ TEST(OmniFastSLAMApp, RefusesAFrameWithTooManyBearings)
             << what;
         EXPECT_EQ(what.find('\n'), std::string::npos) << what;
     }
+}
+
+// A config kept in the run folder as config.ini, the name of the effective configuration the run
+// writes there, is refused before anything is written: it would be lost.
+TEST(OmniFastSLAMApp, RefusesAnInputItWouldWriteOver)
+{
+    const test::ScratchFolder scratch("OmniFastSLAMApp_input");
+    const std::string out = scratch.file("exp1");
+    std::filesystem::create_directories(out);
+    const std::string config = out + "/config.ini";
+    std::filesystem::copy_file(kConfig, config);
+    const auto before = std::filesystem::file_size(config);
+    apps::OmniFastSLAMApp app(args({config, kRawlog, "--out", out, "--quiet"}));
+    app.initialize();
+    try {
+        app.run();
+        ADD_FAILURE() << "ran over its own config";
+    } catch (const core::UsageError& e) {
+        EXPECT_EQ(std::string(e.what()), config + ": a file the run writes in its folder " + out +
+                                             ": rename it, or choose another --out");
+    }
+    EXPECT_EQ(std::filesystem::file_size(config), before);
+    EXPECT_FALSE(std::filesystem::exists(out + "/run.json"));
 }
 
 // The paths are stamped with the steps' times: a frame stamped as the one before it, or not at

@@ -47,6 +47,14 @@ bool OutputDirectory::isRunFile(const std::string& name)
     return false;
 }
 
+bool OutputDirectory::holdsRunFile(const std::string& file) const
+{
+    std::error_code ec;
+    const fs::path path(file);
+    return isRunFile(path.filename().string()) &&
+           fs::equivalent(fs::absolute(path).parent_path(), m_dir, ec);
+}
+
 size_t OutputDirectory::removeEarlierRun() const
 {
     std::error_code ec;

@@ -102,3 +102,15 @@ TEST(OutputDirectory, RemovesAnEarlierRunAndNothingElse)
     EXPECT_EQ(out.removeEarlierRun(), 0u);
     fs::remove_all(root);
 }
+
+TEST(OutputDirectory, TellsAnInputThatTheRunWouldWriteOver)
+{
+    const fs::path root = scratch();
+    const OutputDirectory out((root / "run").string());
+    EXPECT_TRUE(out.holdsRunFile(out.file("config.ini")));
+    EXPECT_TRUE(out.holdsRunFile((root / "run" / ".." / "run" / "map.txt").string()));
+    EXPECT_FALSE(out.holdsRunFile(out.file("my.ini")));
+    EXPECT_FALSE(out.holdsRunFile((root / "config.ini").string()));
+    EXPECT_FALSE(out.holdsRunFile("tcp://*:5555"));
+    fs::remove_all(root);
+}

@@ -22,6 +22,10 @@ class OutputDirectory {
     /** `<dir>/<name>`. */
     std::string file(const std::string& name) const;
 
+    /** Whether `file` is in this folder under a name isRunFile() gives: a file a run writes
+     *  over (an input there, such as `DIR/config.ini` given as the config, would be lost). */
+    bool holdsRunFile(const std::string& file) const;
+
     /** Removes the files of an earlier run from the folder (those isRunFile() names), so that
      *  none of them stands beside this run's as if it were one of them (a second robot's path
      *  after a one-robot run, say); every other file stays. Returns how many it removed. Throws
