@@ -356,8 +356,17 @@ TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
             .exit_code,
         0);
 
+    // --ground-truth naming no file: the files looked for (one robot: its own or the single one)
+    const TCommandResult noTruth =
+        run(kConfigs + "range-bearing.ini " + out("rb-exact.rawlog") + " -q --ground-truth " +
+            out("nope") + " --out " + out("e-truth"));
+    EXPECT_EQ(noTruth.exit_code, 1);
+    EXPECT_EQ(noTruth.out, "multirobot-vslam: error: --ground-truth " + out("nope") +
+                               ": no such file: " + out("nope") + ".groundtruth_R1.tum or " +
+                               out("nope") + ".groundtruth.tum\n");
+
     std::vector<TCommandResult> results = {missing, corrupt,  unknown, noLandmarks,
-                                           noLabel, noImages, noNoise};
+                                           noLabel, noImages, noNoise, noTruth};
     for (size_t i = 0; i < impossible.size(); i++) {
         const auto& [setting, message] = impossible[i];
         results.push_back(run(cfg + kData + "team2.rawlog -q --set " + setting + " --out " +

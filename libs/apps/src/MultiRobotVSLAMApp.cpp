@@ -252,10 +252,16 @@ void MultiRobotVSLAMApp::Impl::findGroundTruth()
             startPoses[k] = {p.x, p.y, p.yaw};
         }
     }
-    if (found == 0 && !args.groundTruth.empty())
-        throw std::runtime_error(groundTruthPrefix +
-                                 ".groundtruth_<ROBOT>.tum: no ground truth "
-                                 "file found (--ground-truth)");
+    if (found == 0 && !args.groundTruth.empty()) {
+        std::string looked;
+        for (const auto& robot : filterOptions.robots)
+            looked += (looked.empty() ? "" : ", ") +
+                      core::groundTruthFileOf(groundTruthPrefix, robot, false);
+        if (filterOptions.robots.size() == 1)
+            looked += " or " + core::groundTruthFileOf(groundTruthPrefix, "", false);
+        throw std::runtime_error("--ground-truth " + args.groundTruth +
+                                 ": no such file: " + looked);
+    }
     if (startFromGroundTruth && found < filterOptions.robots.size())
         for (size_t k = 1; k < filterOptions.robots.size(); k++)
             if (!groundTruth[k] &&

@@ -103,6 +103,20 @@ TEST(OmniFastSLAMApp, FailsOnAMissingRawlog)
     }
 }
 
+TEST(OmniFastSLAMApp, FailsOnAGroundTruthThatIsNotThere)
+{
+    const test::ScratchFolder scratch("OmniFastSLAMApp_truth");
+    apps::OmniFastSLAMApp app(args(
+        {kConfig, kRawlog, "--out", scratch.file("out"), "--quiet", "--ground-truth", "/no/gt"}));
+    try {
+        app.initialize();
+        ADD_FAILURE() << "started without its ground truth";
+    } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "--ground-truth /no/gt: no such file: /no/gt.groundtruth.tum");
+    }
+}
+
 TEST(OmniFastSLAMApp, FailsOnARawlogWithoutLightMeasurements)
 {
     // A rawlog whose frames hold neither bearings nor images of the configured labels.

@@ -25,7 +25,7 @@ void SingleRobotStart::resolve(const AppArguments& args, const std::string& rawl
     if (mrpt::system::fileExists(tum))
         groundTruth = TumTrajectory::load(tum);
     else if (!args.groundTruth.empty())
-        throw std::runtime_error(tum + ": ground truth file not found (--ground-truth)");
+        throw std::runtime_error("--ground-truth " + args.groundTruth + ": no such file: " + tum);
     if (m_from_ground_truth && groundTruth && !groundTruth->empty()) {
         const auto& p = groundTruth->poses.front();
         pose = {p.x, p.y, p.yaw};
