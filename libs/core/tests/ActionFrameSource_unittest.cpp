@@ -14,6 +14,8 @@
 #include <mrpt_vslam/test/ScratchFolder.h>
 
 #include <cmath>
+#include <functional>
+#include <string>
 #include <vector>
 
 using namespace mrpt::obs;
@@ -38,6 +40,43 @@ CSensoryFrame frame()
     CSensoryFrame sf;
     sf.insert(CObservationBearingRange::Create());
     return sf;
+}
+
+/// A rawlog `name` in the scratch folder of these tests, holding what `write` puts in it.
+std::string writeRawlog(const std::string& name,
+                        const std::function<void(mrpt::serialization::CArchive&)>& write)
+{
+    static const mrpt_vslam::test::ScratchFolder scratch("ActionFrameSource_unittest");
+    const std::string file = scratch.file(name);
+    mrpt::io::CFileGZOutputStream f(file);
+    auto ar = mrpt::serialization::archiveFrom(f);
+    write(ar);
+    return file;
+}
+
+/// One step of a rawlog: its odometry, whether it stands still, and the sizes of its action
+/// collection and of its frame.
+struct TStep {
+    mrpt::poses::CPosePDFGaussian move;
+    bool still = false;
+    size_t actions = 0, observations = 0;
+};
+
+/// The steps ActionFrameSource makes of the rawlog `file`, stepping on bearing frames.
+std::vector<TStep> stepsOf(const std::string& file)
+{
+    RawlogReader reader(file);
+    ActionFrameSource source(reader, {ObservationSelector::of<CObservationBearingRange>("")},
+                             CActionRobotMovement2D::TMotionModelOptions());
+    std::vector<TStep> steps;
+    CActionCollection::Ptr acts;
+    CSensoryFrame::Ptr sf;
+    while (source.next(acts, sf)) {
+        const auto& move = *acts->getBestMovementEstimation();
+        steps.push_back({mrpt::poses::CPosePDFGaussian(*move.poseChange),
+                         ActionFrameSource::standsStill(move), acts->size(), sf->size()});
+    }
+    return steps;
 }
 
 /// Observations handed out from memory, as team::TeamListener hands them out.
@@ -122,59 +161,34 @@ std::vector<std::pair<TMotion, TMotion>> teamSteps(bool stand_still)
 // An action collection with no frame after it: its odometry goes into the next step.
 TEST(ActionFrameSource, OdometryWithoutAFrameIsComposedIntoTheNextStep)
 {
-    mrpt_vslam::test::ScratchFolder scratch("ActionFrameSource_unittest");
-    const std::string file = scratch.file("carried.rawlog");
-    {
-        mrpt::io::CFileGZOutputStream f(file);
-        auto ar = mrpt::serialization::archiveFrom(f);
+    const auto steps = stepsOf(writeRawlog("carried.rawlog", [](auto& ar) {
         ar << forward(1.0) << forward(2.0);  // the first has no frame
         ar << frame() << forward(0.5) << frame();
-    }
-    RawlogReader reader(file);
-    ActionFrameSource source(reader, {ObservationSelector::of<CObservationBearingRange>("")},
-                             CActionRobotMovement2D::TMotionModelOptions());
-    std::vector<mrpt::poses::CPosePDFGaussian> steps;
-    CActionCollection::Ptr acts;
-    CSensoryFrame::Ptr sf;
-    while (source.next(acts, sf))
-        steps.emplace_back(*acts->getBestMovementEstimation()->poseChange);
+    }));
     ASSERT_EQ(steps.size(), 2u);
     // (1, 0, 90°) ⊕ (2, 0, 90°) = (1, 2, 180°)
-    EXPECT_NEAR(steps[0].mean.x(), 1.0, 1e-12);
-    EXPECT_NEAR(steps[0].mean.y(), 2.0, 1e-12);
-    EXPECT_NEAR(std::abs(steps[0].mean.phi()), M_PI, 1e-12);
+    EXPECT_NEAR(steps[0].move.mean.x(), 1.0, 1e-12);
+    EXPECT_NEAR(steps[0].move.mean.y(), 2.0, 1e-12);
+    EXPECT_NEAR(std::abs(steps[0].move.mean.phi()), M_PI, 1e-12);
     // the covariance of the composition exceeds that of the single increment
     const mrpt::poses::CPosePDFGaussian second(
         *forward(2.0).getBestMovementEstimation()->poseChange);
-    EXPECT_GT(steps[0].cov.trace(), second.cov.trace());
-    EXPECT_NEAR(steps[1].mean.x(), 0.5, 1e-12);
+    EXPECT_GT(steps[0].move.cov.trace(), second.cov.trace());
+    EXPECT_NEAR(steps[1].move.mean.x(), 0.5, 1e-12);
 }
 
 // An empty sensory frame (as rawlog-edit --cut writes after a last action) holds nothing to
 // step on: it is passed over, and the odometry before it goes into the next step.
 TEST(ActionFrameSource, AnEmptyFrameIsNotAStep)
 {
-    mrpt_vslam::test::ScratchFolder scratch("ActionFrameSource_unittest");
-    const std::string file = scratch.file("empty.rawlog");
-    {
-        mrpt::io::CFileGZOutputStream f(file);
-        auto ar = mrpt::serialization::archiveFrom(f);
+    const auto steps = stepsOf(writeRawlog("empty.rawlog", [](auto& ar) {
         ar << CSensoryFrame() << forward(1.0) << CSensoryFrame() << forward(2.0) << frame();
         ar << forward(0.5) << CSensoryFrame();
-    }
-    RawlogReader reader(file);
-    ActionFrameSource source(reader, {ObservationSelector::of<CObservationBearingRange>("")},
-                             CActionRobotMovement2D::TMotionModelOptions());
-    std::vector<mrpt::poses::CPosePDFGaussian> steps;
-    CActionCollection::Ptr acts;
-    CSensoryFrame::Ptr sf;
-    while (source.next(acts, sf)) {
-        EXPECT_EQ(sf->size(), 1u);
-        steps.emplace_back(*acts->getBestMovementEstimation()->poseChange);
-    }
+    }));
     ASSERT_EQ(steps.size(), 1u);
-    EXPECT_NEAR(steps[0].mean.x(), 1.0, 1e-12);  // (1, 0, 90°) ⊕ (2, 0, 90°) = (1, 2, 180°)
-    EXPECT_NEAR(steps[0].mean.y(), 2.0, 1e-12);
+    EXPECT_EQ(steps[0].observations, 1u);
+    EXPECT_NEAR(steps[0].move.mean.x(), 1.0, 1e-12);  // (1, 0, 90°) ⊕ (2, 0, 90°) = (1, 2, 180°)
+    EXPECT_NEAR(steps[0].move.mean.y(), 2.0, 1e-12);
 }
 
 // A frame with no action before it: at the start, or right after another frame, the robot has
@@ -182,30 +196,16 @@ TEST(ActionFrameSource, AnEmptyFrameIsNotAStep)
 // that action's odometry.
 TEST(ActionFrameSource, AFrameWithoutAnActionBeforeItStandsStill)
 {
-    mrpt_vslam::test::ScratchFolder scratch("ActionFrameSource_unittest");
-    const std::string file = scratch.file("frames.rawlog");
-    {
-        mrpt::io::CFileGZOutputStream f(file);
-        auto ar = mrpt::serialization::archiveFrom(f);
+    const auto steps = stepsOf(writeRawlog("frames.rawlog", [](auto& ar) {
         ar << frame() << forward(1.0) << frame() << frame();
         ar << forward(0.5) << mrpt::poses::CPose2D() << frame();  // no frame right after 0.5 m
-    }
-    RawlogReader reader(file);
-    ActionFrameSource source(reader, {ObservationSelector::of<CObservationBearingRange>("")},
-                             CActionRobotMovement2D::TMotionModelOptions());
-    std::vector<TMotion> steps;
-    CActionCollection::Ptr acts;
-    CSensoryFrame::Ptr sf;
-    while (source.next(acts, sf)) {
-        ASSERT_EQ(acts->size(), 1u);
-        const auto& move = *acts->getBestMovementEstimation();
-        steps.push_back({move.poseChange->getMeanVal().x(), ActionFrameSource::standsStill(move)});
-    }
+    }));
     const std::vector<double> x = {0, 1.0, 0, 0.5};
     const std::vector<bool> still = {true, false, true, false};
     ASSERT_EQ(steps.size(), x.size());
     for (size_t i = 0; i < x.size(); i++) {
-        EXPECT_NEAR(steps[i].x, x[i], 1e-12) << "step " << i;
+        EXPECT_EQ(steps[i].actions, 1u) << "step " << i;
+        EXPECT_NEAR(steps[i].move.mean.x(), x[i], 1e-12) << "step " << i;
         EXPECT_EQ(steps[i].still, still[i]) << "step " << i;
     }
 }
@@ -214,15 +214,11 @@ TEST(ActionFrameSource, AFrameWithoutAnActionBeforeItStandsStill)
 // 6D path) stops the run with the entry and what it holds.
 TEST(ActionFrameSource, AnActionWithoutPlanarOdometryIsNamed)
 {
-    mrpt_vslam::test::ScratchFolder scratch("ActionFrameSource_unittest");
-    const std::string file = scratch.file("odometry3d.rawlog");
-    {
-        mrpt::io::CFileGZOutputStream f(file);
-        auto ar = mrpt::serialization::archiveFrom(f);
+    const std::string file = writeRawlog("odometry3d.rawlog", [](auto& ar) {
         CActionCollection acts;
         acts.insert(CActionRobotMovement3D());
         ar << frame() << acts << frame();
-    }
+    });
     RawlogReader reader(file);
     ActionFrameSource source(reader, {ObservationSelector::of<CObservationBearingRange>("")},
                              CActionRobotMovement2D::TMotionModelOptions());
