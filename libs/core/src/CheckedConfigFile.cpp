@@ -26,13 +26,14 @@ bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefi
 /** Line of the first appearance of each (lower-case section, key) in INI text, with the same
  *  rules as MRPT's reader: `[section]` headers, `key = value` lines, and comment (`;`, `#`,
  *  `//`) and preprocessor (`@define`) lines skipped. Keys before any header belong to "".
- *  Any other line is an error naming `name` and the line. */
+ *  Any other line is an error naming `name` and the line, and so is a key set twice in a section
+ *  (MRPT's reader would take the last one without a word). */
 std::map<std::pair<std::string, std::string>, int> keyLines(const std::string& text,
                                                             const std::string& name)
 {
     std::map<std::pair<std::string, std::string>, int> lines;
     std::istringstream in(text);
-    std::string raw, section;
+    std::string raw, section, section_as_written;
     for (int line_no = 1; std::getline(in, raw); ++line_no) {
         if (!raw.empty() && raw.back() == '\r') raw.pop_back();  // Windows line endings
         const std::string line = mrpt::system::trim(raw);
@@ -41,15 +42,20 @@ std::map<std::pair<std::string, std::string>, int> keyLines(const std::string& t
             continue;
         const auto close = line.find(']');
         if (line[0] == '[' && close != std::string::npos) {
-            section = toLower(mrpt::system::trim(line.substr(1, close - 1)));
+            section_as_written = mrpt::system::trim(line.substr(1, close - 1));
+            section = toLower(section_as_written);
             continue;
         }
         const auto eq = line.find('=');
         if (line[0] == '[' || eq == std::string::npos || eq == 0)
             throw UsageError(name + ": line " + std::to_string(line_no) +
                              " is not `key = value`, a [section] or a comment");
-        lines.emplace(std::make_pair(section, toLower(mrpt::system::trim(line.substr(0, eq)))),
-                      line_no);
+        const std::string key = mrpt::system::trim(line.substr(0, eq));
+        const auto [at, added] = lines.emplace(std::make_pair(section, toLower(key)), line_no);
+        if (!added)
+            throw UsageError(name + ": [" + section_as_written + "] " + key +
+                             " is set twice (lines " + std::to_string(at->second) + " and " +
+                             std::to_string(line_no) + ")");
     }
     return lines;
 }

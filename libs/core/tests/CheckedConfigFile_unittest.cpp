@@ -284,3 +284,24 @@ TEST(CheckedConfigFile, WindowsLineEndingsAndByteOrderMarkReadAsUnixText)
                                       std::to_string(first.empty() ? 8 : 9) + ")");
     }
 }
+
+// A key set twice in a section (in one [section] or in two of the same name, in any case) is an
+// error naming both lines: MRPT's reader would take the last one without a word.
+TEST(CheckedConfigFile, AKeySetTwiceIsAnError)
+{
+    for (const char* text :
+         {"[Filter]\nsampleSize = 10\nsampleSize = 3\n",
+          "[Filter]\nsampleSize = 10\n[Camera]\nfx = 1\n[Filter]\nSAMPLESIZE = 3\n"}) {
+        CheckedConfigFile cfg;
+        try {
+            cfg.loadText(text, "twice.ini");
+            ADD_FAILURE() << text;
+        } catch (const UsageError& e) {
+            const std::string what = e.what();
+            EXPECT_EQ(what.rfind("twice.ini: [Filter] ", 0), 0u) << what;
+            EXPECT_NE(what.find(" is set twice (lines 2 and "), std::string::npos) << what;
+        }
+    }
+    CheckedConfigFile cfg;  // the same key in two sections is two keys
+    EXPECT_NO_THROW(cfg.loadText("[A]\nk = 1\n[B]\nk = 2\n", "two.ini"));
+}
