@@ -39,7 +39,7 @@ using multirobot::TLandmarkIdentityTally;
 using multirobot::TVisualLandmark;
 
 namespace {
-constexpr const char* kAppSection = "MultiRobotVSLAM";
+constexpr const char* kAppSection = kMultiRobotVSLAMId.section;
 constexpr const char* kFrontEndSection = "StereoFrontEnd";
 constexpr const char* kSmootherSection = "TeamPathSmoother";
 constexpr const char* kListenerSection = "TeamListener";
@@ -69,7 +69,7 @@ mrpt::img::TColorf robotColour(size_t k) { return kRobotColours[k % kRobotColour
 
 struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
     Impl(MultiRobotVSLAMApp& owner, core::AppArguments arguments)
-        : ParticleFilterApp(std::move(arguments), "multirobot-vslam", kAppSection), app(owner)
+        : ParticleFilterApp(std::move(arguments), kMultiRobotVSLAMId.name, kAppSection), app(owner)
     {
     }
 

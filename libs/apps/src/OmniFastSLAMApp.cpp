@@ -32,7 +32,7 @@ using omni_fastslam::COmniFastSLAM;
 using omni_fastslam::LightsPathSmoother;
 
 namespace {
-constexpr const char* kAppSection = "OmniFastSLAM";
+constexpr const char* kAppSection = kOmniFastSLAMId.section;
 constexpr const char* kSmootherSection = "LightsPathSmoother";
 
 /// Where the light measurements come from (ini key `input`).
@@ -41,7 +41,7 @@ enum class TInput { Auto, Bearings, Images };
 
 struct OmniFastSLAMApp::Impl : ParticleFilterApp {
     Impl(OmniFastSLAMApp& owner, core::AppArguments arguments)
-        : ParticleFilterApp(std::move(arguments), "omni-fastslam", kAppSection), app(owner)
+        : ParticleFilterApp(std::move(arguments), kOmniFastSLAMId.name, kAppSection), app(owner)
     {
     }
 

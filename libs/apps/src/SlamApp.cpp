@@ -16,14 +16,6 @@
 
 namespace mrpt_vslam::apps {
 
-namespace {
-/// Each SLAM app and the section of its own keys, to tell a config of another app.
-constexpr std::pair<const char*, const char*> kAppSections[] = {
-    {"omni-fastslam", "OmniFastSLAM"},
-    {"multirobot-vslam", "MultiRobotVSLAM"},
-    {"view-slam", "ViewSLAM"}};
-}  // namespace
-
 SlamApp::SlamApp(core::AppArguments arguments, std::string appName, std::string section)
     : name(std::move(appName)), args(std::move(arguments)), m_section(std::move(section))
 {
@@ -47,9 +39,9 @@ void SlamApp::initialize()
 {
     cfg.loadFile(args.configFile, args.overrides);
     if (!cfg.sectionExists(m_section))
-        for (const auto& [app, section] : kAppSections)
-            if (app != name && cfg.sectionExists(section))
-                throw usageError(std::string("a config of ") + app + " ([" + section +
+        for (const auto& other : {kOmniFastSLAMId, kMultiRobotVSLAMId, kViewSLAMId})
+            if (other.name != name && cfg.sectionExists(other.section))
+                throw usageError(std::string("a config of ") + other.name + " ([" + other.section +
                                  "]), not of " + name + " ([" + m_section + "])");
     rawlog = args.resolveRawlog(cfg, m_section);
     seed = args.resolveSeed(static_cast<uint32_t>(cfg.read_int(m_section, "random_seed", 0)));
@@ -116,17 +108,15 @@ void SlamApp::run()
 
 double SlamApp::stepTime(mrpt::Clock::time_point stamp)
 {
-    const auto seconds = [](mrpt::Clock::time_point t) {
-        return mrpt::format("%.6f s", mrpt::Clock::toDouble(t));
+    const auto fail = [&](const std::string& what) {
+        return std::runtime_error(rawlog + ": step " + std::to_string(steps) + what +
+                                  ": the paths are stamped with the steps' times");
     };
-    const std::string step = rawlog + ": step " + std::to_string(steps);
-    if (stamp == INVALID_TIMESTAMP)
-        throw std::runtime_error(step +
-                                 " has no timestamp: the paths are stamped with the steps' times");
+    if (stamp == INVALID_TIMESTAMP) throw fail(" has no timestamp");
     if (m_lastStepStamp && stamp <= *m_lastStepStamp)
-        throw std::runtime_error(step + " at " + seconds(stamp) + " is not after step " +
-                                 std::to_string(steps - 1) + " at " + seconds(*m_lastStepStamp) +
-                                 ": the paths are stamped with the steps' times");
+        throw fail(mrpt::format(" at %.6f s is not after step %zu at %.6f s",
+                                mrpt::Clock::toDouble(stamp), steps - 1,
+                                mrpt::Clock::toDouble(*m_lastStepStamp)));
     m_lastStepStamp = stamp;
     return mrpt::Clock::toDouble(stamp);
 }

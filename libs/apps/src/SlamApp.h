@@ -28,6 +28,15 @@
 
 namespace mrpt_vslam::apps {
 
+/// A SLAM app: its name (messages, progress line, run.json) and the ini section of its own keys.
+struct TSlamAppId {
+    const char* name;
+    const char* section;
+};
+inline constexpr TSlamAppId kOmniFastSLAMId{"omni-fastslam", "OmniFastSLAM"};
+inline constexpr TSlamAppId kMultiRobotVSLAMId{"multirobot-vslam", "MultiRobotVSLAM"};
+inline constexpr TSlamAppId kViewSLAMId{"view-slam", "ViewSLAM"};
+
 /** What the driver apps (omni-fastslam, multirobot-vslam, view-slam) do alike
  *  (doc/app-conventions.md); the app's own parts are the virtual functions below.
  *  - initialize(): the config (`--set`, `rawlog_file`, `random_seed`, the app's keys,

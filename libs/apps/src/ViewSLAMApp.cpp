@@ -31,7 +31,7 @@ using viewmap::CViewMap;
 using viewmap::TViewDecision;
 
 namespace {
-constexpr const char* kAppSection = "ViewSLAM";
+constexpr const char* kAppSection = kViewSLAMId.section;
 /// Two-sided 95 % bounds of χ²₃ (the robot pose NEES of a consistent filter).
 constexpr double kNeesLow = 0.2158, kNeesHigh = 9.3484;
 
@@ -53,7 +53,7 @@ struct TSeriesStats {
 
 struct ViewSLAMApp::Impl : SlamApp {
     Impl(ViewSLAMApp& owner, core::AppArguments arguments)
-        : SlamApp(std::move(arguments), "view-slam", kAppSection), app(owner)
+        : SlamApp(std::move(arguments), kViewSLAMId.name, kAppSection), app(owner)
     {
     }
 

@@ -32,18 +32,17 @@ bool OutputDirectory::isRunFile(const std::string& name)
     for (const char* n : kNames)
         if (name == n) return true;
     // STEM.ext or STEM_<X>.ext
-    const auto stemmed = [&name](const char* stem, const std::string& ext) {
-        const std::string s = stem;
-        if (name.size() < s.size() + ext.size() || name.rfind(s, 0) != 0 ||
-            name.compare(name.size() - ext.size(), ext.size(), ext) != 0)
-            return false;
-        const size_t middle = name.size() - s.size() - ext.size();
-        return middle == 0 || (middle >= 2 && name[s.size()] == '_');
+    const fs::path path(name);
+    const std::string stem = path.stem().string(), ext = path.extension().string();
+    const auto named = [&stem](const std::string& s) {
+        return stem == s || (stem.size() > s.size() + 1 && stem.rfind(s + "_", 0) == 0);
     };
-    for (const char* stem : {"estimated_path", "odometry_path", "filter_path"})
-        if (stemmed(stem, ".tum")) return true;
-    for (const char* stem : {"map", "particle_map", "filter_map"})
-        if (stemmed(stem, ".txt")) return true;
+    if (ext == ".tum")
+        for (const char* s : {"estimated_path", "odometry_path", "filter_path"})
+            if (named(s)) return true;
+    if (ext == ".txt")
+        for (const char* s : {"map", "particle_map", "filter_map"})
+            if (named(s)) return true;
     return false;
 }
 

@@ -94,7 +94,7 @@ mrpt::obs::CObservationBearingRange::Ptr CeilingLightDetector::detect(
     out->validCovariances = true;
     out->maxSensorDistance = 0;
     out->fieldOfView_yaw = 2 * M_PI;
-    out->fieldOfView_pitch = m_lut.camera().max_theta;
+    out->fieldOfView_pitch = cam.max_theta;
 
     const double var_px = m_options.pixel_std * m_options.pixel_std;
     for (const auto& blob : detectBlobs(obs.image)) {
