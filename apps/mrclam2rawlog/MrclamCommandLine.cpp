@@ -2,6 +2,7 @@
 
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/core/bits_math.h>
+#include <mrpt_vslam/core/EndsWith.h>
 #include <mrpt_vslam/core/TclapParse.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/core/Version.h>
@@ -108,8 +109,7 @@ TMrclamCommandLine TMrclamCommandLine::parse(int argc, const char* const* argv)
     c.dataset_dir = dir.getValue();
     c.out_rawlog = out.getValue();
     const std::string ext = ".rawlog";
-    if (c.out_rawlog.size() <= ext.size() ||
-        c.out_rawlog.compare(c.out_rawlog.size() - ext.size(), ext.size(), ext) != 0 ||
+    if (c.out_rawlog.size() <= ext.size() || !core::endsWith(c.out_rawlog, ext) ||
         c.out_rawlog[c.out_rawlog.size() - ext.size() - 1] == '/')
         throw usage_error("--out " + c.out_rawlog + ": expected a file name ending in .rawlog");
     try {

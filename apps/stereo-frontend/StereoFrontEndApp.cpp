@@ -5,6 +5,7 @@
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/AtomicFile.h>
+#include <mrpt_vslam/core/EndsWith.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/OutputDirectory.h>
@@ -25,12 +26,6 @@ namespace mrpt_vslam::multirobot {
 namespace {
 
 const char* const kSection = "StereoFrontEnd";
-
-bool endsWith(const std::string& s, const std::string& suffix)
-{
-    return s.size() >= suffix.size() &&
-           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 /** `DIR/NAME.rawlog.tmp`, renamed to `DIR/NAME.rawlog` by commit(); removed if never
  *  committed. MRPT's gzip stream writes MTIME = 0, so equal content gives equal bytes. */
@@ -108,7 +103,7 @@ mrpt::obs::CObservation::Ptr StereoFrontEndApp::convert(const mrpt::obs::CObserv
                                                         size_t entry_index)
 {
     const auto stereo = std::dynamic_pointer_cast<mrpt::obs::CObservationStereoImages>(obs);
-    if (!stereo || !endsWith(stereo->sensorLabel, "_STEREO")) {
+    if (!stereo || !core::endsWith(stereo->sensorLabel, "_STEREO")) {
         m_summary.other_entries++;
         return obs;
     }
@@ -144,8 +139,8 @@ void StereoFrontEndApp::copyGroundTruth()
         const std::string name = entry.path().filename().string();
         if (!entry.is_regular_file() || name.rfind(stem + ".", 0) != 0) continue;
         const std::string suffix = name.substr(stem.size());
-        const bool tum = endsWith(suffix, ".tum") && (suffix.rfind(".groundtruth", 0) == 0 ||
-                                                      suffix.rfind(".odometry", 0) == 0);
+        const bool tum = core::endsWith(suffix, ".tum") && (suffix.rfind(".groundtruth", 0) == 0 ||
+                                                            suffix.rfind(".odometry", 0) == 0);
         if (tum || suffix == ".landmarks.txt") suffixes.push_back(suffix);
     }
     std::sort(suffixes.begin(), suffixes.end());

@@ -7,6 +7,7 @@
 #include <mrpt/maps/TMetricMapInitializer.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt/system/string_utils.h>
+#include <mrpt_vslam/core/EndsWith.h>
 
 #include <memory>
 #include <string>
@@ -49,7 +50,7 @@ class ParticleFilterApp : public SlamApp {
         text.getAllKeys(kMapSection, keys);
         for (const auto& key : keys) {
             const std::string k = mrpt::system::lowerCase(key);
-            const bool count = k.size() > 6 && k.compare(k.size() - 6, 6, "_count") == 0;
+            const bool count = core::endsWith(k, "_count");
             const std::string n = mrpt::system::trim(text.read_string(kMapSection, key, "0"));
             const bool positive = n.find_first_not_of("0123456789") == std::string::npos &&
                                   n.find_first_not_of('0') != std::string::npos;

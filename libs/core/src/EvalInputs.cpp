@@ -1,4 +1,5 @@
 #include <mrpt/system/string_utils.h>
+#include <mrpt_vslam/core/EndsWith.h>
 #include <mrpt_vslam/core/EvalInputs.h>
 #include <mrpt_vslam/core/UsageError.h>
 
@@ -11,12 +12,6 @@
 namespace mrpt_vslam::core {
 namespace fs = std::filesystem;
 namespace {
-
-bool endsWith(const std::string& s, const std::string& suffix)
-{
-    return s.size() >= suffix.size() &&
-           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 /// `--ground-truth` from the parameters, else from RUN_DIR/run.json; "" when neither has it.
 std::string groundTruthArgument(const TEvalParams& p)

@@ -1,5 +1,6 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/img/CImage.h>
+#include <mrpt_vslam/core/EndsWith.h>
 #include <mrpt_vslam/multirobot/StereoFrontEnd.h>
 
 #include <cmath>
@@ -99,8 +100,7 @@ StereoFrontEnd::StereoFrontEnd(const TOptions& options) : m_options(options)
 std::string StereoFrontEnd::landmarksLabel(const std::string& stereo_label)
 {
     const std::string suffix = "_STEREO";
-    if (stereo_label.size() >= suffix.size() &&
-        stereo_label.compare(stereo_label.size() - suffix.size(), suffix.size(), suffix) == 0)
+    if (core::endsWith(stereo_label, suffix))
         return stereo_label.substr(0, stereo_label.size() - suffix.size()) + "_LANDMARKS";
     return stereo_label + "_LANDMARKS";
 }
