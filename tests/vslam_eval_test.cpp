@@ -193,6 +193,41 @@ TEST(VslamEval, RunFolderWithRobotsAndRunJson)
     expectNonEmptyPng(run / "paths.png");
     expectNonEmptyPng(run / "errors.png");
     EXPECT_FALSE(fs::exists(run / "landmark_errors.png"));
+
+    // NAME.groundtruth.tum names the prefix NAME: each robot's own file
+    const auto named =
+        runEval(run.string() + " --ground-truth " + (dir / "scene.groundtruth.tum").string() +
+                " --out " + (dir / "named").string());
+    ASSERT_EQ(named.exit_code, 0) << named.stderr_text;
+    const auto jn = readJson(dir / "named" / "metrics.json");
+    EXPECT_NEAR(jn["robots"]["R2"]["estimate"]["ate_max_m"].get<double>(), 1.0, 1e-6);
+    // any other TUM file is one robot's
+    makePath().save((dir / "other.tum").string());
+    const auto other = runEval(run.string() + " --ground-truth " + (dir / "other.tum").string());
+    EXPECT_EQ(other.exit_code, 1);
+    EXPECT_NE(other.stderr_text.find("other.tum: one ground-truth file for 2 robots"),
+              std::string::npos)
+        << other.stderr_text;
+}
+
+TEST(VslamEval, AGroundTruthFileBringsTheLandmarksBesideIt)
+{
+    const auto dir = scratch().path() / "beside";
+    const auto run = dir / "run";
+    fs::create_directories(run);
+    makePath().save((dir / "hall.groundtruth.tum").string());
+    landmarks({{0, 0, 0}, {5, 0, 0}}, 0).save((dir / "hall.landmarks.txt").string());
+    makePath(0.3, -0.4).save((run / "estimated_path.tum").string());
+    landmarks({{0.1, 0, 0}, {5, 0.3, 0}}, 0).save((run / "map.txt").string());
+
+    const auto r =
+        runEval(run.string() + " --ground-truth " + (dir / "hall.groundtruth.tum").string());
+    ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+    const auto j = readJson(run / "metrics.json");
+    EXPECT_NEAR(j["estimate"]["ate_rmse_m"].get<double>(), 0.5, 1e-6);
+    EXPECT_EQ(j["landmarks"]["matched"].get<int>(), 2);
+    EXPECT_NEAR(j["landmarks"]["error_mean_m"].get<double>(), 0.2, 1e-6);
+    expectNonEmptyPng(run / "landmark_errors.png");
 }
 
 TEST(VslamEval, MissingFileFailsWithOneLineNamingIt)

@@ -28,8 +28,9 @@ std::optional<core::TEvalParams> parseEvalCommandLine(int argc, char** argv)
         "", "odometry", "Odometry trajectory (TUM) with --estimate", false, "", "FILE.tum", cmd);
     TCLAP::ValueArg<std::string> groundTruth(
         "", "ground-truth",
-        "Ground truth: rawlog NAME.rawlog or prefix NAME (uses NAME.groundtruth[_<ROBOT>].tum and "
-        "NAME.landmarks.txt), or a TUM file. Default: \"ground_truth\" of RUN_DIR/run.json",
+        "Ground truth: rawlog NAME.rawlog, prefix NAME or NAME.groundtruth.tum (uses "
+        "NAME.groundtruth[_<ROBOT>].tum and NAME.landmarks.txt), or a TUM file. Default: "
+        "\"ground_truth\" of RUN_DIR/run.json",
         false, "", "NAME|FILE", cmd);
     TCLAP::ValueArg<std::string> landmarksGt(
         "", "landmarks-gt", "True landmarks (x y z or id x y z)", false, "", "FILE", cmd);

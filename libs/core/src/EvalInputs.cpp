@@ -100,19 +100,21 @@ TEvalInputs resolveInputs(const TEvalParams& p)
         throw std::runtime_error((p.run_dir.empty() ? p.estimate_file : p.run_dir) +
                                  ": no ground truth: pass --ground-truth or set \"ground_truth\" "
                                  "in run.json");
-    if (endsWith(gtArg, ".tum")) {
-        if (in.robots.size() != 1)
-            throw std::runtime_error(gtArg + ": one ground-truth file for " +
-                                     std::to_string(in.robots.size()) +
-                                     " robots; pass the prefix NAME instead");
+    // NAME.groundtruth.tum names its prefix NAME too (its landmarks, the other robots' files)
+    const auto prefix = groundTruthPrefixOf(gtArg);
+    const bool file = endsWith(gtArg, ".tum"), named = prefix != gtArg;
+    if (file && in.robots.size() == 1) {
         in.robots[0].ground_truth = gtArg;
+    } else if (file && !named) {
+        throw std::runtime_error(gtArg + ": one ground-truth file for " +
+                                 std::to_string(in.robots.size()) +
+                                 " robots; pass the prefix NAME instead");
     } else {
-        const auto prefix = groundTruthPrefixOf(gtArg);
         for (auto& r : in.robots)
             r.ground_truth = groundTruthFileOf(prefix, r.robot, in.robots.size() == 1);
-        if (p.landmarks_gt.empty() && fs::exists(prefix + ".landmarks.txt"))
-            in.landmarks_gt = prefix + ".landmarks.txt";
     }
+    if ((!file || named) && p.landmarks_gt.empty() && fs::exists(prefix + ".landmarks.txt"))
+        in.landmarks_gt = prefix + ".landmarks.txt";
     if (!p.landmarks_gt.empty()) in.landmarks_gt = p.landmarks_gt;
     in.map_file = p.map_file;
     if (in.map_file.empty() && !p.run_dir.empty() && p.estimate_file.empty() &&
