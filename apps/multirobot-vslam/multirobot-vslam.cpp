@@ -15,8 +15,11 @@ int main(int argc, char** argv)
             argc, argv, "multirobot-vslam",
             "Multi-robot stereo visual SLAM (Gil, Reinoso, Ballesta, Julia, Paya 2010): one "
             "Rao-Blackwellized particle filter over the paths of a robot team and one shared map "
-            "of 3D landmarks with U-SURF descriptors. Reads an observation-only rawlog with "
-            "<ROBOT>_ODOM odometry and <ROBOT>_LANDMARKS or <ROBOT>_STEREO observations; writes "
+            "of 3D landmarks with U-SURF descriptors. Reads a rawlog in either MRPT format: one "
+            "robot's odometry and landmark readings (CObservationBearingRange, "
+            "CObservationVisualLandmarks or CObservationStereoImages; any label unless the config "
+            "names one), or a team's, labelled <ROBOT>_ODOM and <ROBOT>_RB, <ROBOT>_LANDMARKS or "
+            "<ROBOT>_STEREO; writes "
             "the run folder described in doc/multirobot.md. With --listen, the robots stream "
             "their readings live (vslam-robot-node, doc/team-online.md).",
             true);

@@ -15,8 +15,10 @@ int main(int argc, char** argv)
             argc, argv, "omni-fastslam",
             "FastSLAM 2.0 for an upward fisheye camera looking at ceiling lights, with "
             "hierarchical Hungarian data association and delayed landmark initialization "
-            "(Gamallo, Mucientes, Regueiro). Reads a rawlog of odometry actions with OMNICAM "
-            "images or OMNICAM_BEARINGS; writes the run folder described in doc/omni-fastslam.md.");
+            "(Gamallo, Mucientes, Regueiro). Reads a rawlog in either MRPT format of one robot's "
+            "odometry and its upward camera's images (CObservationImage) or the lights' bearings "
+            "(CObservationBearingRange; any label unless the config names one); writes the run "
+            "folder described in doc/omni-fastslam.md.");
         if (args.request != core::AppArguments::Request::Run) {
             std::cout << args.message;
             return 0;

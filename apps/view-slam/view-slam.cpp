@@ -15,8 +15,9 @@ int main(int argc, char** argv)
             argc, argv, "view-slam",
             "View-based EKF SLAM with a single omnidirectional camera and information-based "
             "view initialization (Valiente, Ghaffari Jadidi, Valls Miro, Gil, Reinoso). Reads a "
-            "rawlog of odometry with OMNICAM images; writes the run folder described in "
-            "doc/view-slam.md.");
+            "rawlog in either MRPT format of one robot's odometry and its omnidirectional images "
+            "(CObservationImage; any label unless the config names one); writes the run folder "
+            "described in doc/view-slam.md.");
         if (args.request != core::AppArguments::Request::Run) {
             std::cout << args.message;
             return 0;

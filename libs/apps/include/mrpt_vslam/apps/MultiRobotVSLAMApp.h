@@ -10,9 +10,10 @@
 
 namespace mrpt_vslam::apps {
 
-/** The `multirobot-vslam` driver: reads an observation-only rawlog with each robot's odometry
- *  (`<ROBOT>_ODOM`) and either pre-extracted landmarks (`<ROBOT>_LANDMARKS`) or stereo images
- *  (`<ROBOT>_STEREO`, turned into landmarks by one StereoFrontEnd per robot), runs
+/** The `multirobot-vslam` driver: reads a rawlog with each robot's odometry and its
+ *  range-bearing readings, pre-extracted landmarks or stereo images (turned into landmarks by one
+ *  StereoFrontEnd per robot), found by class for one robot and by `<ROBOT>_...` label for a
+ *  team (doc/multirobot.md, "Input"), runs
  *  CMultiRobotVisualSLAM through `CParticleFilter::executeOn()` and writes the run folder of
  *  doc/data-formats.md ("Run outputs") with one estimated path per robot.
  *

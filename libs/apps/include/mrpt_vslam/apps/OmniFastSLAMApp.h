@@ -11,8 +11,8 @@
 
 namespace mrpt_vslam::apps {
 
-/** The `omni-fastslam` driver: reads a rawlog of odometry actions with ceiling-light images
- *  (`OMNICAM`) or pre-extracted bearings (`OMNICAM_BEARINGS`), runs COmniFastSLAM through
+/** The `omni-fastslam` driver: reads a rawlog of odometry with ceiling-light images or
+ *  pre-extracted bearings (any label unless the config names one), runs COmniFastSLAM through
  *  `CParticleFilter::executeOn()` and writes the run folder (doc/data-formats.md,
  *  "Run outputs").
  *
