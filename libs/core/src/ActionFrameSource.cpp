@@ -1,6 +1,7 @@
 #include <mrpt/core/bits_math.h>
 #include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/poses/CPose3D.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/UsageError.h>
@@ -25,6 +26,25 @@ ActionFrameSource::ActionFrameSource(
       m_odometry_at_last_step(m_odometry.size()),
       m_odometry_since_last_step(m_odometry.size(), false)
 {
+}
+
+bool ActionFrameSource::makesStep(const mrpt::obs::CObservation& obs) const
+{
+    return std::any_of(m_steps.begin(), m_steps.end(),
+                       [&](const auto& sel) { return sel.matches(obs); });
+}
+
+void ActionFrameSource::requireFiniteSensorPose(const mrpt::obs::CObservation& obs,
+                                                size_t entry) const
+{
+    mrpt::poses::CPose3D pose;
+    obs.getSensorPose(pose);
+    if (!(std::isfinite(pose.x()) && std::isfinite(pose.y()) && std::isfinite(pose.z()) &&
+          pose.getRotationMatrix().asEigen().allFinite()))
+        throw std::runtime_error(m_reader.file() + ": entry " + std::to_string(entry) + ": " +
+                                 ObservationSelector::nameOf(obs) +
+                                 " has a sensor pose on the robot that is not finite (" +
+                                 pose.asString() + ")");
 }
 
 mrpt::obs::CActionRobotMovement2D::TMotionModelOptions ActionFrameSource::loadMotionModel(
@@ -136,6 +156,9 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
         if (e.actions || e.observations) {  // format #1
             // an empty frame holds nothing to step on
             const bool noFrame = !e.observations || e.observations->size() == 0;
+            if (!noFrame)
+                for (const auto& obs : *e.observations)
+                    if (obs && makesStep(*obs)) requireFiniteSensorPose(*obs, e.index);
             if (!e.actions) {
                 if (noFrame) continue;
                 // no action since the previous frame (or the start): the robot has not moved,
@@ -193,10 +216,10 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
                 m_pending_is_step = false;
             }
             m_pending->insert(e.observation);
-            m_pending_is_step = m_pending_is_step ||
-                                std::any_of(m_steps.begin(), m_steps.end(), [&](const auto& sel) {
-                                    return sel.matches(*e.observation);
-                                });
+            if (makesStep(*e.observation)) {
+                requireFiniteSensorPose(*e.observation, e.index);
+                m_pending_is_step = true;
+            }
         }
         if (ready) return true;
     }

@@ -288,3 +288,55 @@ TEST(ActionFrameSource, ATimeBarrierClosesTheFrame)
     }
     EXPECT_FALSE(source.next(acts, sf));
 }
+
+// A sensor pose with NaN (e.g. a calibration file gone wrong) would put every reading of the
+// sensor at NaN: the observations that make steps are refused where they are read, in either
+// format; those of other classes are not the app's to judge.
+TEST(ActionFrameSource, AStepObservationWithANonFiniteSensorPoseIsNamed)
+{
+    const auto broken = [](const std::string& label, double t) {
+        auto o = bearings(label, t);
+        dynamic_cast<CObservationBearingRange&>(*o).sensorLocationOnRobot =
+            mrpt::poses::CPose3D(0, 0, std::nan(""), 0, 0, 0);
+        return o;
+    };
+    const auto expectNamed = [](const std::function<void()>& read, const std::string& message) {
+        try {
+            read();
+            ADD_FAILURE() << "no error";
+        } catch (const std::runtime_error& e) {
+            EXPECT_EQ(std::string(e.what()), message);
+        }
+    };
+    const std::string file = writeRawlog("nan-pose.rawlog", [&](auto& ar) {
+        CSensoryFrame sf;
+        sf.insert(broken("CAM", 1));
+        ar << forward(1) << frame() << forward(1) << sf;
+    });
+    expectNamed([&] { stepsOf(file); },
+                file +
+                    ": entry 1: CAM has a sensor pose on the robot that is not finite ([0.000000 "
+                    "0.000000 nan 0.000000 0.000000 0.000000])");
+
+    ObservationList list;
+    list.observations = {odometry("", 1, 0), bearings("", 1), odometry("", 2, 1), broken("", 2)};
+    ActionFrameSource source(list, {ObservationSelector::of<CObservationBearingRange>("")},
+                             CActionRobotMovement2D::TMotionModelOptions());
+    CActionCollection::Ptr acts;
+    CSensoryFrame::Ptr sf;
+    expectNamed(
+        [&] {
+            while (source.next(acts, sf)) {
+            }
+        },
+        "list: entry 3: CObservationBearingRange has a sensor pose on the robot that is not "
+        "finite ([0.000000 0.000000 nan 0.000000 0.000000 0.000000])");
+
+    // an observation that makes no step is left as it is
+    ObservationList other;
+    other.observations = {odometry("", 1, 0), bearings("", 1), odometry("", 2, 1),
+                          broken("OTHER", 2), bearings("", 3)};
+    ActionFrameSource skipping(other, {ObservationSelector::of<CObservationBearingRange>("RB")},
+                               CActionRobotMovement2D::TMotionModelOptions());
+    EXPECT_FALSE(skipping.next(acts, sf));  // no "RB" at all, and no error
+}

@@ -57,11 +57,16 @@ class ActionFrameSource {
     static bool standsStill(const mrpt::obs::CActionRobotMovement2D& odometry);
 
     /** The next step. \return false at the end of the rawlog. Throws std::runtime_error naming
-     *  the rawlog, the entry and the classes it holds for an action collection
-     *  without a CActionRobotMovement2D. */
+     *  the rawlog and the entry for an action collection without a CActionRobotMovement2D (with
+     *  the classes it holds) and for an observation of the steps whose sensor pose on the robot
+     *  is not finite. */
     bool next(mrpt::obs::CActionCollection::Ptr& actions, mrpt::obs::CSensoryFrame::Ptr& frame);
 
   private:
+    /// Whether `obs` is of the observations that make a step (`steps` of the constructor).
+    bool makesStep(const mrpt::obs::CObservation& obs) const;
+    /// Throws std::runtime_error naming the rawlog and `entry` unless obs's sensor pose is finite.
+    void requireFiniteSensorPose(const mrpt::obs::CObservation& obs, size_t entry) const;
     /// The pending format-#2 frame as a step, built from the odometry since the last step.
     void emitPending(mrpt::obs::CActionCollection::Ptr& actions,
                      mrpt::obs::CSensoryFrame::Ptr& frame);
