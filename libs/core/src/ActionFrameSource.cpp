@@ -1,4 +1,5 @@
 #include <mrpt/core/bits_math.h>
+#include <mrpt/core/format.h>
 #include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/poses/CPose3D.h>
@@ -26,6 +27,37 @@ ActionFrameSource::ActionFrameSource(
       m_odometry_at_last_step(m_odometry.size()),
       m_odometry_since_last_step(m_odometry.size(), false)
 {
+}
+
+std::runtime_error ActionFrameSource::noOdometryError(const mrpt::obs::CActionCollection& actions,
+                                                      size_t entry) const
+{
+    const std::string where = m_reader.file() + ": entry " + std::to_string(entry);
+    // MRPT's getBestMovementEstimation() takes a CActionRobotMovement2D whose covariance has a
+    // determinant below 1000: none with NaN, none that wide
+    if (const auto move = actions.getActionByClass<mrpt::obs::CActionRobotMovement2D>()) {
+        const auto mean = move->poseChange->getMeanVal();
+        const auto cov = move->poseChange->getCovariance();
+        const bool finiteMean =
+            std::isfinite(mean.x()) && std::isfinite(mean.y()) && std::isfinite(mean.phi());
+        if (!finiteMean || !cov.asEigen().allFinite())
+            return std::runtime_error(where + " has odometry that is not finite (" +
+                                      (finiteMean ? "covariance " + cov.inMatlabFormat()
+                                                  : "increment " + mean.asString()) +
+                                      ")");
+        return std::runtime_error(
+            where + mrpt::format(" has odometry too uncertain for MRPT (the determinant of its "
+                                 "covariance is %g; it takes below 1000)",
+                                 cov.det()));
+    }
+    std::string held;
+    for (const auto& a : actions)
+        held += std::string(held.empty() ? "" : ", ") + shortClassName(*a);
+    return std::runtime_error(where +
+                              " has an action collection without a "
+                              "CActionRobotMovement2D (it holds " +
+                              (held.empty() ? std::string("nothing") : held) +
+                              "; planar odometry is needed)");
 }
 
 bool ActionFrameSource::makesStep(const mrpt::obs::CObservation& obs) const
@@ -168,16 +200,7 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
                 frame = e.observations;
                 return true;
             }
-            if (!e.actions->getBestMovementEstimation()) {
-                std::string held;
-                for (const auto& a : *e.actions)
-                    held += std::string(held.empty() ? "" : ", ") + shortClassName(*a);
-                throw std::runtime_error(
-                    m_reader.file() + ": entry " + std::to_string(e.index) +
-                    " has an action collection without a CActionRobotMovement2D (it holds " +
-                    (held.empty() ? std::string("nothing") : held) +
-                    "; planar odometry is needed)");
-            }
+            if (!e.actions->getBestMovementEstimation()) throw noOdometryError(*e.actions, e.index);
             actions = m_carried ? afterCarried(*e.actions) : e.actions;
             m_carried.reset();
             if (noFrame) {  // no frame to go with: into the next step

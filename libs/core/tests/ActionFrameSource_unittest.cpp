@@ -236,6 +236,43 @@ TEST(ActionFrameSource, AnActionWithoutPlanarOdometryIsNamed)
     }
 }
 
+// MRPT's CActionCollection::getBestMovementEstimation() passes over a CActionRobotMovement2D
+// whose covariance has a NaN or a determinant of 1000 or more: the message says which.
+TEST(ActionFrameSource, OdometryMRPTPassesOverIsNamed)
+{
+    const auto odometry = [](double x, double min_std) {
+        CActionRobotMovement2D move;
+        CActionRobotMovement2D::TMotionModelOptions model;
+        model.gaussianModel.minStdXY = min_std;
+        model.gaussianModel.minStdPHI = min_std;
+        move.computeFromOdometry(mrpt::poses::CPose2D(x, 0, 0), model);
+        CActionCollection acts;
+        acts.insert(move);
+        return acts;
+    };
+    const auto messageOf = [](const std::string& file) {
+        try {
+            stepsOf(file);
+        } catch (const std::runtime_error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    const std::string nan = writeRawlog("nan-odometry.rawlog", [&](auto& ar) {
+        ar << odometry(1, 0.01) << frame() << odometry(std::nan(""), 0.01) << frame();
+    });
+    const std::string message = messageOf(nan);
+    EXPECT_EQ(message.rfind(nan + ": entry 1 has odometry that is not finite (increment [nan ", 0),
+              0u)
+        << message;
+    const std::string wide =
+        writeRawlog("wide-odometry.rawlog", [&](auto& ar) { ar << odometry(1, 20) << frame(); });
+    EXPECT_EQ(messageOf(wide), wide +
+                                   ": entry 0 has odometry too uncertain for MRPT (the "
+                                   "determinant of its covariance is 6.42401e+07; it takes below "
+                                   "1000)");
+}
+
 // Format #2 with a robot whose odometry comes late and misses a step: by default the steps wait
 // for every robot's first odometry, and a robot without a new reading moves by a zero increment
 // with the motion model's noise; with standStillWithoutOdometry() the others go on and a robot

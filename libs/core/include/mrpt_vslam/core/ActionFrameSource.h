@@ -9,6 +9,7 @@
 #include <mrpt_vslam/core/RawlogEntrySource.h>
 
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -57,12 +58,16 @@ class ActionFrameSource {
     static bool standsStill(const mrpt::obs::CActionRobotMovement2D& odometry);
 
     /** The next step. \return false at the end of the rawlog. Throws std::runtime_error naming
-     *  the rawlog and the entry for an action collection without a CActionRobotMovement2D (with
-     *  the classes it holds) and for an observation of the steps whose sensor pose on the robot
-     *  is not finite. */
+     *  the rawlog and the entry for an action collection without usable planar odometry (see
+     *  noOdometryError()) and for an observation of the steps whose sensor pose on the robot is
+     *  not finite. */
     bool next(mrpt::obs::CActionCollection::Ptr& actions, mrpt::obs::CSensoryFrame::Ptr& frame);
 
   private:
+    /** Why MRPT finds no planar odometry in the action collection of rawlog entry `entry`: none,
+     *  one that is not finite, or one too uncertain; names the rawlog and the entry. */
+    std::runtime_error noOdometryError(const mrpt::obs::CActionCollection& actions,
+                                       size_t entry) const;
     /// Whether `obs` is of the observations that make a step (`steps` of the constructor).
     bool makesStep(const mrpt::obs::CObservation& obs) const;
     /// Throws std::runtime_error naming the rawlog and `entry` unless obs's sensor pose is finite.
