@@ -25,7 +25,8 @@ ActionFrameSource::ActionFrameSource(
       m_odometry_labels(std::move(odometry_labels)),
       m_odometry(std::max<size_t>(1, m_odometry_labels.size())),
       m_odometry_at_last_step(m_odometry.size()),
-      m_odometry_since_last_step(m_odometry.size(), false)
+      m_odometry_since_last_step(m_odometry.size(), false),
+      m_odometry_entry(m_odometry.size(), 0)
 {
 }
 
@@ -133,6 +134,10 @@ void ActionFrameSource::emitPending(mrpt::obs::CActionCollection::Ptr& actions,
         } else {
             move.computeFromOdometry(*m_odometry[k] - *m_odometry_at_last_step[k], m_motion_model);
             m_odometry_at_last_step[k] = m_odometry[k];
+            mrpt::obs::CActionCollection alone;
+            alone.insert(move);
+            if (!alone.getBestMovementEstimation())
+                throw noOdometryError(alone, m_odometry_entry[k]);
         }
         move.timestamp = m_pending_time;
         m_odometry_since_last_step[k] = false;
@@ -228,7 +233,15 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
                 std::find(m_odometry_labels.begin(), m_odometry_labels.end(), odo->sensorLabel);
             const size_t k = static_cast<size_t>(it - m_odometry_labels.begin());  // 0 if none
             if (m_odometry_labels.empty() || it != m_odometry_labels.end()) {
+                const auto& pose = odo->odometry;
+                if (!(std::isfinite(pose.x()) && std::isfinite(pose.y()) &&
+                      std::isfinite(pose.phi())))
+                    throw std::runtime_error(
+                        m_reader.file() + ": entry " + std::to_string(e.index) + ": " +
+                        ObservationSelector::nameOf(*odo) +
+                        " has an odometry pose that is not finite (" + pose.asString() + ")");
                 m_odometry[k] = odo->odometry;
+                m_odometry_entry[k] = e.index;
                 m_odometry_since_last_step[k] = true;
                 if (!m_odometry_at_last_step[k]) m_odometry_at_last_step[k] = odo->odometry;
             }

@@ -240,7 +240,7 @@ TEST(ActionFrameSource, AnActionWithoutPlanarOdometryIsNamed)
 // whose covariance has a NaN or a determinant of 1000 or more: the message says which.
 TEST(ActionFrameSource, OdometryMRPTPassesOverIsNamed)
 {
-    const auto odometry = [](double x, double min_std) {
+    const auto action = [](double x, double min_std) {
         CActionRobotMovement2D move;
         CActionRobotMovement2D::TMotionModelOptions model;
         model.gaussianModel.minStdXY = min_std;
@@ -259,18 +259,37 @@ TEST(ActionFrameSource, OdometryMRPTPassesOverIsNamed)
         return std::string("no error");
     };
     const std::string nan = writeRawlog("nan-odometry.rawlog", [&](auto& ar) {
-        ar << odometry(1, 0.01) << frame() << odometry(std::nan(""), 0.01) << frame();
+        ar << action(1, 0.01) << frame() << action(std::nan(""), 0.01) << frame();
     });
     const std::string message = messageOf(nan);
     EXPECT_EQ(message.rfind(nan + ": entry 1 has odometry that is not finite (increment [nan ", 0),
               0u)
         << message;
     const std::string wide =
-        writeRawlog("wide-odometry.rawlog", [&](auto& ar) { ar << odometry(1, 20) << frame(); });
+        writeRawlog("wide-odometry.rawlog", [&](auto& ar) { ar << action(1, 20) << frame(); });
     EXPECT_EQ(messageOf(wide), wide +
                                    ": entry 0 has odometry too uncertain for MRPT (the "
                                    "determinant of its covariance is 6.42401e+07; it takes below "
                                    "1000)");
+
+    // format #2: the increment the motion model makes of two readings, the same
+    ObservationList list;
+    list.observations = {odometry("", 1, 0), bearings("", 1), odometry("", 2, 1), bearings("", 2)};
+    CActionRobotMovement2D::TMotionModelOptions wideModel;
+    wideModel.gaussianModel.minStdXY = 100;
+    ActionFrameSource source(list, {ObservationSelector::of<CObservationBearingRange>("")},
+                             wideModel);
+    CActionCollection::Ptr acts;
+    CSensoryFrame::Ptr sf;
+    try {
+        while (source.next(acts, sf)) {
+        }
+        ADD_FAILURE() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_EQ(
+            std::string(e.what()).rfind("list: entry 0 has odometry too uncertain for MRPT", 0), 0u)
+            << e.what();
+    }
 }
 
 // Format #2 with a robot whose odometry comes late and misses a step: by default the steps wait
@@ -328,8 +347,9 @@ TEST(ActionFrameSource, ATimeBarrierClosesTheFrame)
 
 // A sensor pose with NaN (e.g. a calibration file gone wrong) would put every reading of the
 // sensor at NaN: the observations that make steps are refused where they are read, in either
-// format; those of other classes are not the app's to judge.
-TEST(ActionFrameSource, AStepObservationWithANonFiniteSensorPoseIsNamed)
+// format, as is an odometry pose with NaN; observations of other classes are not the app's to
+// judge.
+TEST(ActionFrameSource, ANonFiniteSensorOrOdometryPoseIsNamed)
 {
     const auto broken = [](const std::string& label, double t) {
         auto o = bearings(label, t);
@@ -368,6 +388,21 @@ TEST(ActionFrameSource, AStepObservationWithANonFiniteSensorPoseIsNamed)
         },
         "list: entry 3: CObservationBearingRange has a sensor pose on the robot that is not "
         "finite ([0.000000 0.000000 nan 0.000000 0.000000 0.000000])");
+
+    // an odometry reading of the robot, in format #2, the same
+    ObservationList odometryList;
+    auto nanOdometry = odometry("ODO", 2, 1);
+    dynamic_cast<CObservationOdometry&>(*nanOdometry).odometry.x(std::nan(""));
+    odometryList.observations = {odometry("ODO", 1, 0), bearings("", 1), nanOdometry};
+    ActionFrameSource odometrySource(odometryList,
+                                     {ObservationSelector::of<CObservationBearingRange>("")},
+                                     CActionRobotMovement2D::TMotionModelOptions());
+    expectNamed(
+        [&] {
+            while (odometrySource.next(acts, sf)) {
+            }
+        },
+        "list: entry 2: ODO has an odometry pose that is not finite ([nan 0.000000 0.000000deg])");
 
     // an observation that makes no step is left as it is
     ObservationList other;

@@ -59,8 +59,8 @@ class ActionFrameSource {
 
     /** The next step. \return false at the end of the rawlog. Throws std::runtime_error naming
      *  the rawlog and the entry for an action collection without usable planar odometry (see
-     *  noOdometryError()) and for an observation of the steps whose sensor pose on the robot is
-     *  not finite. */
+     *  noOdometryError()), a CObservationOdometry of the robots whose pose is not finite, and an
+     *  observation of the steps whose sensor pose on the robot is not finite. */
     bool next(mrpt::obs::CActionCollection::Ptr& actions, mrpt::obs::CSensoryFrame::Ptr& frame);
 
   private:
@@ -72,7 +72,8 @@ class ActionFrameSource {
     bool makesStep(const mrpt::obs::CObservation& obs) const;
     /// Throws std::runtime_error naming the rawlog and `entry` unless obs's sensor pose is finite.
     void requireFiniteSensorPose(const mrpt::obs::CObservation& obs, size_t entry) const;
-    /// The pending format-#2 frame as a step, built from the odometry since the last step.
+    /** The pending format-#2 frame as a step, built from the odometry since the last step.
+     *  Throws noOdometryError() for an increment MRPT would pass over. */
     void emitPending(mrpt::obs::CActionCollection::Ptr& actions,
                      mrpt::obs::CSensoryFrame::Ptr& frame);
     /// Whether the pending format-#2 frame makes a step once closed.
@@ -93,6 +94,7 @@ class ActionFrameSource {
     /// Per robot: the latest reading and the one at the last step.
     std::vector<std::optional<mrpt::poses::CPose2D>> m_odometry, m_odometry_at_last_step;
     std::vector<bool> m_odometry_since_last_step;  ///< per robot
+    std::vector<size_t> m_odometry_entry;          ///< per robot: the latest reading's entry
     mrpt::obs::CActionCollection::Ptr m_carried;   ///< format #1 odometry not yet in a step
     mrpt::obs::CSensoryFrame::Ptr m_pending;       ///< format #2 frame being assembled
     mrpt::Clock::time_point m_pending_time;
