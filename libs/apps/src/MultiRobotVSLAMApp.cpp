@@ -374,8 +374,10 @@ std::vector<core::ObservationSelector> MultiRobotVSLAMApp::Impl::stepObservation
         if (!o.robot_reading_ids.empty() && o.robots.size() > 1)
             selectors.push_back(ObservationSelector::of<mrpt::obs::CObservationBearingRange>(
                 o.robots[k] + o.robot_readings_suffix));
-        selectors.push_back(ObservationSelector::of<mrpt::obs::CObservationStereoImages>(
-            o.inputLabel(k, "_STEREO")));
+        // one stereo pair per robot (its calibration); landmark readings of several sensors
+        // are all read
+        selectors.push_back(ObservationSelector::ofOneSensor<mrpt::obs::CObservationStereoImages>(
+            o.inputLabel(k, "_STEREO"), std::string("[") + kAppSection + "] sensor_label"));
     }
     return selectors;
 }

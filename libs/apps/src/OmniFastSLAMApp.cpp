@@ -150,9 +150,11 @@ void OmniFastSLAMApp::Impl::prepare()
 std::vector<core::ObservationSelector> OmniFastSLAMApp::Impl::stepObservations() const
 {
     using core::ObservationSelector;
-    return {
-        ObservationSelector::of<mrpt::obs::CObservationBearingRange>(filterOptions.bearings_label),
-        ObservationSelector::of<mrpt::obs::CObservationImage>(imageLabel)};
+    // one camera: its model, and the bearings of one frame (measurementsFromFrame)
+    return {ObservationSelector::ofOneSensor<mrpt::obs::CObservationBearingRange>(
+                filterOptions.bearings_label, std::string("[") + kAppSection + "] bearings_label"),
+            ObservationSelector::ofOneSensor<mrpt::obs::CObservationImage>(
+                imageLabel, std::string("[") + kAppSection + "] image_label")};
 }
 
 std::vector<std::string> OmniFastSLAMApp::Impl::odometryLabels() const

@@ -149,7 +149,8 @@ void ViewSLAMApp::Impl::startRun(const core::OutputDirectory& out)
 
 std::vector<core::ObservationSelector> ViewSLAMApp::Impl::stepObservations() const
 {
-    return {core::ObservationSelector::of<mrpt::obs::CObservationImage>(imageLabel)};
+    return {core::ObservationSelector::ofOneSensor<mrpt::obs::CObservationImage>(
+        imageLabel, std::string("[") + kAppSection + "] image_label")};
 }
 
 void ViewSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,

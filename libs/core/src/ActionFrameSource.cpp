@@ -26,7 +26,8 @@ ActionFrameSource::ActionFrameSource(
       m_odometry(std::max<size_t>(1, m_odometry_labels.size())),
       m_odometry_at_last_step(m_odometry.size()),
       m_odometry_since_last_step(m_odometry.size(), false),
-      m_odometry_entry(m_odometry.size(), 0)
+      m_odometry_entry(m_odometry.size(), 0),
+      m_step_sensors(m_steps.size())
 {
 }
 
@@ -67,9 +68,27 @@ bool ActionFrameSource::makesStep(const mrpt::obs::CObservation& obs) const
                        [&](const auto& sel) { return sel.matches(obs); });
 }
 
-void ActionFrameSource::requireFiniteSensorPose(const mrpt::obs::CObservation& obs,
-                                                size_t entry) const
+std::string ActionFrameSource::secondSensor(std::optional<std::string>& first,
+                                            const mrpt::obs::CObservation& obs, size_t entry,
+                                            const std::string& reads) const
 {
+    if (!first) first = obs.sensorLabel;
+    if (obs.sensorLabel == *first) return {};
+    return m_reader.file() + ": entry " + std::to_string(entry) + ": " + shortClassName(obs) +
+           " of a second sensor, '" + obs.sensorLabel + "' (the first: '" + *first + "'): " + reads;
+}
+
+void ActionFrameSource::checkStepObservation(const mrpt::obs::CObservation& obs, size_t entry)
+{
+    for (size_t i = 0; i < m_steps.size(); i++) {
+        const auto& sel = m_steps[i];
+        if (sel.label.empty() && !sel.one_sensor_key.empty() && sel.matches(obs))
+            if (const auto error =
+                    secondSensor(m_step_sensors[i], obs, entry,
+                                 "the run reads one sensor's; name it with " + sel.one_sensor_key);
+                !error.empty())
+                throw std::runtime_error(error);
+    }
     mrpt::poses::CPose3D pose;
     obs.getSensorPose(pose);
     if (!(std::isfinite(pose.x()) && std::isfinite(pose.y()) && std::isfinite(pose.z()) &&
@@ -126,6 +145,7 @@ bool ActionFrameSource::haveOdometry() const
 void ActionFrameSource::emitPending(mrpt::obs::CActionCollection::Ptr& actions,
                                     mrpt::obs::CSensoryFrame::Ptr& frame)
 {
+    if (!m_second_odometry.empty()) throw std::runtime_error(m_second_odometry);
     actions = mrpt::obs::CActionCollection::Create();
     for (size_t k = 0; k < m_odometry.size(); k++) {
         mrpt::obs::CActionRobotMovement2D move;
@@ -195,7 +215,7 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
             const bool noFrame = !e.observations || e.observations->size() == 0;
             if (!noFrame)
                 for (const auto& obs : *e.observations)
-                    if (obs && makesStep(*obs)) requireFiniteSensorPose(*obs, e.index);
+                    if (obs && makesStep(*obs)) checkStepObservation(*obs, e.index);
             if (!e.actions) {
                 if (noFrame) continue;
                 // no action since the previous frame (or the start): the robot has not moved,
@@ -232,6 +252,10 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
             const auto it =
                 std::find(m_odometry_labels.begin(), m_odometry_labels.end(), odo->sensorLabel);
             const size_t k = static_cast<size_t>(it - m_odometry_labels.begin());  // 0 if none
+            if (m_odometry_labels.empty() && m_second_odometry.empty())
+                m_second_odometry =
+                    secondSensor(m_odometry_sensor, *odo, e.index,
+                                 "the run reads one robot's odometry (doc/your-own-data.md)");
             if (m_odometry_labels.empty() || it != m_odometry_labels.end()) {
                 const auto& pose = odo->odometry;
                 if (!(std::isfinite(pose.x()) && std::isfinite(pose.y()) &&
@@ -253,7 +277,7 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
             }
             m_pending->insert(e.observation);
             if (makesStep(*e.observation)) {
-                requireFiniteSensorPose(*e.observation, e.index);
+                checkStepObservation(*e.observation, e.index);
                 m_pending_is_step = true;
             }
         }

@@ -412,3 +412,43 @@ TEST(ActionFrameSource, ANonFiniteSensorOrOdometryPoseIsNamed)
                                CActionRobotMovement2D::TMotionModelOptions());
     EXPECT_FALSE(skipping.next(acts, sf));  // no "RB" at all, and no error
 }
+
+// With an empty label every observation of the class is read, but a run that reads one sensor's
+// (a camera model; one robot's odometry) refuses a second sensor instead of mixing the two.
+TEST(ActionFrameSource, ASecondSensorWhereTheRunReadsOneIsNamed)
+{
+    const auto messageOf = [](ObservationList list, const ObservationSelector& steps,
+                              std::vector<std::string> odometry_labels = {}) {
+        ActionFrameSource source(list, {steps}, CActionRobotMovement2D::TMotionModelOptions(),
+                                 std::move(odometry_labels));
+        CActionCollection::Ptr acts;
+        CSensoryFrame::Ptr sf;
+        size_t n = 0;
+        try {
+            while (source.next(acts, sf)) n++;
+        } catch (const std::runtime_error& e) {
+            return std::string(e.what());
+        }
+        return std::to_string(n) + " steps";
+    };
+    const auto oneSensor = ObservationSelector::ofOneSensor<CObservationBearingRange>("", "KEY");
+    ObservationList cameras;
+    cameras.observations = {odometry("ODO", 1, 0), bearings("A", 1), odometry("ODO", 2, 1),
+                            bearings("B", 2)};
+    EXPECT_EQ(messageOf(cameras, oneSensor),
+              "list: entry 3: CObservationBearingRange of a second sensor, 'B' (the first: 'A'): "
+              "the run reads one sensor's; name it with KEY");
+    // several sensors are fine where the run reads them all, or where the label names one
+    EXPECT_EQ(messageOf(cameras, ObservationSelector::of<CObservationBearingRange>("")), "2 steps");
+    EXPECT_EQ(
+        messageOf(cameras, ObservationSelector::ofOneSensor<CObservationBearingRange>("A", "KEY")),
+        "1 steps");
+
+    ObservationList team;
+    team.observations = {odometry("R1_ODOM", 1, 0), odometry("R2_ODOM", 1, 5), bearings("", 1)};
+    EXPECT_EQ(messageOf(team, ObservationSelector::of<CObservationBearingRange>("")),
+              "list: entry 1: CObservationOdometry of a second sensor, 'R2_ODOM' (the first: "
+              "'R1_ODOM'): the run reads one robot's odometry (doc/your-own-data.md)");
+    EXPECT_EQ(messageOf(team, ObservationSelector::of<CObservationBearingRange>(""), {"R1_ODOM"}),
+              "1 steps");
+}

@@ -59,8 +59,10 @@ class ActionFrameSource {
 
     /** The next step. \return false at the end of the rawlog. Throws std::runtime_error naming
      *  the rawlog and the entry for an action collection without usable planar odometry (see
-     *  noOdometryError()), a CObservationOdometry of the robots whose pose is not finite, and an
-     *  observation of the steps whose sensor pose on the robot is not finite. */
+     *  noOdometryError()), a CObservationOdometry of the robots whose pose is not finite, an
+     *  observation of the steps whose sensor pose on the robot is not finite, and a second
+     *  sensor where the run reads one: of the odometry of one robot (no odometry labels), or of
+     *  a step selector with a `one_sensor_key`. */
     bool next(mrpt::obs::CActionCollection::Ptr& actions, mrpt::obs::CSensoryFrame::Ptr& frame);
 
   private:
@@ -70,8 +72,14 @@ class ActionFrameSource {
                                        size_t entry) const;
     /// Whether `obs` is of the observations that make a step (`steps` of the constructor).
     bool makesStep(const mrpt::obs::CObservation& obs) const;
-    /// Throws std::runtime_error naming the rawlog and `entry` unless obs's sensor pose is finite.
-    void requireFiniteSensorPose(const mrpt::obs::CObservation& obs, size_t entry) const;
+    /** Throws std::runtime_error naming the rawlog and `entry` unless the sensor pose of `obs`,
+     *  an observation of the steps, is finite, and unless it is of the sensor of the earlier ones
+     *  where its selector reads one sensor (ObservationSelector::one_sensor_key). */
+    void checkStepObservation(const mrpt::obs::CObservation& obs, size_t entry);
+    /** "" if `obs` is of the first sensor met, `first` (which it sets on the first call); else
+     *  the error naming the rawlog, `entry`, both labels and what the run `reads`. */
+    std::string secondSensor(std::optional<std::string>& first, const mrpt::obs::CObservation& obs,
+                             size_t entry, const std::string& reads) const;
     /** The pending format-#2 frame as a step, built from the odometry since the last step.
      *  Throws noOdometryError() for an increment MRPT would pass over. */
     void emitPending(mrpt::obs::CActionCollection::Ptr& actions,
@@ -95,8 +103,14 @@ class ActionFrameSource {
     std::vector<std::optional<mrpt::poses::CPose2D>> m_odometry, m_odometry_at_last_step;
     std::vector<bool> m_odometry_since_last_step;  ///< per robot
     std::vector<size_t> m_odometry_entry;          ///< per robot: the latest reading's entry
-    mrpt::obs::CActionCollection::Ptr m_carried;   ///< format #1 odometry not yet in a step
-    mrpt::obs::CSensoryFrame::Ptr m_pending;       ///< format #2 frame being assembled
+    /// Labels of the first sensor met: per selector of m_steps, and of the odometry (one robot).
+    std::vector<std::optional<std::string>> m_step_sensors;
+    std::optional<std::string> m_odometry_sensor;
+    /// The error of a second odometry sensor, thrown at the next step (a rawlog with no step
+    /// gets the error that says so)
+    std::string m_second_odometry;
+    mrpt::obs::CActionCollection::Ptr m_carried;  ///< format #1 odometry not yet in a step
+    mrpt::obs::CSensoryFrame::Ptr m_pending;      ///< format #2 frame being assembled
     mrpt::Clock::time_point m_pending_time;
     bool m_pending_is_step = false;
     bool m_stand_still_without_odometry = false;

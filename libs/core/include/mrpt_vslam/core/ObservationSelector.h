@@ -19,11 +19,22 @@ namespace mrpt_vslam::core {
 struct ObservationSelector {
     const mrpt::rtti::TRuntimeClassId* cls = nullptr;
     std::string label;
+    /** Not empty: the run reads one sensor's observations of the class (one camera model, one
+     *  sensor pose), so with an empty `label` they must all carry one label; the config key
+     *  that names it, for messages (ActionFrameSource checks). */
+    std::string one_sensor_key;
 
     template <class T>
     static ObservationSelector of(const std::string& label)
     {
-        return {CLASS_ID(T), label};
+        return {CLASS_ID(T), label, {}};
+    }
+
+    /// of(), for a class the run reads from one sensor, named by the config key `key`.
+    template <class T>
+    static ObservationSelector ofOneSensor(const std::string& label, const std::string& key)
+    {
+        return {CLASS_ID(T), label, key};
     }
 
     bool matches(const mrpt::obs::CObservation& obs) const
