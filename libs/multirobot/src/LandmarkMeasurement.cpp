@@ -60,23 +60,31 @@ std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
     const auto fail = [&](const std::string& what) {
         throw std::runtime_error(core::ObservationSelector::nameOf(obs) + ": " + what);
     };
-    const double sr = noise.std_range.value_or(obs.sensor_std_range);
-    const double sb = noise.std_bearing.value_or(obs.sensor_std_yaw);
-    const double sp = noise.std_pitch.value_or(obs.sensor_std_pitch);
-    const auto requireStd = [&](double v, const char* what, const char* field, const char* key) {
-        if (!(v > 0 && std::isfinite(v)))
-            fail(std::string("no usable ") + what + " (" + field + " = " + mrpt::format("%g", v) +
-                 "): set it in the observations" +
-                 (noise.config_keys.empty()
-                      ? std::string()
-                      : ", or " + noise.config_keys + key + " in the config"));
+    const auto configKeys = [&](const std::string& key) {
+        return noise.config_keys.empty() ? std::string()
+                                         : ", or " + noise.config_keys + key + " in the config";
     };
-    requireStd(sr, "range noise", "sensor_std_range", "_std_range");
-    requireStd(sb, "bearing noise", "sensor_std_yaw", "_std_bearing_deg");
-    if (!(sp >= 0 && std::isfinite(sp)))
-        requireStd(sp, "pitch noise", "sensor_std_pitch", "_std_pitch_deg");
-    const bool spatial = sp > 0;
-    const Eigen::Vector3d variances(sr * sr, sb * sb, sp * sp);
+    // Per measurement (validCovariances) or per observation (sensor_std_*), each σ the config
+    // sets replacing the observation's.
+    const std::optional<double> configStd[3] = {noise.std_range, noise.std_bearing,
+                                                noise.std_pitch};
+    Eigen::Matrix3d shared = Eigen::Matrix3d::Zero();  // of (r, b, p), without validCovariances
+    if (!obs.validCovariances) {
+        const double sr = noise.std_range.value_or(obs.sensor_std_range);
+        const double sb = noise.std_bearing.value_or(obs.sensor_std_yaw);
+        const double sp = noise.std_pitch.value_or(obs.sensor_std_pitch);
+        const auto requireStd = [&](double v, const char* what, const char* field,
+                                    const char* key) {
+            if (!(v > 0 && std::isfinite(v)))
+                fail(std::string("no usable ") + what + " (" + field + " = " +
+                     mrpt::format("%g", v) + "): set it in the observations" + configKeys(key));
+        };
+        requireStd(sr, "range noise", "sensor_std_range", "_std_range");
+        requireStd(sb, "bearing noise", "sensor_std_yaw", "_std_bearing_deg");
+        if (!(sp >= 0 && std::isfinite(sp)))
+            requireStd(sp, "pitch noise", "sensor_std_pitch", "_std_pitch_deg");
+        shared.diagonal() << sr * sr, sb * sb, sp * sp;
+    }
 
     const Eigen::Matrix3d rot = obs.sensorLocationOnRobot.getRotationMatrix().asEigen();
     const Eigen::Vector3d t(obs.sensorLocationOnRobot.x(), obs.sensorLocationOnRobot.y(),
@@ -90,8 +98,26 @@ std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
         if (!std::isfinite(s.range)) failOn("has a non-finite range");
         if (!std::isfinite(s.yaw)) failOn("has a non-finite bearing");
         if (!std::isfinite(s.pitch)) failOn("has a non-finite pitch");
+        Eigen::Matrix3d S = shared;
+        if (obs.validCovariances) {
+            S = s.covariance.asEigen();
+            for (int i = 0; i < 3; i++)
+                if (configStd[i]) {
+                    S.row(i).setZero();
+                    S.col(i).setZero();
+                    S(i, i) = *configStd[i] * *configStd[i];
+                }
+            if (!(S.allFinite() && S(0, 0) > 0 && S(1, 1) > 0 && S(2, 2) >= 0))
+                failOn(mrpt::format("has a covariance without usable noise (variances of range, "
+                                    "bearing, pitch: %g, %g, %g): set it in the observations",
+                                    S(0, 0), S(1, 1), S(2, 2)) +
+                       configKeys("_std_*"));
+        }
+        const bool spatial = S(2, 2) > 0;
         if (!spatial && s.pitch != 0)
-            failOn("has a non-zero pitch, but no pitch noise (sensor_std_pitch = 0): planar model");
+            failOn(std::string("has a non-zero pitch, but no pitch noise (") +
+                   (obs.validCovariances ? "covariance(2, 2) = 0" : "sensor_std_pitch = 0") +
+                   "): planar model");
         if (s.range > kMaxMeasuredDistance)
             failOn(mrpt::format("has a range of %g m: not a plausible measurement", s.range));
         if (!(s.range > 0)) {
@@ -104,7 +130,11 @@ std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
         J << cp * cb, -r * cp * sb_, -r * sp_ * cb,  //
             cp * sb_, r * cp * cb, -r * sp_ * sb_,   //
             -sp_, 0, -r * cp;
-        Eigen::Matrix3d C = J * variances.asDiagonal() * J.transpose();
+        if (!spatial) {  // planar model: the height's own σ, no pitch terms
+            S.row(2).setZero();
+            S.col(2).setZero();
+        }
+        Eigen::Matrix3d C = J * S * J.transpose();
         if (!spatial) C(2, 2) = noise.std_height * noise.std_height;
         TLandmarkMeasurement m;
         m.z = rot * Eigen::Vector3d(r * cp * cb, r * cp * sb_, -r * sp_) + t;

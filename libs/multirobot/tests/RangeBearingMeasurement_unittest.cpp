@@ -124,6 +124,48 @@ TEST(RangeBearingMeasurement, NoiseIsTheObservationsUnlessTheConfigSetsIt)
     EXPECT_NEAR(overridden[0].R(1, 1), 4 * 0.0004, 1e-6);  // still the observation's σ_b
 }
 
+// With validCovariances MRPT stores a covariance per measurement and no sensor_std_* (a rawlog
+// then reads them as 0): the measurement's own is used, each σ the config sets replacing its row.
+TEST(RangeBearingMeasurement, PerMeasurementCovariancesAreUsed)
+{
+    auto obs = observation({{2.0, 0.0, 1}, {3.0, M_PI / 2, 2}});
+    obs.validCovariances = true;
+    obs.sensedData[0].covariance.setDiagonal(std::vector<double>{0.09, 0.0004, 0});
+    obs.sensedData[1].covariance.setDiagonal(std::vector<double>{0.01, 0.0009, 0});
+    const auto own = measurementsFromBearingRange(obs, TRangeBearingNoise());
+    ASSERT_EQ(own.size(), 2u);
+    // bearing 0 at 2 m: σ_x = σ_r, σ_y = r σ_b; bearing 90° at 3 m: σ_y = σ_r, σ_x = r σ_b
+    EXPECT_NEAR(own[0].R(0, 0), 0.09, 1e-9);
+    EXPECT_NEAR(own[0].R(1, 1), 4 * 0.0004, 1e-9);
+    EXPECT_NEAR(own[1].R(1, 1), 0.01, 1e-9);
+    EXPECT_NEAR(own[1].R(0, 0), 9 * 0.0009, 1e-9);
+    EXPECT_NEAR(own[0].R(2, 2), 0.01 * 0.01, 1e-12);  // planar: the height's σ
+
+    // a correlation of range and bearing is kept: R = J S Jᵀ
+    obs.sensedData[0].covariance(0, 1) = obs.sensedData[0].covariance(1, 0) = 0.005;
+    EXPECT_NEAR(measurementsFromBearingRange(obs, TRangeBearingNoise())[0].R(0, 1), 2 * 0.005,
+                1e-9);
+
+    TRangeBearingNoise set;
+    set.std_range = 0.1;
+    const auto overridden = measurementsFromBearingRange(obs, set);
+    EXPECT_NEAR(overridden[0].R(0, 0), 0.01, 1e-9);
+    EXPECT_NEAR(overridden[0].R(0, 1), 0, 1e-12);          // its row replaced
+    EXPECT_NEAR(overridden[0].R(1, 1), 4 * 0.0004, 1e-9);  // still the measurement's σ_b
+
+    obs.sensedData[1].covariance(1, 1) = 0;
+    set.config_keys = "S.rb";
+    try {
+        measurementsFromBearingRange(obs, set);
+        FAIL() << "accepted a measurement without bearing noise";
+    } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "R1_RB: measurement of landmark 2 has a covariance without usable noise "
+                  "(variances of range, bearing, pitch: 0.01, 0, 0): set it in the "
+                  "observations, or S.rb_std_* in the config");
+    }
+}
+
 // A 3D landmark (pitch measured, MRPT's convention: positive downwards): the point and the
 // covariance against finite differences of the spherical-to-Cartesian map.
 TEST(RangeBearingMeasurement, SpatialModelMatchesTheSphericalCoordinates)

@@ -60,8 +60,11 @@ struct TRangeBearingNoise {
 
 /** The measurements of a `CObservationBearingRange` in the robot frame: the point
  *  r (cos p cos b, cos p sin b, −sin p) in the sensor frame (MRPT's convention: pitch p positive
- *  downwards), its covariance J diag(σ_r², σ_b², σ_p²) Jᵀ (J = ∂point/∂(r, b, p)), or in the
- *  planar model J diag(σ_r², σ_b²) Jᵀ with σ_h² in height, both moved by the sensor's pose on
+ *  downwards), its covariance J S Jᵀ (J = ∂point/∂(r, b, p)), S = diag(σ_r², σ_b², σ_p²) of
+ *  sensor_std_* or, with `validCovariances`, the measurement's own covariance of (r, b, p) (a σ
+ *  the options set replaces the observation's in either), or in the planar model (no pitch
+ *  noise) the
+ *  same without the pitch terms and with σ_h² in height, both moved by the sensor's pose on
  *  the robot (`sensorLocationOnRobot`); no descriptor (all zeros: association by the gate
  *  alone); track_id = landmarkID. A reading with a range ≤ 0 (noise on a very near landmark)
  *  is left out and counted in `non_positive` when given.
