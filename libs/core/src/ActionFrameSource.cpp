@@ -14,6 +14,12 @@
 #include <utility>
 
 namespace mrpt_vslam::core {
+namespace {
+bool isFinite(const mrpt::poses::CPose2D& p)
+{
+    return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.phi());
+}
+}  // namespace
 
 ActionFrameSource::ActionFrameSource(
     RawlogEntrySource& reader, std::vector<ObservationSelector> steps,
@@ -31,17 +37,21 @@ ActionFrameSource::ActionFrameSource(
 {
 }
 
+std::string ActionFrameSource::entryName(size_t entry) const
+{
+    return m_reader.file() + ": entry " + std::to_string(entry);
+}
+
 std::runtime_error ActionFrameSource::noOdometryError(const mrpt::obs::CActionCollection& actions,
                                                       size_t entry) const
 {
-    const std::string where = m_reader.file() + ": entry " + std::to_string(entry);
+    const std::string where = entryName(entry);
     // MRPT's getBestMovementEstimation() takes a CActionRobotMovement2D whose covariance has a
     // determinant below 1000: none with NaN, none that wide
     if (const auto move = actions.getActionByClass<mrpt::obs::CActionRobotMovement2D>()) {
         const auto mean = move->poseChange->getMeanVal();
         const auto cov = move->poseChange->getCovariance();
-        const bool finiteMean =
-            std::isfinite(mean.x()) && std::isfinite(mean.y()) && std::isfinite(mean.phi());
+        const bool finiteMean = isFinite(mean);
         if (!finiteMean || !cov.asEigen().allFinite())
             return std::runtime_error(where + " has odometry that is not finite (" +
                                       (finiteMean ? "covariance " + cov.inMatlabFormat()
@@ -74,8 +84,8 @@ std::string ActionFrameSource::secondSensor(std::optional<std::string>& first,
 {
     if (!first) first = obs.sensorLabel;
     if (obs.sensorLabel == *first) return {};
-    return m_reader.file() + ": entry " + std::to_string(entry) + ": " + shortClassName(obs) +
-           " of a second sensor, '" + obs.sensorLabel + "' (the first: '" + *first + "'): " + reads;
+    return entryName(entry) + ": " + shortClassName(obs) + " of a second sensor, '" +
+           obs.sensorLabel + "' (the first: '" + *first + "'): " + reads;
 }
 
 void ActionFrameSource::checkStepObservation(const mrpt::obs::CObservation& obs, size_t entry)
@@ -93,8 +103,7 @@ void ActionFrameSource::checkStepObservation(const mrpt::obs::CObservation& obs,
     obs.getSensorPose(pose);
     if (!(std::isfinite(pose.x()) && std::isfinite(pose.y()) && std::isfinite(pose.z()) &&
           pose.getRotationMatrix().asEigen().allFinite()))
-        throw std::runtime_error(m_reader.file() + ": entry " + std::to_string(entry) + ": " +
-                                 ObservationSelector::nameOf(obs) +
+        throw std::runtime_error(entryName(entry) + ": " + ObservationSelector::nameOf(obs) +
                                  " has a sensor pose on the robot that is not finite (" +
                                  pose.asString() + ")");
 }
@@ -258,11 +267,9 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
                                  "the run reads one robot's odometry (doc/your-own-data.md)");
             if (m_odometry_labels.empty() || it != m_odometry_labels.end()) {
                 const auto& pose = odo->odometry;
-                if (!(std::isfinite(pose.x()) && std::isfinite(pose.y()) &&
-                      std::isfinite(pose.phi())))
+                if (!isFinite(pose))
                     throw std::runtime_error(
-                        m_reader.file() + ": entry " + std::to_string(e.index) + ": " +
-                        ObservationSelector::nameOf(*odo) +
+                        entryName(e.index) + ": " + ObservationSelector::nameOf(*odo) +
                         " has an odometry pose that is not finite (" + pose.asString() + ")");
                 m_odometry[k] = odo->odometry;
                 m_odometry_entry[k] = e.index;

@@ -66,6 +66,8 @@ class ActionFrameSource {
     bool next(mrpt::obs::CActionCollection::Ptr& actions, mrpt::obs::CSensoryFrame::Ptr& frame);
 
   private:
+    /// "RAWLOG: entry N", for messages.
+    std::string entryName(size_t entry) const;
     /** Why MRPT finds no planar odometry in the action collection of rawlog entry `entry`: none,
      *  one that is not finite, or one too uncertain; names the rawlog and the entry. */
     std::runtime_error noOdometryError(const mrpt::obs::CActionCollection& actions,
