@@ -104,6 +104,40 @@ TEST_F(ViewSLAMApp, TemplateRunsOnBothFormatsWithoutLabels)
 }
 
 // The same seed gives byte-identical paths and maps.
+// A camera 0.4 m ahead of the robot's centre (the simulator's [CameraOnRobot] x), on the first
+// 120 frames of the two-loop path, which turn at a corner: the filter takes the camera's
+// position from the images' cameraPose and observes between camera centres; with the position
+// overridden to 0 (the camera taken at the centre) each turn moves the camera unmodelled.
+TEST_F(ViewSLAMApp, ACameraOffTheRobotsCentreIsModelled)
+{
+    const std::string data = out("offset/off");
+    const TCommandResult sim = mrpt_vslam::test::runCommand(
+        std::string(MRPT_VSLAM_BIN_DIR "/vslam-sim omni-views "
+                                       "--seed 1 --frames 120 -q --set "
+                                       "CameraOnRobot.x=0.4 --out ") +
+            data,
+        s_scratch->path() / "sim.log");
+    ASSERT_EQ(sim.exit_code, 0) << sim.out;
+    const auto ateOf = [&](const std::string& name, const std::string& extra) {
+        const TCommandResult r =
+            run(kConfig + " " + data + ".rawlog --seed 1 -q --out " + out(name) + extra);
+        EXPECT_EQ(r.exit_code, 0) << r.out;
+        return json(out(name) + "/metrics.json")["estimate"];
+    };
+    const auto modelled = ateOf("offset-modelled", "");
+    const auto ignored = ateOf("offset-ignored", " --set CameraOnRobot.x=0");
+    std::cout << "camera 0.4 m ahead: ATE " << modelled["ate_rmse_m"] << " m (max "
+              << modelled["ate_max_m"] << "), taken at the centre: " << ignored["ate_rmse_m"]
+              << " m (max " << ignored["ate_max_m"] << ")\n";
+    EXPECT_LT(modelled["ate_rmse_m"].get<double>(), 0.125);
+    EXPECT_LT(modelled["ate_max_m"].get<double>(), 0.2);
+    EXPECT_GT(ignored["ate_max_m"].get<double>(), 0.2);
+    const auto pose =
+        json(out("offset-modelled") + "/run.json")["results"]["camera_orientation_on_robot"];
+    EXPECT_EQ(pose["source"], "observations");
+    EXPECT_DOUBLE_EQ(pose["xy_m"][0].get<double>(), 0.4);
+}
+
 TEST_F(ViewSLAMApp, SameSeedSameResult)
 {
     for (const char* name : {"a", "b"})

@@ -257,21 +257,23 @@ void ViewSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     report.setCount("observations_attempted", attempted);
     report.setCount("observations_estimated", estimated);
     report.setCount("observations_accepted", accepted);
-    // which camera orientation the front-end used: the config's, or the images' own
+    // which camera pose the filter used: the config's, or the images' own
     const mrpt::poses::CPose3D rotation(
         mrpt::math::CMatrixDouble33(slam->extractor().cameraToRobot()), mrpt::math::TPoint3D());
+    const auto& position = slam->cameraPosition();
     const char* source = slam->cameraOnRobotConfigured() ? "config" : "observations";
     report.setResultJson(
         "camera_orientation_on_robot",
-        mrpt::format("{\"source\": \"%s\", \"yaw_pitch_roll_deg\": [%g, %g, %g]}", source,
-                     mrpt::RAD2DEG(rotation.yaw()), mrpt::RAD2DEG(rotation.pitch()),
-                     mrpt::RAD2DEG(rotation.roll())));
+        mrpt::format("{\"source\": \"%s\", \"yaw_pitch_roll_deg\": [%g, %g, %g], "
+                     "\"xy_m\": [%g, %g]}",
+                     source, mrpt::RAD2DEG(rotation.yaw()), mrpt::RAD2DEG(rotation.pitch()),
+                     mrpt::RAD2DEG(rotation.roll()), position.x, position.y));
     if (!args.quiet)
         std::printf(
-            "view-slam: camera orientation on the robot from the %s: yaw %g, pitch %g, "
+            "view-slam: camera pose on the robot from the %s: x %g, y %g m, yaw %g, pitch %g, "
             "roll %g deg\n",
-            slam->cameraOnRobotConfigured() ? "config ([CameraOnRobot])" : source,
-            mrpt::RAD2DEG(rotation.yaw()), mrpt::RAD2DEG(rotation.pitch()),
+            slam->cameraOnRobotConfigured() ? "config ([CameraOnRobot])" : source, position.x,
+            position.y, mrpt::RAD2DEG(rotation.yaw()), mrpt::RAD2DEG(rotation.pitch()),
             mrpt::RAD2DEG(rotation.roll()));
     report.setResult("mean_sqrt_trace_Pvv", sqrtTrace.mean());
     report.setResult("final_sqrt_trace_Pvv", std::sqrt(slam->ekf().robotCovariance().trace()));

@@ -94,14 +94,20 @@ std::unique_ptr<COmniViewSLAM> COmniViewSLAM::fromConfig(const mrpt::config::CCo
     options.loadFromConfigFile(cfg, "ViewSLAM");
     core::UnifiedSphereCamera camera;
     camera.loadFromConfigFile(cfg, "Camera");
-    // Only the rotation matters: the observation is a bearing and a relative heading.
+    // The rotation and the horizontal position: the height does not change a bearing between
+    // camera centres or a relative heading.
     bool configured = false;
-    const auto deg = [&](const char* key) {
+    const auto value = [&](const char* key) {
         if (!cfg.keyExists("CameraOnRobot", key)) return 0.0;
         configured = true;
-        return mrpt::DEG2RAD(cfg.read_double("CameraOnRobot", key, 0));
+        const double v = cfg.read_double("CameraOnRobot", key, 0);
+        if (!std::isfinite(v))
+            throw std::invalid_argument(std::string("[CameraOnRobot] ") + key + ": not finite");
+        return v;
     };
-    const double yaw = deg("yaw_deg"), pitch = deg("pitch_deg"), roll = deg("roll_deg");
+    const double x = value("x"), y = value("y");
+    const double yaw = mrpt::DEG2RAD(value("yaw_deg")), pitch = mrpt::DEG2RAD(value("pitch_deg")),
+                 roll = mrpt::DEG2RAD(value("roll_deg"));
     const Eigen::Matrix3d cameraToRobot =
         mrpt::poses::CPose3D(0, 0, 0, yaw, pitch, roll).getRotationMatrix().asEigen();
     OmniFeatureExtractor::TOptions features = filterFeatureOptions();
@@ -113,6 +119,8 @@ std::unique_ptr<COmniViewSLAM> COmniViewSLAM::fromConfig(const mrpt::config::CCo
     auto slam = std::make_unique<COmniViewSLAM>(
         options, OmniFeatureExtractor(camera, cameraToRobot, features), observer, policy, seed);
     slam->m_camera_on_robot_configured = configured;
+    slam->m_camera_position = {x, y};
+    slam->m_ekf.setCameraPosition(slam->m_camera_position);
     return slam;
 }
 
@@ -137,11 +145,14 @@ void COmniViewSLAM::useCameraPoseOf(const mrpt::poses::CPose3D& camera_on_robot)
 {
     if (m_camera_on_robot_configured) return;
     m_extractor.setCameraToRobot(camera_on_robot.getRotationMatrix().asEigen());
+    m_camera_position = {camera_on_robot.x(), camera_on_robot.y()};
+    m_ekf.setCameraPosition(m_camera_position);
 }
 
 void COmniViewSLAM::reset(const mrpt::math::TPose2D& start)
 {
     m_ekf = ViewMapEKF(start, initialCovariance(m_options));
+    m_ekf.setCameraPosition(m_camera_position);
     m_map.clear();
     m_policy = ViewInitializationPolicy::create(m_policy_options);
     m_rng.randomize(m_seed);

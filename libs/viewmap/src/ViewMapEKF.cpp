@@ -52,6 +52,13 @@ ViewMapEKF::ViewMapEKF(const TPose2D& start, const Eigen::Matrix3d& P0)
     requireCovariance(P0, false, "ViewMapEKF: P0");
 }
 
+void ViewMapEKF::setCameraPosition(const mrpt::math::TPoint2D& camera_in_robot)
+{
+    if (!std::isfinite(camera_in_robot.x) || !std::isfinite(camera_in_robot.y))
+        throw std::invalid_argument("ViewMapEKF: camera position on the robot is not finite");
+    m_camera = camera_in_robot;
+}
+
 size_t ViewMapEKF::viewCount() const { return size_t(m_x.size() - 3) / 3; }
 
 TPose2D ViewMapEKF::robotPose() const { return {m_x(0), m_x(1), m_x(2)}; }
@@ -142,8 +149,10 @@ ViewMapEKF::TObservationTerms ViewMapEKF::observationTerms(size_t view) const
     // robot's and the view's columns of P, and H P Hᵀ only their rows of P Hᵀ.
     const Eigen::Index l = viewOffset(view);
     const TPose2D robot = robotPose(), landmark = viewPose(view);
-    TObservationTerms o{
-        predictViewObservation(robot, landmark), viewObservationJacobians(robot, landmark), {}, {}};
+    TObservationTerms o{predictViewObservation(robot, landmark, m_camera),
+                        viewObservationJacobians(robot, landmark, m_camera),
+                        {},
+                        {}};
     o.PHt = m_P.leftCols<3>() * o.J.H_v.transpose() + m_P.middleCols<3>(l) * o.J.H_l.transpose();
     o.HPHt = o.J.H_v * o.PHt.topRows<3>() + o.J.H_l * o.PHt.middleRows<3>(l);
     return o;
@@ -179,7 +188,7 @@ Eigen::Matrix3d ViewMapEKF::robotCovarianceAfterUpdates(
     Eigen::MatrixXd S = Eigen::MatrixXd::Zero(2 * m, 2 * m);
     for (Eigen::Index k = 0; k < m; k++) {
         const auto& o = observations[size_t(k)];
-        const auto J = viewObservationJacobians(robotPose(), viewPose(o.view));
+        const auto J = viewObservationJacobians(robotPose(), viewPose(o.view), m_camera);
         H.block<2, 3>(2 * k, 0) = J.H_v;
         H.block<2, 3>(2 * k, 3 + 3 * k) = J.H_l;
         S.block<2, 2>(2 * k, 2 * k) = o.R;

@@ -31,17 +31,40 @@ TEST(ViewObservation, KnownValues)
     EXPECT_NEAR(z.phi, std::atan2(0.1, -1) + 3 - 2 * M_PI, 1e-12);
 }
 
+// A camera ahead of the robot's centre: the bearing is between the camera centres.
+TEST(ViewObservation, BearingBetweenCameraCentres)
+{
+    // Robot at the origin facing +x, view at (0, 2) facing +y, camera 1 m ahead: the camera
+    // centres are (1, 0) and (0, 3).
+    const auto z = predictViewObservation(TPose2D(0, 0, 0), TPose2D(0, 2, M_PI / 2), {1, 0});
+    EXPECT_NEAR(z.phi, std::atan2(3, -1), 1e-12);
+    EXPECT_NEAR(z.beta, M_PI / 2, 1e-15);
+    // the same poses seen from the robots' centres
+    EXPECT_NEAR(predictViewObservation(TPose2D(0, 0, 0), TPose2D(0, 2, M_PI / 2)).phi, M_PI / 2,
+                1e-15);
+    // a turn on the spot moves the camera: the view of a robot turned in place is no longer
+    // undefined
+    EXPECT_NEAR(
+        angleError(predictViewObservation(TPose2D(0, 0, 0), TPose2D(0, 0, M_PI), {0.5, 0}).phi,
+                   M_PI),
+        0, 1e-12);
+}
+
 TEST(ViewObservation, JacobiansMatchCentralDifferences)
 {
     mrpt::random::CRandomGenerator rng(8);
     const double h = 1e-6;
     for (int trial = 0; trial < 500; trial++) {
+        // half of the trials with the camera off the robot's centre
+        const mrpt::math::TPoint2D camera =
+            trial % 2 ? mrpt::math::TPoint2D(rng.drawUniform(-0.5, 0.5), rng.drawUniform(-0.5, 0.5))
+                      : mrpt::math::TPoint2D(0, 0);
         const TPose2D robot(rng.drawUniform(-5.0, 5.0), rng.drawUniform(-5.0, 5.0),
                             rng.drawUniform(-M_PI, M_PI));
         const double d = rng.drawUniform(0.2, 4.0), a = rng.drawUniform(-M_PI, M_PI);
         const TPose2D view(robot.x + d * std::cos(a), robot.y + d * std::sin(a),
                            rng.drawUniform(-M_PI, M_PI));
-        const auto J = viewObservationJacobians(robot, view);
+        const auto J = viewObservationJacobians(robot, view, camera);
         for (int i = 0; i < 3; i++) {
             for (bool wrt_robot : {true, false}) {
                 TPose2D plus_v = robot, minus_v = robot, plus_l = view, minus_l = view;
@@ -49,8 +72,8 @@ TEST(ViewObservation, JacobiansMatchCentralDifferences)
                 TPose2D& minus = wrt_robot ? minus_v : minus_l;
                 plus[i] += h;
                 minus[i] -= h;
-                const auto zp = predictViewObservation(plus_v, plus_l);
-                const auto zm = predictViewObservation(minus_v, minus_l);
+                const auto zp = predictViewObservation(plus_v, plus_l, camera);
+                const auto zm = predictViewObservation(minus_v, minus_l, camera);
                 const double dphi = angleError(zp.phi, zm.phi) / (2 * h);
                 const double dbeta = angleError(zp.beta, zm.beta) / (2 * h);
                 const auto& H = wrt_robot ? J.H_v : J.H_l;

@@ -86,9 +86,9 @@ class COmniViewSLAM {
                   const ViewInitializationPolicy::TOptions& policy, uint32_t seed);
 
     /** The filter of an `.ini` (doc/view-slam.md, "Parameters"): [ViewSLAM] (TOptions), [Camera]
-     *  (core::UnifiedSphereCamera), [CameraOnRobot] (yaw_deg, pitch_deg, roll_deg: when any is
-     *  given, the camera's orientation for every image; else each image's own, see
-     *  useCameraPoseOf()), [Features], [ViewObserver] and [ViewInitialization]; keys absent
+     *  (core::UnifiedSphereCamera), [CameraOnRobot] (x, y [m], yaw_deg, pitch_deg, roll_deg: when
+     *  any is given, the camera's pose for every image, absent ones 0; else each image's own,
+     *  see useCameraPoseOf()), [Features], [ViewObserver] and [ViewInitialization]; keys absent
      *  from [Features] and [ViewObserver] take the filter's values (filterFeatureOptions(),
      *  filterObserverOptions()).
      *  \throw std::invalid_argument naming the section and key of a bad value. */
@@ -115,12 +115,16 @@ class COmniViewSLAM {
                             const mrpt::img::CImage* image, double timestamp,
                             const std::string& image_file = {});
 
-    /** The camera's orientation on the robot for the next images: that of `camera_on_robot`
-     *  (an image's own `cameraPose`) unless the config's [CameraOnRobot] set it. Only the
-     *  rotation matters: the observations are a bearing and a relative heading. */
+    /** The camera's pose on the robot for the next images: that of `camera_on_robot` (an
+     *  image's own `cameraPose`) unless the config's [CameraOnRobot] set it. Its rotation
+     *  turns the image's bearings into the robot frame, its horizontal position is where the
+     *  observations are made from (ViewMapEKF::setCameraPosition()); its height plays no
+     *  part. */
     void useCameraPoseOf(const mrpt::poses::CPose3D& camera_on_robot);
-    /// Whether the config's [CameraOnRobot] sets the camera's orientation.
+    /// Whether the config's [CameraOnRobot] sets the camera's pose.
     bool cameraOnRobotConfigured() const { return m_camera_on_robot_configured; }
+    /// [m] The camera's horizontal position on the robot in use.
+    const mrpt::math::TPoint2D& cameraPosition() const { return m_camera_position; }
     const OmniFeatureExtractor& extractor() const { return m_extractor; }
     /// Threads the feature extraction runs on (0: every core; default 1); the results do not
     /// depend on it.
@@ -146,6 +150,7 @@ class COmniViewSLAM {
     CViewMap m_map;
     double m_gate = 0;
     bool m_camera_on_robot_configured = false;
+    mrpt::math::TPoint2D m_camera_position{0, 0};  ///< [m] on the robot
 };
 
 }  // namespace mrpt_vslam::viewmap

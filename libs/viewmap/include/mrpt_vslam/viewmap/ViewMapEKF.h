@@ -38,6 +38,12 @@ class ViewMapEKF {
     explicit ViewMapEKF(const mrpt::math::TPose2D& start,
                         const Eigen::Matrix3d& P0 = Eigen::Matrix3d::Zero());
 
+    /** The camera's position on the robot, t in the robot frame [m] (default 0): the views are
+     *  the robot's poses, the observations are between the camera centres (ViewObservation.h).
+     *  \throw std::invalid_argument for a non-finite t. */
+    void setCameraPosition(const mrpt::math::TPoint2D& camera_in_robot);
+    const mrpt::math::TPoint2D& cameraPosition() const { return m_camera; }
+
     size_t viewCount() const;
     mrpt::math::TPose2D robotPose() const;
     /// \throw std::invalid_argument if i ≥ viewCount().
@@ -118,8 +124,9 @@ class ViewMapEKF {
     /// Offset of view i's pose in the state; throws std::invalid_argument if i is out of range.
     Eigen::Index viewOffset(size_t i) const;
 
-    Eigen::VectorXd m_x;  ///< [x_v, x_l1, …, x_lN]
-    Eigen::MatrixXd m_P;  ///< covariance of m_x
+    Eigen::VectorXd m_x;                  ///< [x_v, x_l1, …, x_lN]
+    Eigen::MatrixXd m_P;                  ///< covariance of m_x
+    mrpt::math::TPoint2D m_camera{0, 0};  ///< the camera's position on the robot
 };
 
 }  // namespace mrpt_vslam::viewmap
