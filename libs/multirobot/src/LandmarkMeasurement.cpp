@@ -114,6 +114,12 @@ std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
                        configKeys("_std_*"));
         }
         const bool spatial = S(2, 2) > 0;
+        if (obs.validCovariances) {
+            const bool positive = spatial ? S.llt().info() == Eigen::Success
+                                          : S.topLeftCorner<2, 2>().llt().info() == Eigen::Success;
+            if (!positive || !S.isApprox(S.transpose()))
+                failOn("has a covariance that is not symmetric positive definite");
+        }
         if (!spatial && s.pitch != 0)
             failOn(std::string("has a non-zero pitch, but no pitch noise (") +
                    (obs.validCovariances ? "covariance(2, 2) = 0" : "sensor_std_pitch = 0") +

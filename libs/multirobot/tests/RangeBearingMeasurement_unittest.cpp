@@ -164,6 +164,16 @@ TEST(RangeBearingMeasurement, PerMeasurementCovariancesAreUsed)
                   "(variances of range, bearing, pitch: 0.01, 0, 0): set it in the "
                   "observations, or S.rb_std_* in the config");
     }
+    obs.sensedData[1].covariance(1, 1) = 0.0009;
+    obs.sensedData[1].covariance(0, 1) = obs.sensedData[1].covariance(1, 0) = 0.01;  // |ρ| > 1
+    try {
+        measurementsFromBearingRange(obs, TRangeBearingNoise());
+        FAIL() << "accepted a covariance that is not positive definite";
+    } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "R1_RB: measurement of landmark 2 has a covariance that is not symmetric "
+                  "positive definite");
+    }
 }
 
 // A 3D landmark (pitch measured, MRPT's convention: positive downwards): the point and the
