@@ -19,9 +19,8 @@ int main(int argc, char** argv)
             "robot's odometry and landmark readings (CObservationBearingRange, "
             "CObservationVisualLandmarks or CObservationStereoImages; any label unless the config "
             "names one), or a team's, labelled <ROBOT>_ODOM and <ROBOT>_RB, <ROBOT>_LANDMARKS or "
-            "<ROBOT>_STEREO; writes "
-            "the run folder described in doc/multirobot.md. With --listen, the robots stream "
-            "their readings live (vslam-robot-node, doc/team-online.md).",
+            "<ROBOT>_STEREO; writes the run folder described in doc/multirobot.md. With --listen, "
+            "the robots stream their readings live (vslam-robot-node, doc/team-online.md).",
             true);
         if (args.request != core::AppArguments::Request::Run) {
             std::cout << args.message;

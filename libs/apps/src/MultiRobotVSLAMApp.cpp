@@ -377,7 +377,7 @@ std::vector<core::ObservationSelector> MultiRobotVSLAMApp::Impl::stepObservation
         // one stereo pair per robot (its calibration); landmark readings of several sensors
         // are all read
         selectors.push_back(ObservationSelector::ofOneSensor<mrpt::obs::CObservationStereoImages>(
-            o.inputLabel(k, "_STEREO"), std::string("[") + kAppSection + "] sensor_label"));
+            o.inputLabel(k, "_STEREO"), ownKey("sensor_label")));
     }
     return selectors;
 }

@@ -152,9 +152,9 @@ std::vector<core::ObservationSelector> OmniFastSLAMApp::Impl::stepObservations()
     using core::ObservationSelector;
     // one camera: its model, and the bearings of one frame (measurementsFromFrame)
     return {ObservationSelector::ofOneSensor<mrpt::obs::CObservationBearingRange>(
-                filterOptions.bearings_label, std::string("[") + kAppSection + "] bearings_label"),
-            ObservationSelector::ofOneSensor<mrpt::obs::CObservationImage>(
-                imageLabel, std::string("[") + kAppSection + "] image_label")};
+                filterOptions.bearings_label, ownKey("bearings_label")),
+            ObservationSelector::ofOneSensor<mrpt::obs::CObservationImage>(imageLabel,
+                                                                           ownKey("image_label"))};
 }
 
 std::vector<std::string> OmniFastSLAMApp::Impl::odometryLabels() const

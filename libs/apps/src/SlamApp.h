@@ -70,6 +70,8 @@ class SlamApp {
 
     /// A config problem: "<config file>: <what>".
     core::UsageError usageError(const std::string& what) const;
+    /// A key of the app's section as messages name it: "[SECTION] key".
+    std::string ownKey(const std::string& key) const { return "[" + m_section + "] " + key; }
     /** A config problem from an option loader's exception, as one line: the value that did not
      *  fit its key (CheckedConfigFile::valueError()) if that was the cause, else its message. */
     core::UsageError configError(const std::exception& e) const;
@@ -85,8 +87,7 @@ class SlamApp {
         std::string names;
         for (size_t i = 0; i < choices.size(); i++)
             names += (i == 0 ? "" : i + 1 < choices.size() ? ", " : " or ") + choices[i].first;
-        throw usageError("[" + m_section + "] " + key + " must be " + names + ", not '" + given +
-                         "'");
+        throw usageError(ownKey(key) + " must be " + names + ", not '" + given + "'");
     }
 
     /** For endSteps() when the rawlog gave no step: "<rawlog>: no frames with odometry and

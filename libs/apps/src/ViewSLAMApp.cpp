@@ -150,7 +150,7 @@ void ViewSLAMApp::Impl::startRun(const core::OutputDirectory& out)
 std::vector<core::ObservationSelector> ViewSLAMApp::Impl::stepObservations() const
 {
     return {core::ObservationSelector::ofOneSensor<mrpt::obs::CObservationImage>(
-        imageLabel, std::string("[") + kAppSection + "] image_label")};
+        imageLabel, ownKey("image_label"))};
 }
 
 void ViewSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,

@@ -10,9 +10,9 @@
 namespace mrpt_vslam::apps {
 
 /** The `view-slam` driver: reads a rawlog of odometry (actions or CObservationOdometry) with
- *  omnidirectional images (any label unless the config names one), runs COmniViewSLAM and writes
- * the run folder (doc/data-formats.md, "Run outputs") plus the step and observation tables of
- * doc/view-slam.md.
+ *  omnidirectional images (any label unless the config names one), runs COmniViewSLAM and
+ *  writes the run folder (doc/data-formats.md, "Run outputs") plus the step and observation
+ *  tables of doc/view-slam.md.
  *
  *  Steps of run(): load the config, open the rawlog and the ground truth, then per frame:
  *  filter step → tables → progress; at the end save paths, map, scene, run.json and
