@@ -2,8 +2,10 @@
 #include <mrpt/core/format.h>
 #include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/poses/CPose2DInterpolator.h>
 #include <mrpt/poses/CPose3D.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
+#include <mrpt/system/datetime.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/UsageError.h>
 
@@ -19,6 +21,22 @@ bool isFinite(const mrpt::poses::CPose2D& p)
 {
     return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.phi());
 }
+
+/// The odometry at `t`, between the readings `p0` at `t0` and `p1` at `t1` (t0 < t <= t1):
+/// position and heading in proportion to the time (MRPT's linear interpolation, shortest turn).
+mrpt::poses::CPose2D interpolate(const mrpt::poses::CPose2D& p0, mrpt::Clock::time_point t0,
+                                 const mrpt::poses::CPose2D& p1, mrpt::Clock::time_point t1,
+                                 mrpt::Clock::time_point t)
+{
+    mrpt::poses::CPose2DInterpolator path;
+    path.setInterpolationMethod(mrpt::poses::imLinearSlerp);
+    path.insert(t0, p0);
+    path.insert(t1, p1);
+    mrpt::poses::CPose2D at;
+    bool valid = false;
+    path.interpolate(t, at, valid);
+    return valid ? at : p1;
+}
 }  // namespace
 
 ActionFrameSource::ActionFrameSource(
@@ -32,7 +50,6 @@ ActionFrameSource::ActionFrameSource(
       m_odometry(std::max<size_t>(1, m_odometry_labels.size())),
       m_odometry_at_last_step(m_odometry.size()),
       m_odometry_since_last_step(m_odometry.size(), false),
-      m_odometry_entry(m_odometry.size(), 0),
       m_step_sensors(m_steps.size())
 {
 }
@@ -151,29 +168,81 @@ bool ActionFrameSource::haveOdometry() const
                        [](const auto& o) { return o.has_value(); });
 }
 
-void ActionFrameSource::emitPending(mrpt::obs::CActionCollection::Ptr& actions,
-                                    mrpt::obs::CSensoryFrame::Ptr& frame)
+void ActionFrameSource::closePending()
+{
+    TClosedFrame closed;
+    closed.frame = std::move(m_pending);
+    closed.time = m_pending_time;
+    closed.odometry.resize(m_odometry.size());
+    closed.waiting.assign(m_odometry.size(), false);
+    for (size_t k = 0; k < m_odometry.size(); k++) {
+        if (m_stand_still_without_odometry) {  // the latest reading since the last step, or none
+            if (m_odometry_since_last_step[k]) closed.odometry[k] = m_odometry[k];
+            m_odometry_since_last_step[k] = false;
+            continue;
+        }
+        const auto& latest = *m_odometry[k];  // every robot has one (haveOdometry())
+        closed.odometry[k] = latest;
+        closed.waiting[k] = closed.time != INVALID_TIMESTAMP && latest.time != INVALID_TIMESTAMP &&
+                            latest.time < closed.time;
+    }
+    m_closed.push_back(std::move(closed));
+}
+
+void ActionFrameSource::resolveWaiting(size_t k, const TOdometryReading& reading)
+{
+    if (reading.time == INVALID_TIMESTAMP) return;
+    for (auto& closed : m_closed) {
+        if (!closed.waiting[k]) continue;
+        auto& before = *closed.odometry[k];
+        if (reading.time < closed.time) {
+            before = reading;
+            continue;
+        }
+        before = {interpolate(before.pose, before.time, reading.pose, reading.time, closed.time),
+                  closed.time, reading.entry};
+        closed.waiting[k] = false;
+    }
+}
+
+void ActionFrameSource::stopWaiting(std::optional<mrpt::Clock::time_point> now)
+{
+    for (auto& closed : m_closed)
+        for (size_t k = 0; k < closed.waiting.size(); k++)
+            if (closed.waiting[k] &&
+                (!now || mrpt::system::timeDifference(closed.time, *now) > kOdometryWait))
+                closed.waiting[k] = false;
+}
+
+bool ActionFrameSource::frontReady() const
+{
+    return !m_closed.empty() &&
+           std::none_of(m_closed.front().waiting.begin(), m_closed.front().waiting.end(),
+                        [](bool waiting) { return waiting; });
+}
+
+void ActionFrameSource::emitFront(mrpt::obs::CActionCollection::Ptr& actions,
+                                  mrpt::obs::CSensoryFrame::Ptr& frame)
 {
     if (!m_second_odometry.empty()) throw std::runtime_error(m_second_odometry);
+    const TClosedFrame closed = std::move(m_closed.front());
+    m_closed.pop_front();
     actions = mrpt::obs::CActionCollection::Create();
-    for (size_t k = 0; k < m_odometry.size(); k++) {
+    for (size_t k = 0; k < closed.odometry.size(); k++) {
         mrpt::obs::CActionRobotMovement2D move;
-        if (m_stand_still_without_odometry && !m_odometry_since_last_step[k]) {
+        if (const auto& odometry = closed.odometry[k]; !odometry) {
             move = standingMove();
         } else {
-            move.computeFromOdometry(*m_odometry[k] - *m_odometry_at_last_step[k], m_motion_model);
-            m_odometry_at_last_step[k] = m_odometry[k];
+            move.computeFromOdometry(odometry->pose - *m_odometry_at_last_step[k], m_motion_model);
+            m_odometry_at_last_step[k] = odometry->pose;
             mrpt::obs::CActionCollection alone;
             alone.insert(move);
-            if (!alone.getBestMovementEstimation())
-                throw noOdometryError(alone, m_odometry_entry[k]);
+            if (!alone.getBestMovementEstimation()) throw noOdometryError(alone, odometry->entry);
         }
-        move.timestamp = m_pending_time;
-        m_odometry_since_last_step[k] = false;
+        move.timestamp = closed.time;
         actions->insert(move);
     }
-    frame = m_pending;
-    m_pending.reset();
+    frame = closed.frame;
 }
 
 mrpt::obs::CActionRobotMovement2D ActionFrameSource::standingMove()
@@ -218,6 +287,10 @@ mrpt::obs::CActionCollection::Ptr ActionFrameSource::afterCarried(
 bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
                              mrpt::obs::CSensoryFrame::Ptr& frame)
 {
+    if (frontReady()) {
+        emitFront(actions, frame);
+        return true;
+    }
     for (TRawlogEntry e; m_reader.next(e);) {
         if (e.actions || e.observations) {  // format #1
             // an empty frame holds nothing to step on
@@ -245,56 +318,68 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
             return true;
         }
         if (e.time_barrier) {  // nothing more at the pending frame's time
-            if (pendingIsStep() && m_pending_time <= e.timestamp) {
-                emitPending(actions, frame);
-                return true;
+            if (pendingIsStep() && m_pending_time <= e.timestamp) closePending();
+        } else if (e.observation) {
+            const auto time = e.observation->timestamp;
+            if (time != INVALID_TIMESTAMP) stopWaiting(time);
+            // format #2: a new timestamp closes the pending frame
+            if (m_pending && time != m_pending_time) {
+                if (pendingIsStep())
+                    closePending();
+                else
+                    m_pending.reset();
             }
-            continue;
+            if (const auto odo =
+                    std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(e.observation))
+                readOdometry(*odo, e.index);
+            else
+                addToPending(e.observation, e.index);
         }
-        if (!e.observation) continue;
-        // format #2: a new timestamp closes the pending frame
-        const bool ready = pendingIsStep() && e.observation->timestamp != m_pending_time;
-        if (m_pending && e.observation->timestamp != m_pending_time && !ready) m_pending.reset();
-        if (ready) emitPending(actions, frame);
-        if (const auto odo =
-                std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(e.observation)) {
-            const auto it =
-                std::find(m_odometry_labels.begin(), m_odometry_labels.end(), odo->sensorLabel);
-            const size_t k = static_cast<size_t>(it - m_odometry_labels.begin());  // 0 if none
-            if (m_odometry_labels.empty() && m_second_odometry.empty())
-                m_second_odometry =
-                    secondSensor(m_odometry_sensor, *odo, e.index,
-                                 "the run reads one robot's odometry (doc/your-own-data.md)");
-            if (m_odometry_labels.empty() || it != m_odometry_labels.end()) {
-                const auto& pose = odo->odometry;
-                if (!isFinite(pose))
-                    throw std::runtime_error(
-                        entryName(e.index) + ": " + ObservationSelector::nameOf(*odo) +
-                        " has an odometry pose that is not finite (" + pose.asString() + ")");
-                m_odometry[k] = odo->odometry;
-                m_odometry_entry[k] = e.index;
-                m_odometry_since_last_step[k] = true;
-                if (!m_odometry_at_last_step[k]) m_odometry_at_last_step[k] = odo->odometry;
-            }
-        } else {
-            if (!m_pending) {
-                m_pending = mrpt::obs::CSensoryFrame::Create();
-                m_pending_time = e.observation->timestamp;
-                m_pending_is_step = false;
-            }
-            m_pending->insert(e.observation);
-            if (makesStep(*e.observation)) {
-                checkStepObservation(*e.observation, e.index);
-                m_pending_is_step = true;
-            }
+        if (frontReady()) {
+            emitFront(actions, frame);
+            return true;
         }
-        if (ready) return true;
     }
-    if (pendingIsStep()) {
-        emitPending(actions, frame);
-        return true;
+    if (pendingIsStep()) closePending();
+    stopWaiting(std::nullopt);
+    if (!frontReady()) return false;
+    emitFront(actions, frame);
+    return true;
+}
+
+void ActionFrameSource::readOdometry(const mrpt::obs::CObservationOdometry& odo, size_t entry)
+{
+    const auto it = std::find(m_odometry_labels.begin(), m_odometry_labels.end(), odo.sensorLabel);
+    const size_t k = static_cast<size_t>(it - m_odometry_labels.begin());  // 0 if none
+    if (m_odometry_labels.empty() && m_second_odometry.empty())
+        m_second_odometry =
+            secondSensor(m_odometry_sensor, odo, entry,
+                         "the run reads one robot's odometry (doc/your-own-data.md)");
+    if (!m_odometry_labels.empty() && it == m_odometry_labels.end()) return;
+    const auto& pose = odo.odometry;
+    if (!isFinite(pose))
+        throw std::runtime_error(entryName(entry) + ": " + ObservationSelector::nameOf(odo) +
+                                 " has an odometry pose that is not finite (" + pose.asString() +
+                                 ")");
+    const TOdometryReading reading{pose, odo.timestamp, entry};
+    resolveWaiting(k, reading);
+    m_odometry[k] = reading;
+    m_odometry_since_last_step[k] = true;
+    if (!m_odometry_at_last_step[k]) m_odometry_at_last_step[k] = pose;
+}
+
+void ActionFrameSource::addToPending(const mrpt::obs::CObservation::Ptr& obs, size_t entry)
+{
+    if (!m_pending) {
+        m_pending = mrpt::obs::CSensoryFrame::Create();
+        m_pending_time = obs->timestamp;
+        m_pending_is_step = false;
     }
-    return false;
+    m_pending->insert(obs);
+    if (makesStep(*obs)) {
+        checkStepObservation(*obs, entry);
+        m_pending_is_step = true;
+    }
 }
 
 }  // namespace mrpt_vslam::core

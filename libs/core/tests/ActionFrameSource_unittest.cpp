@@ -13,6 +13,7 @@
 #include <mrpt_vslam/core/RawlogReader.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -293,10 +294,10 @@ TEST(ActionFrameSource, OdometryMRPTPassesOverIsNamed)
 }
 
 // Format #2 with a robot whose odometry comes late and misses a step: by default the steps wait
-// for every robot's first odometry, and a robot without a new reading moves by a zero increment
-// with the motion model's noise; with standStillWithoutOdometry() the others go on and a robot
-// without a reading since the last step stands exactly still, its increment counted from its
-// last reading.
+// for every robot's first odometry, and a robot without a reading at a step's time has its
+// odometry interpolated between the readings around it; with standStillWithoutOdometry() the
+// others go on and a robot without a reading since the last step stands exactly still, its
+// increment counted from its last reading.
 TEST(ActionFrameSource, ARobotWithoutOdometryStandsStillWhenAsked)
 {
     const auto waiting = teamSteps(false);
@@ -304,8 +305,8 @@ TEST(ActionFrameSource, ARobotWithoutOdometryStandsStillWhenAsked)
     EXPECT_NEAR(waiting[0].first.x, 1.0, 1e-12);  // R1 from t = 1
     EXPECT_NEAR(waiting[0].second.x, 0.0, 1e-12);
     EXPECT_NEAR(waiting[1].second.x, 1.0, 1e-12);
-    EXPECT_NEAR(waiting[2].second.x, 0.0, 1e-12);  // t = 5: no reading, a noisy zero
-    EXPECT_NEAR(waiting[3].second.x, 2.0, 1e-12);  // t = 6: from t = 4
+    EXPECT_NEAR(waiting[2].second.x, 1.0, 1e-12);  // t = 5: halfway from t = 4 to t = 6
+    EXPECT_NEAR(waiting[3].second.x, 1.0, 1e-12);
     for (const auto& [r1, r2] : waiting) EXPECT_FALSE(r1.still || r2.still);
 
     const auto standing = teamSteps(true);
@@ -319,6 +320,59 @@ TEST(ActionFrameSource, ARobotWithoutOdometryStandsStillWhenAsked)
         EXPECT_NEAR(standing[i].second.x, r2_x[i], 1e-12) << "step " << i;
         EXPECT_EQ(standing[i].second.still, r2_still[i]) << "step " << i;
     }
+}
+
+// Format #2 with odometry readings at other times than the frames' (sensors of their own
+// clocks): a frame takes the odometry interpolated at its time, several frames may wait for the
+// same reading, and past the last reading or a gap longer than kOdometryWait a frame takes the
+// latest reading before it.
+TEST(ActionFrameSource, AFramesOdometryIsThatOfItsTime)
+{
+    const auto stepPoses = [](const std::vector<std::pair<double, mrpt::poses::CPose2D>>& readings,
+                              const std::vector<double>& frames) {
+        std::vector<std::pair<double, CObservation::Ptr>> timed;
+        for (const auto& [t, pose] : readings) {
+            auto o = std::dynamic_pointer_cast<CObservationOdometry>(odometry("", t, 0));
+            o->odometry = pose;
+            timed.emplace_back(t, o);
+        }
+        for (double t : frames) timed.emplace_back(t, bearings("", t));
+        std::stable_sort(timed.begin(), timed.end(),
+                         [](const auto& a, const auto& b) { return a.first < b.first; });
+        ObservationList list;
+        for (const auto& [t, o] : timed) list.observations.push_back(o);
+        ActionFrameSource source(list, {ObservationSelector::of<CObservationBearingRange>("")},
+                                 CActionRobotMovement2D::TMotionModelOptions());
+        std::vector<mrpt::poses::CPose2D> poses;
+        mrpt::poses::CPose2D pose = readings.front().second;
+        CActionCollection::Ptr acts;
+        CSensoryFrame::Ptr sf;
+        while (source.next(acts, sf)) {
+            pose = pose + acts->getBestMovementEstimation()->poseChange->getMeanVal();
+            poses.push_back(pose);
+        }
+        return poses;
+    };
+    const auto expectPoses = [](const std::vector<mrpt::poses::CPose2D>& poses,
+                                const std::vector<mrpt::poses::CPose2D>& expected) {
+        ASSERT_EQ(poses.size(), expected.size());
+        for (size_t i = 0; i < poses.size(); i++)
+            EXPECT_NEAR((poses[i] - expected[i]).norm() + std::abs((poses[i] - expected[i]).phi()),
+                        0, 1e-9)
+                << "step " << i << ": " << poses[i] << ", expected " << expected[i];
+    };
+    using P = mrpt::poses::CPose2D;
+    // 1 m/s along x, turning by 0.2 rad in the first second; frames at 0.25 and 0.5 wait for the
+    // reading at 1; the one at 2 has its own; the one at 3.5 is after the last reading
+    expectPoses(
+        stepPoses({{0, P(0, 0, 0)}, {1, P(1, 0, 0.2)}, {2, P(2, 0, 0.2)}, {3, P(3, 0, 0.2)}},
+                  {0, 0.25, 0.5, 1.5, 2, 3.5}),
+        {P(0, 0, 0), P(0.25, 0, 0.05), P(0.5, 0, 0.1), P(1.5, 0, 0.2), P(2, 0, 0.2), P(3, 0, 0.2)});
+    // a gap of 5 s in the odometry: the frame at 0.5 stops waiting at the frame at 2, which
+    // stops waiting at the reading at 5 (more than kOdometryWait after it)
+    ASSERT_EQ(ActionFrameSource::kOdometryWait, 1.0);
+    expectPoses(stepPoses({{0, P(0, 0, 0)}, {5, P(5, 0, 0)}}, {0.5, 2, 4.5}),
+                {P(0, 0, 0), P(0, 0, 0), P(4.5, 0, 0)});
 }
 
 // A live source's time barrier closes the frame at once; without it the frame waits for the

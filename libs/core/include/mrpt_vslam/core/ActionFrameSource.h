@@ -3,11 +3,13 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/RawlogEntrySource.h>
 
+#include <deque>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -27,7 +29,11 @@ namespace mrpt_vslam::core {
  *    group of observations with the same timestamp that holds one matching `steps` becomes a
  *    frame, with a `CActionRobotMovement2D` built from the odometry increment since the previous
  *    frame and `motion_model` (a live source's time barrier closes the frame as a new
- *    timestamp does). Frames before every robot's first odometry reading are dropped
+ *    timestamp does). The odometry of a frame is that of its time: a reading of the same time,
+ *    else interpolated between the readings before and after it (the frame waits for the one
+ *    after, up to kOdometryWait of the rawlog's time; then, at the end of the data, or for
+ *    readings without a timestamp, the latest reading stands for it).
+ *    Frames before every robot's first odometry reading are dropped
  *    (with standStillWithoutOdometry(): only those before any robot's).
  *
  *  Usage: `ActionFrameSource src(reader, {ObservationSelector::of<CObservationImage>("")},
@@ -35,6 +41,9 @@ namespace mrpt_vslam::core {
  */
 class ActionFrameSource {
   public:
+    /// How long a format-#2 frame waits for the odometry reading after its time [s].
+    static constexpr double kOdometryWait = 1.0;
+
     ActionFrameSource(RawlogEntrySource& reader, std::vector<ObservationSelector> steps,
                       const mrpt::obs::CActionRobotMovement2D::TMotionModelOptions& motion_model,
                       std::vector<std::string> odometry_labels = {});
@@ -48,7 +57,8 @@ class ActionFrameSource {
     /** Format #2, a live team: a robot with no odometry reading since the last step (one that
      *  joins late, has gone silent, or whose readings are behind the others') stands exactly
      *  still in the step (see standsStill()) instead of holding every step back; its increment
-     *  goes into its next step with a reading. */
+     *  goes into its next step with a reading. No frame waits for a later reading: each takes
+     *  the latest. */
     void standStillWithoutOdometry() { m_stand_still_without_odometry = true; }
 
     /** Whether `odometry` says the robot has not moved, with certainty (zero increment, zero
@@ -82,10 +92,41 @@ class ActionFrameSource {
      *  the error naming the rawlog, `entry`, both labels and what the run `reads`. */
     std::string secondSensor(std::optional<std::string>& first, const mrpt::obs::CObservation& obs,
                              size_t entry, const std::string& reads) const;
-    /** The pending format-#2 frame as a step, built from the odometry since the last step.
+    /// One robot's odometry reading (format #2).
+    struct TOdometryReading {
+        mrpt::poses::CPose2D pose;
+        mrpt::Clock::time_point time;
+        size_t entry = 0;  ///< of the rawlog
+    };
+    /// A closed format-#2 frame, waiting for the odometry at its time.
+    struct TClosedFrame {
+        mrpt::obs::CSensoryFrame::Ptr frame;
+        mrpt::Clock::time_point time;
+        /// Per robot: the reading before `time` while waiting for the one after; else the
+        /// reading, or interpolation, that gives the odometry at `time` (none: stands still)
+        std::vector<std::optional<TOdometryReading>> odometry;
+        std::vector<bool> waiting;  ///< per robot
+    };
+    /// The pending frame, closed: its odometry resolved at once, or waiting (see TClosedFrame).
+    void closePending();
+    /** A reading of robot `k` resolves the closed frames waiting for it at or before its time
+     *  (interpolated), and is the latest before the others. */
+    void resolveWaiting(size_t k, const TOdometryReading& reading);
+    /** Frames that waited more than kOdometryWait before `now` (any time, at the end of the data)
+     *  take the latest reading before their time. */
+    void stopWaiting(std::optional<mrpt::Clock::time_point> now);
+    /** A format-#2 odometry reading of rawlog entry `entry`: of a robot of the run, the latest
+     *  (throws for a pose that is not finite); of a second sensor (no labels), the error thrown
+     *  at the next step. */
+    void readOdometry(const mrpt::obs::CObservationOdometry& odo, size_t entry);
+    /// A format-#2 observation other than odometry, into the pending frame.
+    void addToPending(const mrpt::obs::CObservation::Ptr& obs, size_t entry);
+    /// Whether the oldest closed frame has its odometry.
+    bool frontReady() const;
+    /** The oldest closed frame as a step, built from the odometry since the last step.
      *  Throws noOdometryError() for an increment MRPT would pass over. */
-    void emitPending(mrpt::obs::CActionCollection::Ptr& actions,
-                     mrpt::obs::CSensoryFrame::Ptr& frame);
+    void emitFront(mrpt::obs::CActionCollection::Ptr& actions,
+                   mrpt::obs::CSensoryFrame::Ptr& frame);
     /// Whether the pending format-#2 frame makes a step once closed.
     bool pendingIsStep() const;
     /// Whether every robot has had an odometry reading (standStillWithoutOdometry(): any robot).
@@ -100,11 +141,11 @@ class ActionFrameSource {
     RawlogEntrySource& m_reader;
     std::vector<ObservationSelector> m_steps;
     mrpt::obs::CActionRobotMovement2D::TMotionModelOptions m_motion_model;
-    std::vector<std::string> m_odometry_labels;  ///< empty: one robot, any label
-    /// Per robot: the latest reading and the one at the last step.
-    std::vector<std::optional<mrpt::poses::CPose2D>> m_odometry, m_odometry_at_last_step;
+    std::vector<std::string> m_odometry_labels;               ///< empty: one robot, any label
+    std::vector<std::optional<TOdometryReading>> m_odometry;  ///< per robot: the latest reading
+    /// Per robot: the odometry at the last step.
+    std::vector<std::optional<mrpt::poses::CPose2D>> m_odometry_at_last_step;
     std::vector<bool> m_odometry_since_last_step;  ///< per robot
-    std::vector<size_t> m_odometry_entry;          ///< per robot: the latest reading's entry
     /// Labels of the first sensor met: per selector of m_steps, and of the odometry (one robot).
     std::vector<std::optional<std::string>> m_step_sensors;
     std::optional<std::string> m_odometry_sensor;
@@ -113,6 +154,7 @@ class ActionFrameSource {
     std::string m_second_odometry;
     mrpt::obs::CActionCollection::Ptr m_carried;  ///< format #1 odometry not yet in a step
     mrpt::obs::CSensoryFrame::Ptr m_pending;      ///< format #2 frame being assembled
+    std::deque<TClosedFrame> m_closed;            ///< format #2 frames, oldest first
     mrpt::Clock::time_point m_pending_time;
     bool m_pending_is_step = false;
     bool m_stand_still_without_odometry = false;
