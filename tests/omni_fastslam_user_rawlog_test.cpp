@@ -147,5 +147,10 @@ TEST(OmniFastSLAMUserRawlog, OdometryOfItsOwnClockIsTakenAtTheFramesTimes)
             mrpt_vslam::test::readJson(*run + "/metrics.json")["estimate"]["ate_rmse_m"];
         std::printf("odometry %.1f s after the frames: ATE %.3f m\n", delay, ate);
         EXPECT_LT(ate, 0.06) << name;
+        // run.json says how: all at the frames' times, or all but the first interpolated
+        const auto counts = mrpt_vslam::test::readJson(*run + "/run.json")["counts"];
+        EXPECT_EQ(counts["odometry_at_step_time"], delay > 0 ? 1 : 320) << name;
+        EXPECT_EQ(counts["odometry_interpolated"], delay > 0 ? 319 : 0) << name;
+        EXPECT_EQ(counts["odometry_latest_reading"], 0) << name;
     }
 }

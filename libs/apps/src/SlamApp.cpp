@@ -87,6 +87,7 @@ void SlamApp::run()
         mrpt::obs::CActionCollection::Ptr actions;
         mrpt::obs::CSensoryFrame::Ptr frame;
         while (source.next(actions, frame)) {
+            m_odometryTiming = source.odometryTiming();
             step(actions, *frame, timer);
             input->stepFinished();
             progress.update(++steps);
@@ -176,6 +177,12 @@ void SlamApp::describeRun(core::RunReport& report, const core::RunTimer& timer) 
     args.describeInputs(report, cfg.effectiveText(), rawlog, seed);
     report.setOpenCvVersion(CV_VERSION);
     report.setTiming(timer);
+    const auto& odometry = m_odometryTiming;
+    if (odometry.at_step_time + odometry.interpolated + odometry.latest_reading > 0) {
+        report.setCount("odometry_at_step_time", static_cast<double>(odometry.at_step_time));
+        report.setCount("odometry_interpolated", static_cast<double>(odometry.interpolated));
+        report.setCount("odometry_latest_reading", static_cast<double>(odometry.latest_reading));
+    }
 }
 
 core::TumTrajectory SlamApp::asTrajectory(

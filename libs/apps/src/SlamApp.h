@@ -6,6 +6,7 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt_vslam/apps/LiveView.h>
+#include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
@@ -161,13 +162,16 @@ class SlamApp {
     /// The results, `final.3Dscene`, `config.ini`, `run.json` and `metrics.json`; then, without
     /// `--quiet`, the folder and the evaluation's summary (core::printEvalSummary()) on stdout.
     void writeRunFolder(const core::OutputDirectory& out, const core::RunTimer& timer);
-    /// What ran (inputs, effective config, seed, versions) and its timing, in `report`: the
-    /// part of run.json that a failed run writes too.
+    /** What ran (inputs, effective config, seed, versions), its timing and, for an
+     *  observation-only rawlog, how the steps got their odometry, in `report`: the part of
+     *  run.json that a failed run writes too. */
     void describeRun(core::RunReport& report, const core::RunTimer& timer) const;
 
     const std::string m_section;
     /// Motion model of the actions built for observation-only rawlogs ([MotionModel]).
     mrpt::obs::CActionRobotMovement2D::TMotionModelOptions m_motionModel;
+    /// How the steps so far got their odometry, for observation-only rawlogs (run.json counts).
+    core::ActionFrameSource::TOdometryTiming m_odometryTiming;
     std::unique_ptr<LiveView> m_window;                      ///< --gui
     std::optional<mrpt::Clock::time_point> m_lastStepStamp;  ///< stepTime() of the step before
 };

@@ -186,6 +186,10 @@ void ActionFrameSource::closePending()
         closed.waiting[k] = closed.time != INVALID_TIMESTAMP && latest.time != INVALID_TIMESTAMP &&
                             latest.time < closed.time;
     }
+    for (size_t k = 0; k < m_odometry.size(); k++)
+        if (closed.odometry[k] && !closed.waiting[k])
+            (closed.odometry[k]->time == closed.time ? m_odometry_timing.at_step_time
+                                                     : m_odometry_timing.latest_reading)++;
     m_closed.push_back(std::move(closed));
 }
 
@@ -199,6 +203,8 @@ void ActionFrameSource::resolveWaiting(size_t k, const TOdometryReading& reading
             before = reading;
             continue;
         }
+        (reading.time == closed.time ? m_odometry_timing.at_step_time
+                                     : m_odometry_timing.interpolated)++;
         before = {interpolate(before.pose, before.time, reading.pose, reading.time, closed.time),
                   closed.time, reading.entry};
         closed.waiting[k] = false;
@@ -210,8 +216,10 @@ void ActionFrameSource::stopWaiting(std::optional<mrpt::Clock::time_point> now)
     for (auto& closed : m_closed)
         for (size_t k = 0; k < closed.waiting.size(); k++)
             if (closed.waiting[k] &&
-                (!now || mrpt::system::timeDifference(closed.time, *now) > kOdometryWait))
+                (!now || mrpt::system::timeDifference(closed.time, *now) > kOdometryWait)) {
                 closed.waiting[k] = false;
+                m_odometry_timing.latest_reading++;
+            }
 }
 
 bool ActionFrameSource::frontReady() const

@@ -325,11 +325,12 @@ TEST(ActionFrameSource, ARobotWithoutOdometryStandsStillWhenAsked)
 // Format #2 with odometry readings at other times than the frames' (sensors of their own
 // clocks): a frame takes the odometry interpolated at its time, several frames may wait for the
 // same reading, and past the last reading or a gap longer than kOdometryWait a frame takes the
-// latest reading before it.
+// latest reading before it; odometryTiming() counts each kind.
 TEST(ActionFrameSource, AFramesOdometryIsThatOfItsTime)
 {
-    const auto stepPoses = [](const std::vector<std::pair<double, mrpt::poses::CPose2D>>& readings,
-                              const std::vector<double>& frames) {
+    ActionFrameSource::TOdometryTiming timing;
+    const auto stepPoses = [&](const std::vector<std::pair<double, mrpt::poses::CPose2D>>& readings,
+                               const std::vector<double>& frames) {
         std::vector<std::pair<double, CObservation::Ptr>> timed;
         for (const auto& [t, pose] : readings) {
             auto o = std::dynamic_pointer_cast<CObservationOdometry>(odometry("", t, 0));
@@ -351,6 +352,7 @@ TEST(ActionFrameSource, AFramesOdometryIsThatOfItsTime)
             pose = pose + acts->getBestMovementEstimation()->poseChange->getMeanVal();
             poses.push_back(pose);
         }
+        timing = source.odometryTiming();
         return poses;
     };
     const auto expectPoses = [](const std::vector<mrpt::poses::CPose2D>& poses,
@@ -368,11 +370,17 @@ TEST(ActionFrameSource, AFramesOdometryIsThatOfItsTime)
         stepPoses({{0, P(0, 0, 0)}, {1, P(1, 0, 0.2)}, {2, P(2, 0, 0.2)}, {3, P(3, 0, 0.2)}},
                   {0, 0.25, 0.5, 1.5, 2, 3.5}),
         {P(0, 0, 0), P(0.25, 0, 0.05), P(0.5, 0, 0.1), P(1.5, 0, 0.2), P(2, 0, 0.2), P(3, 0, 0.2)});
+    EXPECT_EQ(timing.at_step_time, 2u);
+    EXPECT_EQ(timing.interpolated, 3u);
+    EXPECT_EQ(timing.latest_reading, 1u);
     // a gap of 5 s in the odometry: the frame at 0.5 stops waiting at the frame at 2, which
     // stops waiting at the reading at 5 (more than kOdometryWait after it)
     ASSERT_EQ(ActionFrameSource::kOdometryWait, 1.0);
     expectPoses(stepPoses({{0, P(0, 0, 0)}, {5, P(5, 0, 0)}}, {0.5, 2, 4.5}),
                 {P(0, 0, 0), P(0, 0, 0), P(4.5, 0, 0)});
+    EXPECT_EQ(timing.at_step_time, 0u);
+    EXPECT_EQ(timing.interpolated, 1u);
+    EXPECT_EQ(timing.latest_reading, 2u);
 }
 
 // A live source's time barrier closes the frame at once; without it the frame waits for the

@@ -44,6 +44,15 @@ class ActionFrameSource {
     /// How long a format-#2 frame waits for the odometry reading after its time [s].
     static constexpr double kOdometryWait = 1.0;
 
+    /// How the format-#2 steps so far got each robot's odometry (a step of K robots counts K).
+    struct TOdometryTiming {
+        size_t at_step_time = 0;  ///< a reading of the step's own time
+        size_t interpolated = 0;  ///< between the readings before and after it
+        /// the latest reading before it: none came within kOdometryWait after, or the data
+        /// ended, or a reading had no timestamp, or (live) no waiting
+        size_t latest_reading = 0;
+    };
+
     ActionFrameSource(RawlogEntrySource& reader, std::vector<ObservationSelector> steps,
                       const mrpt::obs::CActionRobotMovement2D::TMotionModelOptions& motion_model,
                       std::vector<std::string> odometry_labels = {});
@@ -74,6 +83,9 @@ class ActionFrameSource {
      *  sensor where the run reads one: of the odometry of one robot (no odometry labels), or of
      *  a step selector with a `one_sensor_key`. */
     bool next(mrpt::obs::CActionCollection::Ptr& actions, mrpt::obs::CSensoryFrame::Ptr& frame);
+
+    /// How the format-#2 steps handed out so far got their odometry (zero for format #1).
+    const TOdometryTiming& odometryTiming() const { return m_odometry_timing; }
 
   private:
     /// "RAWLOG: entry N", for messages.
@@ -158,6 +170,7 @@ class ActionFrameSource {
     mrpt::Clock::time_point m_pending_time;
     bool m_pending_is_step = false;
     bool m_stand_still_without_odometry = false;
+    TOdometryTiming m_odometry_timing;
 };
 
 }  // namespace mrpt_vslam::core
