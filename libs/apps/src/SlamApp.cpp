@@ -94,6 +94,7 @@ void SlamApp::run()
             if (m_window)
                 m_window->show([this](mrpt::opengl::COpenGLScene& scene) { drawLive(scene); });
         }
+        m_odometryTiming = source.odometryTiming();
         progress.finish(steps);
         endSteps(input->summary());
         writeRunFolder(out, timer);
@@ -178,10 +179,14 @@ void SlamApp::describeRun(core::RunReport& report, const core::RunTimer& timer) 
     report.setOpenCvVersion(CV_VERSION);
     report.setTiming(timer);
     const auto& odometry = m_odometryTiming;
-    if (odometry.at_step_time + odometry.interpolated + odometry.latest_reading > 0) {
+    if (odometry.at_step_time + odometry.interpolated + odometry.latest_reading +
+            odometry.frames_before_odometry >
+        0) {
         report.setCount("odometry_at_step_time", static_cast<double>(odometry.at_step_time));
         report.setCount("odometry_interpolated", static_cast<double>(odometry.interpolated));
         report.setCount("odometry_latest_reading", static_cast<double>(odometry.latest_reading));
+        report.setCount("frames_before_odometry",
+                        static_cast<double>(odometry.frames_before_odometry));
     }
 }
 

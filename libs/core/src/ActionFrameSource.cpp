@@ -193,6 +193,12 @@ void ActionFrameSource::closePending()
     m_closed.push_back(std::move(closed));
 }
 
+void ActionFrameSource::dropPending()
+{
+    if (m_pending_is_step) m_odometry_timing.frames_before_odometry++;
+    m_pending.reset();
+}
+
 void ActionFrameSource::resolveWaiting(size_t k, const TOdometryReading& reading)
 {
     if (reading.time == INVALID_TIMESTAMP) return;
@@ -335,7 +341,7 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
                 if (pendingIsStep())
                     closePending();
                 else
-                    m_pending.reset();
+                    dropPending();
             }
             if (const auto odo =
                     std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(e.observation))
@@ -348,7 +354,10 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
             return true;
         }
     }
-    if (pendingIsStep()) closePending();
+    if (pendingIsStep())
+        closePending();
+    else if (m_pending)
+        dropPending();
     stopWaiting(std::nullopt);
     if (!frontReady()) return false;
     emitFront(actions, frame);

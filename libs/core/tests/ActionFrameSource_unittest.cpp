@@ -373,14 +373,17 @@ TEST(ActionFrameSource, AFramesOdometryIsThatOfItsTime)
     EXPECT_EQ(timing.at_step_time, 2u);
     EXPECT_EQ(timing.interpolated, 3u);
     EXPECT_EQ(timing.latest_reading, 1u);
-    // a gap of 5 s in the odometry: the frame at 0.5 stops waiting at the frame at 2, which
-    // stops waiting at the reading at 5 (more than kOdometryWait after it)
+    EXPECT_EQ(timing.frames_before_odometry, 0u);
+    // a frame before the first reading, passed over; a gap of 5 s in the odometry: the frame at
+    // 0.5 stops waiting at the frame at 2, which stops waiting at the reading at 5 (more than
+    // kOdometryWait after it)
     ASSERT_EQ(ActionFrameSource::kOdometryWait, 1.0);
-    expectPoses(stepPoses({{0, P(0, 0, 0)}, {5, P(5, 0, 0)}}, {0.5, 2, 4.5}),
+    expectPoses(stepPoses({{0, P(0, 0, 0)}, {5, P(5, 0, 0)}}, {-0.5, 0.5, 2, 4.5}),
                 {P(0, 0, 0), P(0, 0, 0), P(4.5, 0, 0)});
     EXPECT_EQ(timing.at_step_time, 0u);
     EXPECT_EQ(timing.interpolated, 1u);
     EXPECT_EQ(timing.latest_reading, 2u);
+    EXPECT_EQ(timing.frames_before_odometry, 1u);
 }
 
 // A live source's time barrier closes the frame at once; without it the frame waits for the

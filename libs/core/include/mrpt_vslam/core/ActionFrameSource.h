@@ -44,13 +44,17 @@ class ActionFrameSource {
     /// How long a format-#2 frame waits for the odometry reading after its time [s].
     static constexpr double kOdometryWait = 1.0;
 
-    /// How the format-#2 steps so far got each robot's odometry (a step of K robots counts K).
+    /** How the format-#2 steps so far got each robot's odometry (a step of K robots counts K),
+     *  and how many frames came before it. */
     struct TOdometryTiming {
         size_t at_step_time = 0;  ///< a reading of the step's own time
         size_t interpolated = 0;  ///< between the readings before and after it
         /// the latest reading before it: none came within kOdometryWait after, or the data
         /// ended, or a reading had no timestamp, or (live) no waiting
         size_t latest_reading = 0;
+        /// frames of the steps' observations passed over for coming before the first reading
+        /// (of every robot; standStillWithoutOdometry(): of any robot)
+        size_t frames_before_odometry = 0;
     };
 
     ActionFrameSource(RawlogEntrySource& reader, std::vector<ObservationSelector> steps,
@@ -121,6 +125,8 @@ class ActionFrameSource {
     };
     /// The pending frame, closed: its odometry resolved at once, or waiting (see TClosedFrame).
     void closePending();
+    /// The pending frame, passed over: it makes no step, or comes before the odometry.
+    void dropPending();
     /** A reading of robot `k` resolves the closed frames waiting for it at or before its time
      *  (interpolated), and is the latest before the others. */
     void resolveWaiting(size_t k, const TOdometryReading& reading);
