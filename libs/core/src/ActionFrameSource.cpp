@@ -183,8 +183,10 @@ void ActionFrameSource::closePending()
         }
         const auto& latest = *m_odometry[k];  // every robot has one (haveOdometry())
         closed.odometry[k] = latest;
+        // a reading more than kOdometryWait older (a gap, or clocks that disagree) stands
         closed.waiting[k] = closed.time != INVALID_TIMESTAMP && latest.time != INVALID_TIMESTAMP &&
-                            latest.time < closed.time;
+                            latest.time < closed.time &&
+                            mrpt::system::timeDifference(latest.time, closed.time) <= kOdometryWait;
     }
     for (size_t k = 0; k < m_odometry.size(); k++)
         if (closed.odometry[k] && !closed.waiting[k])

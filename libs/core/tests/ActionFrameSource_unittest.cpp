@@ -329,15 +329,17 @@ TEST(ActionFrameSource, ARobotWithoutOdometryStandsStillWhenAsked)
 TEST(ActionFrameSource, AFramesOdometryIsThatOfItsTime)
 {
     ActionFrameSource::TOdometryTiming timing;
+    // the steps' odometry poses, the readings and frames in time order; the frames stamped by a
+    // clock `frame_clock` s ahead of the odometry's
     const auto stepPoses = [&](const std::vector<std::pair<double, mrpt::poses::CPose2D>>& readings,
-                               const std::vector<double>& frames) {
+                               const std::vector<double>& frames, double frame_clock = 0) {
         std::vector<std::pair<double, CObservation::Ptr>> timed;
         for (const auto& [t, pose] : readings) {
             auto o = std::dynamic_pointer_cast<CObservationOdometry>(odometry("", t, 0));
             o->odometry = pose;
             timed.emplace_back(t, o);
         }
-        for (double t : frames) timed.emplace_back(t, bearings("", t));
+        for (double t : frames) timed.emplace_back(t, bearings("", t + frame_clock));
         std::stable_sort(timed.begin(), timed.end(),
                          [](const auto& a, const auto& b) { return a.first < b.first; });
         ObservationList list;
@@ -375,15 +377,21 @@ TEST(ActionFrameSource, AFramesOdometryIsThatOfItsTime)
     EXPECT_EQ(timing.latest_reading, 1u);
     EXPECT_EQ(timing.frames_before_odometry, 0u);
     // a frame before the first reading, passed over; a gap of 5 s in the odometry: the frame at
-    // 0.5 stops waiting at the frame at 2, which stops waiting at the reading at 5 (more than
-    // kOdometryWait after it)
+    // 0.5 stops waiting at the frame at 2 (more than kOdometryWait after it); the later frames,
+    // more than kOdometryWait after the latest reading, take it at once
     ASSERT_EQ(ActionFrameSource::kOdometryWait, 1.0);
     expectPoses(stepPoses({{0, P(0, 0, 0)}, {5, P(5, 0, 0)}}, {-0.5, 0.5, 2, 4.5}),
-                {P(0, 0, 0), P(0, 0, 0), P(4.5, 0, 0)});
+                {P(0, 0, 0), P(0, 0, 0), P(0, 0, 0)});
     EXPECT_EQ(timing.at_step_time, 0u);
-    EXPECT_EQ(timing.interpolated, 1u);
-    EXPECT_EQ(timing.latest_reading, 2u);
+    EXPECT_EQ(timing.interpolated, 0u);
+    EXPECT_EQ(timing.latest_reading, 3u);
     EXPECT_EQ(timing.frames_before_odometry, 1u);
+    // the frames' clock 1000 s ahead of the odometry's: each frame takes the latest reading
+    // before it in the rawlog, none from after it
+    expectPoses(
+        stepPoses({{0, P(0, 0, 0)}, {0.5, P(0.5, 0, 0)}, {1, P(1, 0, 0)}}, {0.4, 0.9, 1.4}, 1000),
+        {P(0, 0, 0), P(0.5, 0, 0), P(1, 0, 0)});
+    EXPECT_EQ(timing.latest_reading, 3u);
 }
 
 // A live source's time barrier closes the frame at once; without it the frame waits for the

@@ -31,8 +31,9 @@ namespace mrpt_vslam::core {
  *    frame and `motion_model` (a live source's time barrier closes the frame as a new
  *    timestamp does). The odometry of a frame is that of its time: a reading of the same time,
  *    else interpolated between the readings before and after it (the frame waits for the one
- *    after, up to kOdometryWait of the rawlog's time; then, at the end of the data, or for
- *    readings without a timestamp, the latest reading stands for it).
+ *    after, up to kOdometryWait of the rawlog's time). The latest reading stands for it when
+ *    none comes in that time, at the end of the data, when it is more than kOdometryWait older
+ *    than the frame (a gap, or clocks that disagree), or for readings without a timestamp.
  *    Frames before every robot's first odometry reading are dropped
  *    (with standStillWithoutOdometry(): only those before any robot's).
  *
@@ -49,8 +50,9 @@ class ActionFrameSource {
     struct TOdometryTiming {
         size_t at_step_time = 0;  ///< a reading of the step's own time
         size_t interpolated = 0;  ///< between the readings before and after it
-        /// the latest reading before it: none came within kOdometryWait after, or the data
-        /// ended, or a reading had no timestamp, or (live) no waiting
+        /// the latest reading: none came within kOdometryWait after, the data ended, it was
+        /// older than that or later than the step, a reading had no timestamp, or (live) no
+        /// waiting
         size_t latest_reading = 0;
         /// frames of the steps' observations passed over for coming before the first reading
         /// (of every robot; standStillWithoutOdometry(): of any robot)
