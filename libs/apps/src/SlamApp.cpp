@@ -167,6 +167,12 @@ void SlamApp::writeRunFolder(const core::OutputDirectory& out, const core::RunTi
     report.setCompleted();
     report.write(out.file("run.json"));
     if (args.quiet) return;
+    if (const auto& odometry = m_odometryTiming;
+        odometry.interpolated + odometry.latest_reading > 0)
+        std::cout << name << ": step odometry (per robot and step): " << odometry.at_step_time
+                  << " read at the step's time, " << odometry.interpolated
+                  << " interpolated to it, " << odometry.latest_reading
+                  << " from the latest reading before it (doc/app-conventions.md)\n";
     std::cout << name << ": results in " << out.path() << " (final.3Dscene opens in SceneViewer3D)"
               << (evaluation ? "; against ground truth " + *groundTruth + " (metrics.json):\n"
                              : "; no ground truth, no metrics.json\n");
