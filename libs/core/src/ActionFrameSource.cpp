@@ -207,8 +207,8 @@ void ActionFrameSource::resolveWaiting(size_t k, const TOdometryReading& reading
     for (auto& closed : m_closed) {
         if (!closed.waiting[k]) continue;
         auto& before = *closed.odometry[k];
-        if (reading.time < closed.time) {
-            before = reading;
+        if (reading.time < closed.time) {  // a later reading before the frame (written late)
+            if (reading.time > before.time) before = reading;
             continue;
         }
         (reading.time == closed.time ? m_odometry_timing.at_step_time
