@@ -176,22 +176,22 @@ void ActionFrameSource::closePending()
     closed.odometry.resize(m_odometry.size());
     closed.waiting.assign(m_odometry.size(), false);
     for (size_t k = 0; k < m_odometry.size(); k++) {
+        auto& odometry = closed.odometry[k];
         if (m_stand_still_without_odometry) {  // the latest reading since the last step, or none
-            if (m_odometry_since_last_step[k]) closed.odometry[k] = m_odometry[k];
+            if (m_odometry_since_last_step[k]) odometry = m_odometry[k];
             m_odometry_since_last_step[k] = false;
-            continue;
+        } else {
+            odometry = m_odometry[k];  // every robot has one (haveOdometry())
+            // a reading more than kOdometryWait older (a gap, or clocks that disagree) stands
+            closed.waiting[k] =
+                closed.time != INVALID_TIMESTAMP && odometry->time != INVALID_TIMESTAMP &&
+                odometry->time < closed.time &&
+                mrpt::system::timeDifference(odometry->time, closed.time) <= kOdometryWait;
         }
-        const auto& latest = *m_odometry[k];  // every robot has one (haveOdometry())
-        closed.odometry[k] = latest;
-        // a reading more than kOdometryWait older (a gap, or clocks that disagree) stands
-        closed.waiting[k] = closed.time != INVALID_TIMESTAMP && latest.time != INVALID_TIMESTAMP &&
-                            latest.time < closed.time &&
-                            mrpt::system::timeDifference(latest.time, closed.time) <= kOdometryWait;
+        if (odometry && !closed.waiting[k])
+            (odometry->time == closed.time ? m_odometry_timing.at_step_time
+                                           : m_odometry_timing.latest_reading)++;
     }
-    for (size_t k = 0; k < m_odometry.size(); k++)
-        if (closed.odometry[k] && !closed.waiting[k])
-            (closed.odometry[k]->time == closed.time ? m_odometry_timing.at_step_time
-                                                     : m_odometry_timing.latest_reading)++;
     m_closed.push_back(std::move(closed));
 }
 
