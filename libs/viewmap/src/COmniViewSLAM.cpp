@@ -119,8 +119,7 @@ std::unique_ptr<COmniViewSLAM> COmniViewSLAM::fromConfig(const mrpt::config::CCo
     auto slam = std::make_unique<COmniViewSLAM>(
         options, OmniFeatureExtractor(camera, cameraToRobot, features), observer, policy, seed);
     slam->m_camera_on_robot_configured = configured;
-    slam->m_camera_position = {x, y};
-    slam->m_ekf.setCameraPosition(slam->m_camera_position);
+    slam->m_ekf.setCameraPosition({x, y});
     return slam;
 }
 
@@ -145,14 +144,14 @@ void COmniViewSLAM::useCameraPoseOf(const mrpt::poses::CPose3D& camera_on_robot)
 {
     if (m_camera_on_robot_configured) return;
     m_extractor.setCameraToRobot(camera_on_robot.getRotationMatrix().asEigen());
-    m_camera_position = {camera_on_robot.x(), camera_on_robot.y()};
-    m_ekf.setCameraPosition(m_camera_position);
+    m_ekf.setCameraPosition({camera_on_robot.x(), camera_on_robot.y()});
 }
 
 void COmniViewSLAM::reset(const mrpt::math::TPose2D& start)
 {
+    const mrpt::math::TPoint2D camera = m_ekf.cameraPosition();
     m_ekf = ViewMapEKF(start, initialCovariance(m_options));
-    m_ekf.setCameraPosition(m_camera_position);
+    m_ekf.setCameraPosition(camera);
     m_map.clear();
     m_policy = ViewInitializationPolicy::create(m_policy_options);
     m_rng.randomize(m_seed);

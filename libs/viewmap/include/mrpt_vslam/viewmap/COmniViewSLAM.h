@@ -124,7 +124,7 @@ class COmniViewSLAM {
     /// Whether the config's [CameraOnRobot] sets the camera's pose.
     bool cameraOnRobotConfigured() const { return m_camera_on_robot_configured; }
     /// [m] The camera's horizontal position on the robot in use.
-    const mrpt::math::TPoint2D& cameraPosition() const { return m_camera_position; }
+    const mrpt::math::TPoint2D& cameraPosition() const { return m_ekf.cameraPosition(); }
     const OmniFeatureExtractor& extractor() const { return m_extractor; }
     /// Threads the feature extraction runs on (0: every core; default 1); the results do not
     /// depend on it.
@@ -150,7 +150,6 @@ class COmniViewSLAM {
     CViewMap m_map;
     double m_gate = 0;
     bool m_camera_on_robot_configured = false;
-    mrpt::math::TPoint2D m_camera_position{0, 0};  ///< [m] on the robot
 };
 
 }  // namespace mrpt_vslam::viewmap
