@@ -69,6 +69,8 @@ struct OmniFastSLAMApp::Impl : ParticleFilterApp {
     mrpt::poses::CPose2D odometry;  ///< dead reckoning from the start pose
 
     size_t framesWithImages = 0, measurements = 0;
+    /// Frames whose bearings the filter took, and frames whose image the detector searched.
+    size_t framesWithBearingsUsed = 0, imagesSearched = 0;
 
     /// Measurements from the frame's image when images are the input (Sec. III-A).
     void prepareFrame(mrpt::obs::CSensoryFrame& sf);
@@ -171,8 +173,12 @@ void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
         static_cast<bool>(ObservationSelector::firstIn<mrpt::obs::CObservationBearingRange>(
             sf, filterOptions.bearings_label));
     if (image) framesWithImages++;
-    if (input == TInput::Bearings || (input == TInput::Auto && hasBearings)) return;
+    if (input == TInput::Bearings || (input == TInput::Auto && hasBearings)) {
+        if (hasBearings) framesWithBearingsUsed++;
+        return;
+    }
     if (!image) return;
+    imagesSearched++;
     if (!detector) detector = std::make_unique<CeilingLightDetector>(camera, detectorOptions);
     mrpt::obs::CObservationBearingRange::Ptr bearings;
     try {
@@ -223,9 +229,25 @@ void OmniFastSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
             .describe() +
         " or " + ObservationSelector::of<mrpt::obs::CObservationImage>(imageLabel).describe();
     if (steps == 0) throw noFramesError(inputs, contents);
-    if (measurements == 0)
+    if (measurements == 0 && framesWithBearingsUsed + imagesSearched == 0)
         throw std::runtime_error(rawlog + ": no ceiling-light measurements (" + inputs +
                                  "); the rawlog has: " + contents.describe());
+    if (measurements == 0) {  // there were bearings or images, but no light in them
+        std::string why;
+        if (framesWithBearingsUsed > 0)
+            why = "the " + std::to_string(framesWithBearingsUsed) + " frames' " +
+                  ObservationSelector::of<mrpt::obs::CObservationBearingRange>(
+                      filterOptions.bearings_label)
+                      .describe() +
+                  " hold no bearing";
+        if (imagesSearched > 0)
+            why += (why.empty() ? "" : "; ") + std::string("no light was detected in the ") +
+                   std::to_string(imagesSearched) + " images (" +
+                   ObservationSelector::of<mrpt::obs::CObservationImage>(imageLabel).describe() +
+                   "): check [LightDetector] intensity_threshold, min_blob_area, max_blob_area "
+                   "and [Camera] (doc/omni-fastslam.md)";
+        throw std::runtime_error(rawlog + ": no ceiling-light measurement in any frame: " + why);
+    }
     app.estimatedPath = asTrajectory(COmniFastSLAM::pathOf(filter->bestParticle()));
     if (smoother) {
         const core::RunTimer smoothing;
@@ -286,9 +308,11 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
                                       pose.z(), mrpt::RAD2DEG(pose.yaw()),
                                       mrpt::RAD2DEG(pose.pitch()), mrpt::RAD2DEG(pose.roll())));
     if (!args.quiet)
-        std::printf("omni-fastslam: camera pose on the robot from the %s: %s\n",
-                    configured ? "config (sensor_in_robot)" : "observations",
-                    pose.asString().c_str());
+        std::printf(
+            "omni-fastslam: camera pose on the robot from the %s: x %g, y %g, z %g m, yaw %g, "
+            "pitch %g, roll %g deg\n",
+            configured ? "config (sensor_in_robot)" : "observations", pose.x(), pose.y(), pose.z(),
+            mrpt::RAD2DEG(pose.yaw()), mrpt::RAD2DEG(pose.pitch()), mrpt::RAD2DEG(pose.roll()));
     if (const auto associations = COmniFastSLAM::associationsOf(best);
         associations.labelled() > 0) {
         // evaluation only: the rawlog gave landmark numbers (landmarkID), the filter ignored them

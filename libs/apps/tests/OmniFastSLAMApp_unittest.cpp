@@ -145,6 +145,29 @@ TEST(OmniFastSLAMApp, FailsOnARawlogWithoutLightMeasurements)
     EXPECT_FALSE(mrpt::system::fileExists(out + "/metrics.json"));
 }
 
+// Images of the camera in which the detector finds no light (blobs of at least 3999 px; the
+// hall's lights are smaller) say so, and which keys set the detector, rather than that the rawlog
+// has no images.
+TEST(OmniFastSLAMApp, SaysWhenNoLightIsDetectedInTheImages)
+{
+    const test::ScratchFolder scratch("OmniFastSLAMApp_nodetection");
+    apps::OmniFastSLAMApp app(
+        args({kConfig, kRawlog, "--out", scratch.file("out"), "--quiet", "--set",
+              "OmniFastSLAM.input=images", "--set", "LightDetector.min_blob_area=3999"}));
+    app.initialize();
+    try {
+        app.run();
+        ADD_FAILURE() << "ran without a detected light";
+    } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  kRawlog +
+                      ": no ceiling-light measurement in any frame: no light was detected in the "
+                      "320 images (CObservationImage labelled 'OMNICAM'): check [LightDetector] "
+                      "intensity_threshold, min_blob_area, max_blob_area and [Camera] "
+                      "(doc/omni-fastslam.md)");
+    }
+}
+
 // A frame with more bearings than max_bearings_per_frame stops the run with one line naming it
 // (the shipped hall's frames hold 4 to 12 lights).
 TEST(OmniFastSLAMApp, RefusesAFrameWithTooManyBearings)
