@@ -173,6 +173,8 @@ void SlamApp::writeRunFolder(const core::OutputDirectory& out, const core::RunTi
                   << " read at the step's time, " << odometry.interpolated
                   << " interpolated to it, " << odometry.latest_reading
                   << " from the latest reading before it (doc/app-conventions.md)\n";
+    for (const auto& warning : report.warnings())
+        std::cout << name << ": warning: " << warning << "\n";
     std::cout << name << ": results in " << out.path() << " (final.3Dscene opens in SceneViewer3D)"
               << (evaluation ? "; against ground truth " + *groundTruth + " (metrics.json):\n"
                              : "; no ground truth, no metrics.json\n");

@@ -257,6 +257,14 @@ void ViewSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     report.setCount("observations_attempted", attempted);
     report.setCount("observations_estimated", estimated);
     report.setCount("observations_accepted", accepted);
+    // The shipped rooms accept about 2 observations a frame; below one in ten frames the views
+    // hardly correct the odometry (images the config's camera or features do not fit).
+    if (framesWithImages >= 10 && accepted * 10 < framesWithImages)
+        report.addWarning(mrpt::format(
+            "accepted observations between images: %zu in %zu frames (%zu attempted, %zu "
+            "estimated): the path is almost the odometry's; check [Camera], [Features] and "
+            "[ViewObserver] against the images (doc/view-slam.md, Limits)",
+            accepted, framesWithImages, attempted, estimated));
     // which camera pose the filter used: the config's, or the images' own
     const mrpt::poses::CPose3D rotation(
         mrpt::math::CMatrixDouble33(slam->extractor().cameraToRobot()), mrpt::math::TPoint3D());

@@ -25,6 +25,7 @@ Json number(double v)
 
 struct RunReport::Impl {
     Json doc;
+    std::vector<std::string> warnings;
 };
 
 RunReport::RunReport(const std::string& app_name) : m_impl(std::make_unique<Impl>())
@@ -38,6 +39,7 @@ RunReport::RunReport(const std::string& app_name) : m_impl(std::make_unique<Impl
         d[key] = nullptr;
     d["completed"] = false;
     d["error"] = nullptr;
+    d["warnings"] = Json::array();
     d["counts"] = Json::object();
     d["timing"] = {{"threads", 1},
                    {"total_s", nullptr},
@@ -79,6 +81,14 @@ void RunReport::setFailed(const std::string& error)
     m_impl->doc["completed"] = false;
     m_impl->doc["error"] = error;
 }
+
+void RunReport::addWarning(const std::string& text)
+{
+    m_impl->warnings.push_back(text);
+    m_impl->doc["warnings"].push_back(text);
+}
+
+const std::vector<std::string>& RunReport::warnings() const { return m_impl->warnings; }
 
 void RunReport::setCount(const std::string& name, double value)
 {

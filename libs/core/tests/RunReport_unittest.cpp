@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 using mrpt_vslam::core::RunReport;
 using mrpt_vslam::core::RunTimer;
@@ -34,6 +35,8 @@ TEST(RunReport, AllFieldsAreWritten)
     r.setResult("landmarks", 41);
     r.setResultText("status", "ok");
     r.setResultJson("final_pose", R"({"x": 1.5, "y": -2})");
+    r.addWarning("first");
+    r.addWarning("second");
 
     const json j = json::parse(r.toJson());
     EXPECT_EQ(j["app"], "omni-fastslam");
@@ -58,6 +61,9 @@ TEST(RunReport, AllFieldsAreWritten)
     EXPECT_EQ(j["results"]["landmarks"], 41);
     EXPECT_EQ(j["results"]["status"], "ok");
     EXPECT_EQ(j["results"]["final_pose"]["x"], 1.5);
+    EXPECT_EQ(j["warnings"], json({"first", "second"}));
+    EXPECT_EQ(r.warnings(), (std::vector<std::string>{"first", "second"}));
+    EXPECT_EQ(json::parse(RunReport("app").toJson())["warnings"], json::array());
 }
 
 TEST(RunReport, FieldOrderIsStable)
@@ -66,8 +72,8 @@ TEST(RunReport, FieldOrderIsStable)
     const char* const order[] = {
         "\"app\"",          "\"version\"",     "\"mrpt_version\"", "\"opencv_version\"",
         "\"command_line\"", "\"config_file\"", "\"config\"",       "\"rawlog\"",
-        "\"seed\"",         "\"start_time\"",  "\"counts\"",       "\"timing\"",
-        "\"results\""};
+        "\"seed\"",         "\"start_time\"",  "\"warnings\"",     "\"counts\"",
+        "\"timing\"",       "\"results\""};
     size_t last = 0;
     for (const char* key : order) {
         const size_t at = text.find(key);

@@ -14,7 +14,8 @@ namespace mrpt_vslam::core {
  *
  *  Fields, in this order (doc/app-conventions.md): app, version, mrpt_version, opencv_version,
  *  command_line, config_file, config (effective text), rawlog, ground_truth, seed, start_time (ISO
- * 8601 UTC), completed (false until setCompleted()), error (setFailed()), counts {name: number},
+ * 8601 UTC), completed (false until setCompleted()), error (setFailed()), warnings [text],
+ * counts {name: number},
  * timing {total_s, steps, per_step_ms {mean, median, p95, max}}, results {name: value}. Fields
  * never set are null; non-finite numbers are written as null.
  *
@@ -48,6 +49,10 @@ class RunReport {
 
     /** @name What came out
      *  @{ */
+    /** Something the user should know of a run that completed (one line, without the app's
+     *  name), e.g. that its observations barely corrected the odometry. */
+    void addWarning(const std::string& text);
+    const std::vector<std::string>& warnings() const;
     /** A count (frames, observations, landmarks...); integral values are written as integers. */
     void setCount(const std::string& name, double value);
     void setTiming(double total_s, const TStepStatistics& steps);
