@@ -100,6 +100,7 @@ TEST_F(MultiRobotVSLAMApp, SingleRobotRangeBearingRawlogsRunFromTheTemplate)
         EXPECT_LT(lms["error_mean_m"].get<double>(), 0.15) << name;
         const auto runJson = json(dir + "run.json");
         EXPECT_EQ(runJson["counts"]["steps"].get<int>(), 160) << name;
+        EXPECT_EQ(runJson["warnings"], nlohmann::json::array()) << name;
         // the template's filter_runs = 4: the kept run is the one of least smoothed cost
         const auto& runs = runJson["results"]["filter_runs"];
         ASSERT_EQ(runs.size(), 4u) << name << ": " << runs.dump();
@@ -116,6 +117,35 @@ TEST_F(MultiRobotVSLAMApp, SingleRobotRangeBearingRawlogsRunFromTheTemplate)
                     name.c_str(), est, odo, lms["estimated_landmarks"].get<int>(),
                     lms["matched"].get<int>(), lms["error_mean_m"].get<double>());
     }
+}
+
+// Readings given a noise a hundred times below their own (the config's range_bearing_std_*
+// override, a unit slip say) are rarely associated again: the best particle starts a landmark
+// for most of them and the path is the odometry's. The run completes and says so.
+TEST_F(MultiRobotVSLAMApp, SaysWhenTheMeasurementsAreRarelyAssociatedAgain)
+{
+    mrpt_vslam::test::SingleRobotRangeBearingLog().write(out("rb-tiny-noise"));
+    const TCommandResult r =
+        run(kConfigs + "range-bearing.ini " + out("rb-tiny-noise") +
+            ".rawlog --seed 1 --set MultiRobotVSLAM.range_bearing_std_range=0.0005 --set "
+            "MultiRobotVSLAM.range_bearing_std_bearing_deg=0.005 --out " +
+            out("rb-tiny-noise-run"));
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    const auto runJson = json(out("rb-tiny-noise-run/run.json"));
+    const size_t measurements = runJson["counts"]["measurements"];
+    const size_t started = runJson["counts"]["particle_map_landmarks"];
+    std::printf("tiny noise: %zu landmarks started for %zu measurements\n", started, measurements);
+    EXPECT_GE(2 * started, measurements);
+    ASSERT_EQ(runJson["warnings"].size(), 1u) << runJson["warnings"];
+    const std::string warning = runJson["warnings"][0];
+    EXPECT_EQ(warning.rfind(mrpt::format("the best particle started a landmark for %zu of the %zu "
+                                         "measurements",
+                                         started, measurements),
+                            0),
+              0u)
+        << warning;
+    EXPECT_NE(r.out.find("multirobot-vslam: warning: " + warning + "\n"), std::string::npos)
+        << r.out;
 }
 
 // At the end of a run the app says where its results are and, with ground truth, the figures of
