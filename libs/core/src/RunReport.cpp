@@ -25,7 +25,6 @@ Json number(double v)
 
 struct RunReport::Impl {
     Json doc;
-    std::vector<std::string> warnings;
 };
 
 RunReport::RunReport(const std::string& app_name) : m_impl(std::make_unique<Impl>())
@@ -82,13 +81,12 @@ void RunReport::setFailed(const std::string& error)
     m_impl->doc["error"] = error;
 }
 
-void RunReport::addWarning(const std::string& text)
-{
-    m_impl->warnings.push_back(text);
-    m_impl->doc["warnings"].push_back(text);
-}
+void RunReport::addWarning(const std::string& text) { m_impl->doc["warnings"].push_back(text); }
 
-const std::vector<std::string>& RunReport::warnings() const { return m_impl->warnings; }
+std::vector<std::string> RunReport::warnings() const
+{
+    return m_impl->doc.at("warnings").get<std::vector<std::string>>();
+}
 
 void RunReport::setCount(const std::string& name, double value)
 {

@@ -52,7 +52,7 @@ class RunReport {
     /** Something the user should know of a run that completed (one line, without the app's
      *  name), e.g. that its observations barely corrected the odometry. */
     void addWarning(const std::string& text);
-    const std::vector<std::string>& warnings() const;
+    std::vector<std::string> warnings() const;
     /** A count (frames, observations, landmarks...); integral values are written as integers. */
     void setCount(const std::string& name, double value);
     void setTiming(double total_s, const TStepStatistics& steps);
