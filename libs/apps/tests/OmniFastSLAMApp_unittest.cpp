@@ -4,6 +4,7 @@
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/opengl/COpenGLScene.h>
@@ -146,26 +147,39 @@ TEST(OmniFastSLAMApp, FailsOnARawlogWithoutLightMeasurements)
 }
 
 // Images of the camera in which the detector finds no light (blobs of at least 3999 px; the
-// hall's lights are smaller) say so, and which keys set the detector, rather than that the rawlog
-// has no images.
-TEST(OmniFastSLAMApp, SaysWhenNoLightIsDetectedInTheImages)
+// hall's lights are smaller), and bearing observations that hold no bearing, say so (and which
+// keys set the detector) rather than that the rawlog has no such observations.
+TEST(OmniFastSLAMApp, SaysWhenTheFramesHoldNoLight)
 {
-    const test::ScratchFolder scratch("OmniFastSLAMApp_nodetection");
-    apps::OmniFastSLAMApp app(
-        args({kConfig, kRawlog, "--out", scratch.file("out"), "--quiet", "--set",
-              "OmniFastSLAM.input=images", "--set", "LightDetector.min_blob_area=3999"}));
-    app.initialize();
-    try {
-        app.run();
-        ADD_FAILURE() << "ran without a detected light";
-    } catch (const std::runtime_error& e) {
-        EXPECT_EQ(std::string(e.what()),
-                  kRawlog +
-                      ": no ceiling-light measurement in any frame: no light was detected in the "
-                      "320 images (CObservationImage labelled 'OMNICAM'): check [LightDetector] "
-                      "intensity_threshold, min_blob_area, max_blob_area and [Camera] "
-                      "(doc/omni-fastslam.md)");
-    }
+    const test::ScratchFolder scratch("OmniFastSLAMApp_nolight");
+    const auto errorOf = [&](const std::string& rawlog, const std::vector<std::string>& extra) {
+        std::vector<std::string> a{kConfig, rawlog, "--out", scratch.file("out"), "--quiet"};
+        a.insert(a.end(), extra.begin(), extra.end());
+        apps::OmniFastSLAMApp app(args(a));
+        app.initialize();
+        try {
+            app.run();
+        } catch (const std::runtime_error& e) {
+            return std::string(e.what());
+        }
+        return std::string("ran without a light");
+    };
+    EXPECT_EQ(errorOf(kRawlog, {"--set", "OmniFastSLAM.input=images", "--set",
+                                "LightDetector.min_blob_area=3999"}),
+              kRawlog +
+                  ": no ceiling-light measurement in any frame: no light was detected in the 320 "
+                  "images (CObservationImage labelled 'OMNICAM'): check [LightDetector] "
+                  "intensity_threshold, min_blob_area, max_blob_area and [Camera] "
+                  "(doc/omni-fastslam.md)");
+    const auto empty = scratch.file("empty-bearings.rawlog");
+    test::rewriteRawlog(kRawlog, empty, false, false, [](mrpt::obs::CObservation& o) {
+        if (auto* b = dynamic_cast<mrpt::obs::CObservationBearingRange*>(&o)) b->sensedData.clear();
+        return o.sensorLabel != "OMNICAM";  // bearings + ground truth
+    });
+    EXPECT_EQ(errorOf(empty, {}),
+              empty +
+                  ": no ceiling-light measurement in any frame: the 320 frames' "
+                  "CObservationBearingRange labelled 'OMNICAM_BEARINGS' hold no bearing");
 }
 
 // A frame with more bearings than max_bearings_per_frame stops the run with one line naming it

@@ -18,7 +18,8 @@
 namespace mrpt_vslam::test {
 
 /** A format-#1 rawlog `source` rewritten as a user's own might be: external images referred
- *  to by absolute path, only the observations `keep` accepts (all when empty), every sensor
+ *  to by absolute path, only the observations `keep` accepts (all when empty; it may change
+ *  those it keeps), every sensor
  *  label emptied with `clear_labels`; in format #1 (the source's own actions) or, with
  *  `observations_only`, format #2 (unlabelled `CObservationOdometry` readings integrated from
  *  those actions, stamped with each frame's first observation; with `odometry_delay_s` > 0,
@@ -27,7 +28,7 @@ namespace mrpt_vslam::test {
  *  frames' period). */
 inline void rewriteRawlog(const std::string& source, const std::string& rawlog,
                           bool observations_only, bool clear_labels,
-                          const std::function<bool(const mrpt::obs::CObservation&)>& keep = {},
+                          const std::function<bool(mrpt::obs::CObservation&)>& keep = {},
                           double odometry_delay_s = 0)
 {
     mrpt::io::CFileGZOutputStream f(rawlog);
