@@ -21,10 +21,19 @@ void CCeilingLightsMap::TSensorOptions::loadFromConfigFile(const mrpt::config::C
 {
     measurement_model =
         cfg.read_enum<TMeasurementModelKind>(section, "measurement_model", measurement_model);
-    const std::string pose = cfg.read_string(section, "sensor_in_robot", "");
-    if (!pose.empty()) {
-        sensor_in_robot.emplace();
-        sensor_in_robot->fromString(pose);
+    if (const std::string text = cfg.read_string(section, "sensor_in_robot", ""); !text.empty()) {
+        mrpt::poses::CPose3D pose;
+        bool parsed = true;
+        try {
+            pose.fromString(text);
+        } catch (const std::exception&) {
+            parsed = false;
+        }
+        for (const double v : {pose.x(), pose.y(), pose.z(), pose.yaw(), pose.pitch(), pose.roll()})
+            parsed = parsed && std::isfinite(v);
+        requireKey(parsed, section, "sensor_in_robot",
+                   ("expected [x y z yaw pitch roll] (m, deg), got '" + text + "'").c_str());
+        sensor_in_robot = pose;
     }
     sigma_phi = mrpt::DEG2RAD(cfg.read_double(section, "sigma_phi_deg", mrpt::RAD2DEG(sigma_phi)));
     sigma_theta =

@@ -213,6 +213,22 @@ TEST(CCeilingLightsMap, RejectsInvalidOptionsNamingTheKey)
     mrpt::config::CConfigFileMemory cfg2("[s]\np_in = 1\n");
     CCeilingLightsMap::TLikelihoodOptions lo;
     EXPECT_THROW(lo.loadFromConfigFile(cfg2, "s"), std::exception);
+    // a pose without its brackets (MRPT's parser says only that the expression is malformed)
+    // and one that is not finite
+    for (const std::string pose : {"0 0 1.8 0 0 0", "[0 0 nan 0 0 0]"}) {
+        mrpt::config::CConfigFileMemory cfg3("[s]\nsensor_in_robot = " + pose + "\n");
+        CCeilingLightsMap::TSensorOptions so;
+        try {
+            so.loadFromConfigFile(cfg3, "s");
+            ADD_FAILURE() << pose << " was accepted";
+        } catch (const std::exception& e) {
+            EXPECT_NE(std::string(e.what()).find(
+                          "[s] sensor_in_robot: expected [x y z yaw pitch roll] (m, deg), got '" +
+                          pose + "'"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
 }
 
 TEST(CCeilingLightsMap, SerializationRoundTripThroughClassFactory)
