@@ -12,12 +12,14 @@
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/RawlogReader.h>
 #include <mrpt_vslam/core/RunOutputs.h>
+#include <mrpt_vslam/core/TextColumns.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
 #include <mrpt_vslam/multirobot/LandmarkIdentityTally.h>
 #include <mrpt_vslam/multirobot/StereoFrontEnd.h>
 #include <mrpt_vslam/multirobot/TeamPathSmoother.h>
 #include <mrpt_vslam/team/TeamListener.h>
 
+#include <algorithm>
 #include <bitset>
 #include <cstdio>
 #include <map>
@@ -209,8 +211,14 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
     }
     for (const auto& robot : filterOptions.robots) {
         const std::string key = "start_pose_" + robot;
+        std::string text = cfg.read_string(kAppSection, key, "");
+        std::replace(text.begin(), text.end(), ',', ' ');  // as MRPT's read_vector reads it
         std::vector<double> v;
-        cfg.read_vector(kAppSection, key, std::vector<double>(), v);
+        try {
+            v = core::parseNumbers(text, "");
+        } catch (const std::runtime_error& e) {
+            throw usageError("[MultiRobotVSLAM] " + key + " must be 'x y yaw_deg': " + e.what());
+        }
         if (v.empty() && robot == filterOptions.robots.front()) v = {0, 0, 0};
         if (v.empty() && !startFromGroundTruth)
             throw usageError("[MultiRobotVSLAM] " + key + " = x y yaw_deg is missing");
