@@ -19,7 +19,6 @@
 #include <mrpt_vslam/multirobot/TeamPathSmoother.h>
 #include <mrpt_vslam/team/TeamListener.h>
 
-#include <algorithm>
 #include <bitset>
 #include <cstdio>
 #include <map>
@@ -211,13 +210,11 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
     }
     for (const auto& robot : filterOptions.robots) {
         const std::string key = "start_pose_" + robot;
-        std::string text = cfg.read_string(kAppSection, key, "");
-        std::replace(text.begin(), text.end(), ',', ' ');  // as MRPT's read_vector reads it
         std::vector<double> v;
         try {
-            v = core::parseNumbers(text, "");
-        } catch (const std::runtime_error& e) {
-            throw usageError("[MultiRobotVSLAM] " + key + " must be 'x y yaw_deg': " + e.what());
+            v = core::readNumberList(cfg, kAppSection, key, {});
+        } catch (const core::UsageError& e) {
+            throw usageError(e.what());
         }
         if (v.empty() && robot == filterOptions.robots.front()) v = {0, 0, 0};
         if (v.empty() && !startFromGroundTruth)

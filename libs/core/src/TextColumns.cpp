@@ -1,5 +1,7 @@
 #include <mrpt_vslam/core/TextColumns.h>
+#include <mrpt_vslam/core/UsageError.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -25,6 +27,20 @@ std::vector<double> parseNumbers(const std::string& line, const std::string& whe
         values.push_back(v);
     }
     return values;
+}
+
+std::vector<double> readNumberList(const mrpt::config::CConfigFileBase& cfg,
+                                   const std::string& section, const std::string& key,
+                                   const std::vector<double>& default_values)
+{
+    if (!cfg.keyExists(section, key)) return default_values;
+    std::string text = cfg.read_string(section, key, "");
+    std::replace(text.begin(), text.end(), ',', ' ');
+    try {
+        return parseNumbers(text, "[" + section + "] " + key + ": ");
+    } catch (const std::runtime_error& e) {
+        throw UsageError(e.what());
+    }
 }
 
 bool isCommentOrBlank(const std::string& line)

@@ -1,3 +1,4 @@
+#include <mrpt_vslam/core/TextColumns.h>
 #include <mrpt_vslam/sim/CeilingLights.h>
 #include <mrpt_vslam/sim/ConfigReading.h>
 
@@ -48,16 +49,16 @@ bool CeilingLights::isWashedOut(const TCeilingLight& light, double t) const
 void CeilingLights::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                        const std::string& s)
 {
-    column_x = readNumberList(cfg, s, "column_x", column_x);
-    row_y = readNumberList(cfg, s, "row_y", row_y);
+    column_x = core::readNumberList(cfg, s, "column_x", column_x);
+    row_y = core::readNumberList(cfg, s, "row_y", row_y);
     const std::vector<double> rows =
-        readNumberList(cfg, s, "column_rows", {column_rows.begin(), column_rows.end()});
+        core::readNumberList(cfg, s, "column_rows", {column_rows.begin(), column_rows.end()});
     column_rows.assign(rows.begin(), rows.end());
-    extra_lights = readNumberList(cfg, s, "extra_lights", extra_lights);
+    extra_lights = core::readNumberList(cfg, s, "extra_lights", extra_lights);
     MRPT_LOAD_CONFIG_VAR(height, double, cfg, s);
     MRPT_LOAD_CONFIG_VAR(radius, double, cfg, s);
     MRPT_LOAD_CONFIG_VAR(washout_x_min, double, cfg, s);
-    washout_intervals = readNumberList(cfg, s, "washout_intervals", washout_intervals);
+    washout_intervals = core::readNumberList(cfg, s, "washout_intervals", washout_intervals);
 
     checkConfig(!column_x.empty() && !row_y.empty(), s, "column_x, row_y", "non-empty lists");
     checkConfig(column_rows.size() == column_x.size(), s, "column_rows",

@@ -2,35 +2,7 @@
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/sim/ConfigReading.h>
 
-#include <sstream>
-
 namespace mrpt_vslam::sim {
-
-std::vector<double> readNumberList(const mrpt::config::CConfigFileBase& cfg,
-                                   const std::string& section, const std::string& key,
-                                   const std::vector<double>& default_values)
-{
-    if (!cfg.keyExists(section, key)) return default_values;
-    std::string text = cfg.read_string(section, key, "");
-    for (char& ch : text)
-        if (ch == ',') ch = ' ';
-    std::istringstream is(text);
-    std::vector<double> values;
-    std::string item;
-    while (is >> item) {
-        size_t used = 0;
-        double value = 0;
-        try {
-            value = std::stod(item, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (used != item.size())
-            throw core::UsageError("[" + section + "] " + key + ": '" + item + "' is not a number");
-        values.push_back(value);
-    }
-    return values;
-}
 
 double readDegrees(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
                    const std::string& key, double default_rad)

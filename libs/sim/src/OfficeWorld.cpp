@@ -1,3 +1,4 @@
+#include <mrpt_vslam/core/TextColumns.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/sim/ConfigReading.h>
 #include <mrpt_vslam/sim/OfficeWorld.h>
@@ -98,7 +99,7 @@ struct TVerticalFace {
 void readBoxes(const mrpt::config::CConfigFileBase& cfg, const std::string& s,
                const std::string& key, TSurfaceKind kind, std::vector<TBox>& boxes)
 {
-    const std::vector<double> v = readNumberList(cfg, s, key, {});
+    const std::vector<double> v = core::readNumberList(cfg, s, key, {});
     checkConfig(v.size() % 5 == 0, s, key, "groups of x_min y_min x_max y_max height");
     for (size_t i = 0; i < v.size(); i += 5) {
         TBox b{v[i], v[i + 1], v[i + 2], v[i + 3], v[i + 4], kind};
@@ -228,7 +229,7 @@ void OfficeWorld::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, c
 {
     std::vector<double> xy;
     for (const auto& p : room) xy.insert(xy.end(), {p.x, p.y});
-    xy = readNumberList(cfg, s, "room", xy);
+    xy = core::readNumberList(cfg, s, "room", xy);
     checkConfig(xy.size() % 2 == 0 && xy.size() >= 6, s, "room",
                 "a polygon of at least 3 points x1 y1 x2 y2 ...");
     room.clear();
@@ -253,7 +254,7 @@ void OfficeWorld::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, c
 
     std::vector<double> dv;
     for (const TDoor& d : doors) dv.insert(dv.end(), {d.x, d.y, d.width});
-    dv = readNumberList(cfg, s, "doors", dv);
+    dv = core::readNumberList(cfg, s, "doors", dv);
     checkConfig(dv.size() % 3 == 0, s, "doors", "groups of x y width");
     doors.clear();
     for (size_t i = 0; i < dv.size(); i += 3) {

@@ -1,5 +1,6 @@
 #include <mrpt/core/bits_math.h>
 #include <mrpt/math/wrap2pi.h>
+#include <mrpt_vslam/core/TextColumns.h>
 #include <mrpt_vslam/sim/ConfigReading.h>
 #include <mrpt_vslam/sim/WaypointTrajectory.h>
 
@@ -68,7 +69,7 @@ void WaypointTrajectory::loadFromConfigFile(const mrpt::config::CConfigFileBase&
         xy.push_back(p.x);
         xy.push_back(p.y);
     }
-    xy = readNumberList(cfg, s, "waypoints", xy);
+    xy = core::readNumberList(cfg, s, "waypoints", xy);
     checkConfig(!xy.empty() && xy.size() % 2 == 0, s, "waypoints", "a non-empty list of x y pairs");
     waypoints.clear();
     for (size_t i = 0; i < xy.size(); i += 2) waypoints.emplace_back(xy[i], xy[i + 1]);

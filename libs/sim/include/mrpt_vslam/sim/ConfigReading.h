@@ -4,16 +4,8 @@
 #include <mrpt/poses/CPose3D.h>
 
 #include <string>
-#include <vector>
 
 namespace mrpt_vslam::sim {
-
-/** Reads a whitespace- or comma-separated list of numbers from `[section] key`, or returns
- *  `default_values` when the key is absent. Throws core::UsageError "[section] key: ..." when
- *  an item is not a number. */
-std::vector<double> readNumberList(const mrpt::config::CConfigFileBase& cfg,
-                                   const std::string& section, const std::string& key,
-                                   const std::vector<double>& default_values);
 
 /** Reads an angle given in degrees under `key` (which ends in `_deg`) and returns it in
  *  radians, or `default_rad` when the key is absent. */
