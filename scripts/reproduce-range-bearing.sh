@@ -12,13 +12,15 @@
 #      Mahalanobis gate) on each rawlog, timed; its printed poses and final 3D scene become a run
 #      folder (estimated_path.tum, map.txt); where it diverges (NaN poses), diverged.txt instead;
 #   3. multirobot-vslam (multirobot-vslam/range-bearing.ini) on each rawlog, per seed, timed;
-#   4. vslam-eval on every run folder, and the table of both to doc/results/range-bearing.md (or
+#   4. with IDs hidden, how well each tool's path and the true one fit the rawlog's odometry and
+#      readings (their chi-square, scripts/range-bearing-path-fit.py);
+#   5. vslam-eval on every run folder, and the table of both to doc/results/range-bearing.md (or
 #      $RESULTS): position RMSE (unaligned and SE(2)-aligned), landmarks mapped vs true, landmark
 #      error mean (one-to-one matching within vslam-eval's 1.5 m), run time (wall clock of the
 #      process), and the turn of each path's best alignment to the truth; the figures of both
 #      tools' RMSE per rawlog beside it (doc/results/range-bearing/).
 # Writes rawlogs, run folders (metrics.json, paths.png, ...) and logs under
-# out/reproduce-range-bearing/ (or $OUT). Builds first (scripts/setup.sh). Takes about 6 min
+# out/reproduce-range-bearing/ (or $OUT). Builds first (scripts/setup.sh). Takes about 7 min
 # (120 rawlogs; each tool about a second or less per rawlog at the default SEEDS).
 # Environment: OUT, SIM_SEEDS (simulation seeds, default 1 to 20: one rawlog per noise level,
 # IDs kept or hidden and seed; twenty worlds, because which tool is the more accurate on a
@@ -69,7 +71,8 @@ ini_copy() {
   mv "$dst.tmp" "$dst"
 }
 
-# --- 1. simulate: NAME.rawlog, NAME.groundtruth.tum, NAME.landmarks.txt, NAME.stamps.txt -------
+# --- 1. simulate: NAME.rawlog, NAME.groundtruth.tum, NAME.landmarks.txt, NAME.stamps.txt and ----
+# NAME.readings.txt (rawlog-edit's list of the readings, for section 4)
 # The rawlog is CSensoryFrame, CActionCollection, CSensoryFrame, ... (simul-landmarks writes each
 # step's reading before the step's motion). Readers of pairs (kf-slam's
 # CRawlog::readActionObservationPair, rawlog-edit) skip the first frame and pair the motion of
@@ -98,6 +101,10 @@ simulate() {  # simulate NAME NOISE IDS(true|false) SIM_SEED
       tail -5 "$DATA/$name.simul-landmarks.log" >&2; exit 1; }
   done
   "$REPO_DIR/scripts/simul-landmarks-ground-truth.sh" "$DATA/$name.rawlog"
+  rawlog-edit -i "$DATA/$name.rawlog" --list-range-bearing \
+    --text-file-output "$DATA/$name.readings.txt" -q > "$DATA/$name.rawlog-edit.log" 2>&1 ||
+    { echo "rawlog-edit could not list the readings of $DATA/$name.rawlog:" >&2
+      tail -5 "$DATA/$name.rawlog-edit.log" >&2; exit 1; }
   awk '!/^#/ { print $1 }' "$DATA/$name.groundtruth.tum" > "$DATA/$name.stamps.txt"
   local steps expected
   steps=$(wc -l < "$DATA/$name.stamps.txt")
@@ -218,7 +225,34 @@ run_multirobot_vslam() {  # run_multirobot_vslam NAME SEED
   evaluate "$dir" "$name"
 }
 
-# --- 4. table ----------------------------------------------------------------------------------
+# --- 4. fit to the data -------------------------------------------------------------------------
+# path_fit NAME NOISE: "truth kf-slam multirobot-vslam values", the chi-square of the true path,
+# kf-slam's and multirobot-vslam's (the mean over its seeds) given the odometry and readings of
+# hidden-ID rawlog NAME (scripts/range-bearing-path-fit.py; each reading's landmark from its
+# IDs-kept twin), and the number of measured values; "- - - -" where kf-slam diverged. The
+# odometry is that of multirobot-vslam's first run folder (the rawlog's increments, composed).
+path_fit() {
+  local name="$1" noise="$2"
+  local sim="$PEER/simul-landmarks-noise-$noise.ini" kf="$OUT/kf-slam/$name" fit
+  [ -f "$kf/diverged.txt" ] && { echo "- - - -"; return; }
+  local dirs
+  mapfile -t dirs < <(mrv_dirs "$name")
+  fit="$("$REPO_DIR/scripts/range-bearing-path-fit.py" --readings "$DATA/$name.readings.txt" \
+    --ids-from "$DATA/${name/-ids-hidden-/-ids-kept-}.readings.txt" \
+    --stamps "$DATA/$name.stamps.txt" --landmarks "$DATA/$name.landmarks.txt" \
+    --odometry "${dirs[0]}/odometry_path_R1.tum" \
+    --std-range "$(ini_value "$sim" stdRange)" --std-bearing-deg "$(ini_value "$sim" stdYaw_deg)" \
+    --odometry-std-xy "$(ini_value "$sim" odometryNoiseXY_std)" \
+    --odometry-std-phi-deg "$(ini_value "$sim" odometryNoisePhi_std_deg)" \
+    --sensor-pose "$(ini_value "$sim" sensorPose_x)" "$(ini_value "$sim" sensorPose_y)" \
+      "$(ini_value "$sim" sensorPose_yaw_deg)" \
+    "$DATA/$name.groundtruth.tum" "$kf/estimated_path.tum" \
+    "${dirs[@]/%//estimated_path_R1.tum}")"
+  awk '{ c[NR] = $2; n = $5 } END { for (i = 3; i <= NR; i++) m += c[i]
+    printf "%.1f %.1f %.1f %d\n", c[1], c[2], m / (NR - 2), n }' <<< "$fit"
+}
+
+# --- 5. table ----------------------------------------------------------------------------------
 # metrics DIR: "rmse aligned_rmse estimated true matched error_mean" from vslam-eval's summary
 # ("-" if absent)
 metrics() {
@@ -308,6 +342,14 @@ for entry in "${NAMES[@]}"; do
     esac
   done
 done
+
+if both_tools; then
+  mkdir -p "$OUT/path-fit"
+  for entry in "${NAMES[@]}"; do
+    IFS=: read -r name noise ids sim <<< "$entry"
+    if [ "$ids" = hidden ]; then path_fit "$name" "$noise" > "$OUT/path-fit/$name.txt"; fi
+  done
+fi
 
 mkdir -p "$(dirname "$RESULTS")"
 # figures: per IDs setting, kf-slam's RMSE (unaligned and aligned) against multirobot-vslam's, a
@@ -419,6 +461,48 @@ fi
         { n++; kk += mm($1) > mm($2); mk += mm($3) > mm($2); mh += mm($4) > mm($2) }
         END { printf "| %s | %d | %d | %d | %d |\n", noise, n, kk, mk, mh }'
     done
+    echo
+    echo "## Which path the data favour"
+    echo
+    echo "Nearer the truth is not the same as a better fit to the data. The χ² of a path is what it" \
+      "leaves unexplained of the rawlog: the odometry of every step that moves (x, y and heading" \
+      "increments, at the simulation's odometry std) and every reading (range and bearing, at the" \
+      "sensor std), each landmark placed where it fits that path's readings best, on the scored" \
+      "readings (scripts/range-bearing-path-fit.py). With IDs hidden, neither tool knows which" \
+      "landmark a reading is of; the χ² takes it from the same reading of the IDs-kept twin, so" \
+      "both paths are scored with the true association. The true path's χ² is about the number" \
+      "of measured values; a path fitted to the data has less (kf-slam prints its poses to the" \
+      "millimetre and 0.01°: rounding a path so changes its χ² by a few units). IDs hidden, per" \
+      "noise level, on the rawlogs where kf-slam finished:"
+    echo
+    echo "| noise | rawlogs | measured values (mean) | χ² of the true path (mean) | multirobot-vslam's χ² < kf-slam's | multirobot-vslam's χ² < the true path's | kf-slam's RMSE < multirobot-vslam's | of those, multirobot-vslam's χ² < kf-slam's | smallest χ² margin there |"
+    echo "|---|---|---|---|---|---|---|---|---|"
+    fits=""
+    for noise in $NOISE_LEVELS; do
+      for sim in $SIM_SEEDS; do
+        name="range-bearing-ids-hidden-noise-$noise-sim$sim"
+        fits+="$name $noise $(metrics "$OUT/kf-slam/$name" | cut -d' ' -f1)"
+        fits+=" $(mrv_figures "$name" | cut -d' ' -f1) $(cat "$OUT/path-fit/$name.txt")"$'\n'
+      done
+    done
+    # rawlog, noise, RMSE of kf-slam and multirobot-vslam, chi-square of the true path, kf-slam,
+    # multirobot-vslam, measured values
+    fits="$(awk "$MM_AWK"'$3 != "-" && $4 != "-" && $5 != "-" { print $0, mm($3) < mm($4) ? "closer" : "-" }' \
+      <<< "$fits")"
+    for noise in $NOISE_LEVELS; do
+      awk -v noise="$noise" '$2 == noise { n++; v += $8; t += $5; mt += $7 < $6; mu += $7 < $5
+          if ($9 == "closer") { c++; mc += $7 < $6; d = $6 - $7; if (c == 1 || d < md) md = d } }
+        END { printf "| %s | %d | %.0f | %.0f | %d of %d | %d of %d | %d of %d | %d of %d | %s |\n",
+                noise, n, n ? v / n : 0, n ? t / n : 0, mt, n, mu, n, c, n, mc, c,
+                c ? sprintf("%.0f", md) : "-" }' <<< "$fits"
+    done
+    echo
+    echo "The rawlogs where kf-slam's path is the nearer to the truth (RMSE to the millimetre):"
+    echo
+    echo "| rawlog | kf-slam RMSE [m] | multirobot-vslam RMSE [m] | χ² true path | χ² kf-slam | χ² multirobot-vslam | measured values |"
+    echo "|---|---|---|---|---|---|---|"
+    awk '$9 == "closer" { printf "| %s | %.3f | %.3f | %.1f | %.1f | %.1f | %d |\n", $1, $3, $4, $5, $6, $7, $8 }' \
+      <<< "$fits"
   fi
   echo
   echo "## Per rawlog"

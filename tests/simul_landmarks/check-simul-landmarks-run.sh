@@ -6,16 +6,8 @@
 # scored against that ground truth. Also the converter's one-line errors.
 # Usage: check-simul-landmarks-run.sh SOURCE_DIR BUILD_DIR [SIM_SEED]
 # Exits 77 (skipped) without mrpt-apps' simul-landmarks and rawlog-edit.
-set -euo pipefail
-src="$(cd "$1" && pwd)"
-build="$(cd "$2" && pwd)"
+source "$(dirname "${BASH_SOURCE[0]}")/test-setup.sh"
 sim_seed="${3:-1}"
-for tool in simul-landmarks rawlog-edit; do
-  command -v "$tool" > /dev/null || { echo "skipped: $tool not found (mrpt-apps)"; exit 77; }
-done
-scratch="$(mktemp -d)"
-trap 'rm -rf "$scratch"' EXIT
-fail() { echo "FAILED: $*" >&2; exit 1; }
 convert="$src/scripts/simul-landmarks-ground-truth.sh"
 
 # 300 readings on the 7.2 m square, 40 landmarks, medium noise (0.1 m, 2 deg)

@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# scripts/range-bearing-path-fit.py on rawlogs of MRPT's stock simul-landmarks (the sensor 0.2 m
+# ahead of the robot and turned 15 deg):
+#   - without noise, the true path explains odometry and readings exactly (chi-square ~ 0);
+#   - with medium noise, the true path's chi-square is the chi-square of the measured values less
+#     the landmarks' two coordinates each (within 4 std), the odometry path's odometry part is 0,
+#     and multirobot-vslam's path, fitted to the data, has a lower chi-square than the truth;
+#   - readings that are not those of the IDs-kept twin give one line and exit 1.
+# Usage: check-range-bearing-path-fit.sh SOURCE_DIR BUILD_DIR
+# Exits 77 (skipped) without mrpt-apps' simul-landmarks and rawlog-edit.
+source "$(dirname "${BASH_SOURCE[0]}")/test-setup.sh"
+fit="$src/scripts/range-bearing-path-fit.py"
+
+# simulate NAME IDS(true|false) STD_RANGE STD_YAW_DEG ODOMETRY_STD_XY ODOMETRY_STD_PHI_DEG:
+# NAME.rawlog, its ground truth and NAME.readings.txt in $scratch (300 readings, 40 landmarks)
+simulate() {
+  sed -e 's/^random_seed = .*/random_seed = 3/' -e "s/^outFile = .*/outFile = $1.rawlog/" \
+      -e "s/^sensorDetectsIDs = .*/sensorDetectsIDs = $2/" -e 's/^sensorPose_x = .*/sensorPose_x = 0.2/' \
+      -e 's/^sensorPose_yaw_deg = .*/sensorPose_yaw_deg = 15/' -e "s/^stdRange = .*/stdRange = $3/" \
+      -e "s/^stdYaw_deg = .*/stdYaw_deg = $4/" -e "s/^odometryNoiseXY_std = .*/odometryNoiseXY_std = $5/" \
+      -e "s/^odometryNoisePhi_std_deg = .*/odometryNoisePhi_std_deg = $6/" \
+      "$src/share/mrpt-vslam/config/peer-comparison/simul-landmarks-noise-medium.ini" > "$scratch/$1.ini"
+  (cd "$scratch" && simul-landmarks "$1.ini" < /dev/null > "$1.log" 2>&1)
+  [ -s "$scratch/$1.rawlog_ground_truth_robot_path.txt" ] || { tail -5 "$scratch/$1.log" >&2
+    fail "simul-landmarks wrote no $1.rawlog"; }
+  "$src/scripts/simul-landmarks-ground-truth.sh" "$scratch/$1.rawlog"
+  awk '!/^#/ { print $1 }' "$scratch/$1.groundtruth.tum" > "$scratch/$1.stamps.txt"
+  rawlog-edit -i "$scratch/$1.rawlog" --list-range-bearing --text-file-output "$scratch/$1.readings.txt" \
+    -q > /dev/null 2>&1 || fail "rawlog-edit could not list the readings of $1.rawlog"
+}
+
+# score NAME STD_RANGE STD_YAW_DEG ODOMETRY_STD_XY ODOMETRY_STD_PHI_DEG PATH...: the fit's lines
+score() {
+  local name="$1"
+  "$fit" --readings "$scratch/$name-hidden.readings.txt" --ids-from "$scratch/$name-kept.readings.txt" \
+    --stamps "$scratch/$name-hidden.stamps.txt" --odometry "$scratch/run-$name/odometry_path_R1.tum" \
+    --std-range "$2" --std-bearing-deg "$3" --odometry-std-xy "$4" --odometry-std-phi-deg "$5" \
+    --sensor-pose 0.2 0 15 "${@:6}"
+}
+
+run() {  # run NAME [ARGS]: multirobot-vslam from the template on NAME-hidden.rawlog
+  "$build/bin/multirobot-vslam" "$src/share/mrpt-vslam/config/multirobot-vslam/range-bearing.ini" \
+    "$scratch/$1-hidden.rawlog" --out "$scratch/run-$1" --seed 1 --quiet "${@:2}" > /dev/null
+}
+
+# without noise (the fit's std only scale the residuals: 1 m, 1 deg)
+simulate exact-kept true 0 0 0 0
+simulate exact-hidden false 0 0 0 0
+run exact --set MultiRobotVSLAM.range_bearing_std_range=0.01 \
+  --set MultiRobotVSLAM.range_bearing_std_bearing_deg=0.1
+out="$(score exact 1 1 1 1 "$scratch/exact-hidden.groundtruth.tum")"
+echo "without noise, the true path: $out"
+awk '{ exit !($2 < 1e-3) }' <<< "$out" || fail "the true path does not explain noise-free data: $out"
+
+# medium noise: 0.1 m, 2 deg; odometry 0.01 m, 0.5 deg
+simulate medium-kept true 0.1 2 0.01 0.5
+simulate medium-hidden false 0.1 2 0.01 0.5
+run medium
+out="$(score medium 0.1 2 0.01 0.5 "$scratch/medium-hidden.groundtruth.tum" \
+  "$scratch/run-medium/odometry_path_R1.tum" "$scratch/run-medium/estimated_path_R1.tum")"
+echo "medium noise (path chi2 odometry readings values):"
+echo "$out"
+landmarks=$(grep -vc '^#' "$scratch/medium-hidden.landmarks.txt")
+awk -v landmarks="$landmarks" 'NR == 1 { dof = $5 - 2 * landmarks; truth = $2
+    if ((truth - dof) ^ 2 > 16 * 2 * dof) { print "the true path: chi2 " truth ", expected " dof " +- " 4 * sqrt(2 * dof); bad = 1 } }
+  NR == 2 && $3 != 0 { print "the odometry path: odometry chi2 " $3 ", expected 0"; bad = 1 }
+  NR == 3 && !($2 < truth) { print "multirobot-vslam: chi2 " $2 ", not below the true path " truth; bad = 1 }
+  END { exit bad || NR != 3 }' <<< "$out" || fail "medium noise"
+
+# readings of another simulation: one line naming the file, exit 1
+awk '!/^%/ && !done { $4 = $4 + 0.5; done = 1 } { print }' "$scratch/medium-kept.readings.txt" \
+  > "$scratch/other.readings.txt"
+if "$fit" --readings "$scratch/medium-hidden.readings.txt" --ids-from "$scratch/other.readings.txt" \
+    --stamps "$scratch/medium-hidden.stamps.txt" --odometry "$scratch/run-medium/odometry_path_R1.tum" \
+    --std-range 0.1 --std-bearing-deg 2 --odometry-std-xy 0.01 --odometry-std-phi-deg 0.5 \
+    "$scratch/medium-hidden.groundtruth.tum" 2> "$scratch/err"; then
+  fail "scored with the readings of another rawlog"
+fi
+[ "$(wc -l < "$scratch/err")" = 1 ] && grep -q "other.readings.txt: not the readings of" "$scratch/err" ||
+  fail "other readings gave: $(cat "$scratch/err")"
+echo "range-bearing path fit: passed"
