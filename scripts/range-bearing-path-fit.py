@@ -41,62 +41,51 @@ def wrap(a):
     return math.remainder(a, 2 * math.pi)
 
 
-def read_tum(path):
-    """{stamp: (x, y, yaw)} of a TUM file (planar: yaw from the quaternion's z and w)."""
-    poses = {}
+def table_rows(path, comment, columns, expected, parsers):
+    """(where, first column, parsed values) of each data line of a whitespace-separated table.
+    Blank lines and lines starting with comment are skipped; the others need columns[0] to
+    columns[1] columns (expected says which) and give the values parser(column) for each
+    (index, parser) of parsers, all finite."""
     with open(path) as f:
         for n, line in enumerate(f, 1):
             cols = line.split()
-            if not cols or cols[0].startswith("#"):
+            if not cols or cols[0].startswith(comment):
                 continue
-            if len(cols) != 8:
-                raise InputError(f"{path}:{n}: {len(cols)} columns, expected 8 (TUM)")
+            where = f"{path}:{n}"
+            if not columns[0] <= len(cols) <= columns[1]:
+                raise InputError(f"{where}: {len(cols)} columns, expected {expected}")
             try:
-                x, y, qz, qw = (float(cols[i]) for i in (1, 2, 6, 7))
+                values = [parse(cols[i]) for i, parse in parsers]
             except ValueError:
-                raise InputError(f"{path}:{n}: a value is not a number")
-            if not all(map(math.isfinite, (x, y, qz, qw))):
-                raise InputError(f"{path}:{n}: a value is not finite")
-            poses[stamp_key(cols[0], f"{path}:{n}")] = (x, y, 2 * math.atan2(qz, qw))
-    return poses
+                raise InputError(f"{where}: a value is not a number")
+            if not all(map(math.isfinite, values)):
+                raise InputError(f"{where}: a value is not finite")
+            yield where, cols[0], values
+
+
+def read_tum(path):
+    """{stamp: (x, y, yaw)} of a TUM file (planar: yaw from the quaternion's z and w)."""
+    return {stamp_key(stamp, where): (x, y, 2 * math.atan2(qz, qw))
+            for where, stamp, (x, y, qz, qw) in table_rows(
+                path, "#", (8, 8), "8 (TUM: stamp x y z qx qy qz qw)",
+                ((1, float), (2, float), (6, float), (7, float)))}
 
 
 def read_landmarks(path):
     """{id: (x, y)} of a landmarks file (id x y z per line, '#' comments)."""
-    landmarks = {}
-    with open(path) as f:
-        for n, line in enumerate(f, 1):
-            cols = line.split()
-            if not cols or cols[0].startswith("#"):
-                continue
-            try:
-                lid, x, y = int(cols[0]), float(cols[1]), float(cols[2])
-            except (ValueError, IndexError):
-                raise InputError(f"{path}:{n}: expected id x y")
-            if not (math.isfinite(x) and math.isfinite(y)):
-                raise InputError(f"{path}:{n}: a value is not finite")
-            landmarks[lid] = (x, y)
-    return landmarks
+    return {lid: (x, y) for _, _, (lid, x, y) in table_rows(
+        path, "#", (3, math.inf), "id x y ...", ((0, int), (1, float), (2, float)))}
 
 
 def read_readings(path):
     """[(stamp, id, range, bearing)] of rawlog-edit's --list-range-bearing output."""
     rows = []
-    with open(path) as f:
-        for n, line in enumerate(f, 1):
-            cols = line.split()
-            if not cols or cols[0].startswith("%"):
-                continue
-            if len(cols) != 6:
-                raise InputError(f"{path}:{n}: {len(cols)} columns, expected 6 "
-                                 "(stamp, index, ID, range, yaw, pitch)")
-            try:
-                lid, r, yaw, pitch = int(cols[2]), float(cols[3]), float(cols[4]), float(cols[5])
-            except ValueError:
-                raise InputError(f"{path}:{n}: a value is not a number")
-            if pitch != 0:
-                raise InputError(f"{path}:{n}: pitch {pitch}: only planar readings are scored")
-            rows.append((stamp_key(cols[0], f"{path}:{n}"), lid, r, yaw))
+    for where, stamp, (lid, r, yaw, pitch) in table_rows(
+            path, "%", (6, 6), "6 (stamp, index, ID, range, yaw, pitch)",
+            ((2, int), (3, float), (4, float), (5, float))):
+        if pitch != 0:
+            raise InputError(f"{where}: pitch {pitch}: only planar readings are scored")
+        rows.append((stamp_key(stamp, where), lid, r, yaw))
     if not rows:
         raise InputError(f"{path}: no readings")
     return rows
