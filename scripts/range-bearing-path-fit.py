@@ -63,6 +63,20 @@ def table_rows(path, comment, columns, expected, parsers):
             yield where, cols[0], values
 
 
+def read_stamps(path):
+    """The stamps in the first column of a file ('#' comments): a list, or a TUM file."""
+    return [stamp_key(stamp, where)
+            for where, stamp, _ in table_rows(path, "#", (1, math.inf), "a stamp first", ())]
+
+
+def require_stamps(poses, stamps, name):
+    """Raises unless poses has a pose at every stamp."""
+    missing = [s for s in stamps if s not in poses]
+    if missing:
+        raise InputError(f"{name}: no pose at stamp {missing[0]} ({len(missing)} of "
+                         f"{len(stamps)} scored stamps missing)")
+
+
 def read_tum(path):
     """{stamp: (x, y, yaw)} of a TUM file (planar: yaw from the quaternion's z and w)."""
     return {stamp_key(stamp, where): (x, y, 2 * math.atan2(qz, qw))
@@ -194,10 +208,7 @@ def best_landmark(readings, sr, sb, known=None):
 
 
 def chi_square(path, name, args, stamps, odometry, frames, landmarks):
-    missing = [s for s in stamps if s not in path]
-    if missing:
-        raise InputError(f"{name}: no pose at stamp {missing[0]} ({len(missing)} of "
-                         f"{len(stamps)} scored stamps missing)")
+    require_stamps(path, stamps, name)
     so, sp = args.odometry_std_xy, math.radians(args.odometry_std_phi_deg)
     odo_chi2, odo_values = 0.0, 0
     for a, b in zip(stamps, stamps[1:]):
@@ -224,7 +235,8 @@ def main():
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--readings", required=True, help="rawlog-edit's list of the readings")
     p.add_argument("--ids-from", help="the same readings listed with their landmark IDs")
-    p.add_argument("--stamps", required=True, help="scored stamps, one per line")
+    p.add_argument("--stamps", required=True,
+                   help="scored stamps: the first column ('#' comments), as in a TUM file")
     p.add_argument("--odometry", required=True, help="the odometry path (TUM)")
     p.add_argument("--std-range", type=float, required=True, help="[m] range std")
     p.add_argument("--std-bearing-deg", type=float, required=True, help="[deg] bearing std")
@@ -245,8 +257,7 @@ def main():
     if not all(map(math.isfinite, args.sensor_pose)):
         p.error(f"--sensor-pose {' '.join(map(str, args.sensor_pose))}: must be finite numbers")
     try:
-        with open(args.stamps) as f:
-            stamps = [stamp_key(line.split()[0], args.stamps) for line in f if line.strip()]
+        stamps = read_stamps(args.stamps)
         if len(stamps) < 2:
             raise InputError(f"{args.stamps}: fewer than two stamps")
         readings = read_readings(args.readings)
@@ -261,9 +272,7 @@ def main():
             raise InputError(f"{args.readings}: no reading at a scored stamp")
         landmarks = read_landmarks(args.landmarks) if args.landmarks else {}
         odometry = read_tum(args.odometry)
-        missing = [s for s in stamps if s not in odometry]
-        if missing:
-            raise InputError(f"{args.odometry}: no pose at stamp {missing[0]}")
+        require_stamps(odometry, stamps, args.odometry)
         for name in args.paths:
             o, z, n = chi_square(read_tum(name), name, args, stamps, odometry, frames, landmarks)
             print(f"{name} {o + z:.3f} {o:.3f} {z:.3f} {n}")

@@ -24,7 +24,6 @@ simulate() {
   [ -s "$scratch/$1.rawlog_ground_truth_robot_path.txt" ] || { tail -5 "$scratch/$1.log" >&2
     fail "simul-landmarks wrote no $1.rawlog"; }
   "$src/scripts/simul-landmarks-ground-truth.sh" "$scratch/$1.rawlog"
-  awk '!/^#/ { print $1 }' "$scratch/$1.groundtruth.tum" > "$scratch/$1.stamps.txt"
   rawlog-edit -i "$scratch/$1.rawlog" --list-range-bearing --text-file-output "$scratch/$1.readings.txt" \
     -q > /dev/null 2>&1 || fail "rawlog-edit could not list the readings of $1.rawlog"
 }
@@ -33,7 +32,7 @@ simulate() {
 score() {
   local name="$1"
   "$fit" --readings "$scratch/$name-hidden.readings.txt" --ids-from "$scratch/$name-kept.readings.txt" \
-    --stamps "$scratch/$name-hidden.stamps.txt" --odometry "$scratch/run-$name/odometry_path_R1.tum" \
+    --stamps "$scratch/$name-hidden.groundtruth.tum" --odometry "$scratch/run-$name/odometry_path_R1.tum" \
     --std-range "$2" --std-bearing-deg "$3" --odometry-std-xy "$4" --odometry-std-phi-deg "$5" \
     --sensor-pose 0.2 0 15 "${@:6}"
 }
@@ -71,7 +70,7 @@ awk -v landmarks="$landmarks" 'NR == 1 { dof = $5 - 2 * landmarks; truth = $2
 awk '!/^%/ && !done { $4 = $4 + 0.5; done = 1 } { print }' "$scratch/medium-kept.readings.txt" \
   > "$scratch/other.readings.txt"
 if "$fit" --readings "$scratch/medium-hidden.readings.txt" --ids-from "$scratch/other.readings.txt" \
-    --stamps "$scratch/medium-hidden.stamps.txt" --odometry "$scratch/run-medium/odometry_path_R1.tum" \
+    --stamps "$scratch/medium-hidden.groundtruth.tum" --odometry "$scratch/run-medium/odometry_path_R1.tum" \
     --std-range 0.1 --std-bearing-deg 2 --odometry-std-xy 0.01 --odometry-std-phi-deg 0.5 \
     "$scratch/medium-hidden.groundtruth.tum" 2> "$scratch/err"; then
   fail "scored with the readings of another rawlog"
