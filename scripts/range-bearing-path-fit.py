@@ -15,10 +15,15 @@ sensorDetectsIDs = true writes the same readings, value for value and in the sam
 Readings are listed by `rawlog-edit -i NAME.rawlog --list-range-bearing --text-file-output FILE`.
 Paths are looked up at the scored stamps to the microsecond. Each landmark's fit takes the best of
 a few starts (see best_landmark); with --landmarks, the landmark's position in that file is one.
+With --most-probable, also the path and landmarks of least chi-square, the pose at the first scored
+stamp held at the first path's (the true start, for the true path) and the robot standing where
+its odometry increment is exactly zero: the most probable path given the data and the
+associations (PathProblem), written as a TUM file and scored after the others.
 Output: a line per path, "PATH chi2 odometry_chi2 readings_chi2 measured_values".
 """
 import argparse
 import math
+import os
 import sys
 from collections import defaultdict
 from decimal import Decimal, InvalidOperation
@@ -28,6 +33,10 @@ MICROSECOND = Decimal("0.000001")
 
 class InputError(Exception):
     pass
+
+
+class SingularSystem(ArithmeticError):
+    """Normal equations that are not positive definite (to rounding)."""
 
 
 def stamp_key(text, where):
@@ -138,6 +147,12 @@ def increment(a, b):
     return (c * dx + s * dy, -s * dx + c * dy, wrap(b[2] - a[2]))
 
 
+def odometry_residuals(a, b, u, so, sp):
+    """Normalised x, y and heading residuals of the increment from pose a to b against u."""
+    e = increment(a, b)
+    return (e[0] - u[0]) / so, (e[1] - u[1]) / so, wrap(e[2] - u[2]) / sp
+
+
 def residuals(landmark, sensor, r, bearing, sr, sb):
     """Normalised range and bearing residuals and their Jacobian rows w.r.t. the landmark."""
     dx, dy = landmark[0] - sensor[0], landmark[1] - sensor[1]
@@ -207,6 +222,231 @@ def best_landmark(readings, sr, sb, known=None):
     return min((refine_landmark(m, readings, sr, sb) for m in starts), key=lambda fit: fit[1])
 
 
+def mat_mul(a, b):
+    """a b of matrices as lists of rows."""
+    cols = list(zip(*b))
+    return [[sum(x * y for x, y in zip(row, col)) for col in cols] for row in a]
+
+
+def mat_sub(a, b):
+    return [[x - y for x, y in zip(ra, rb)] for ra, rb in zip(a, b)]
+
+
+def transpose(a):
+    return [list(col) for col in zip(*a)]
+
+
+def cholesky_solve(a, b):
+    """x with a x = b, a symmetric positive definite (lists)."""
+    n = len(a)
+    low = [[0.0] * n for _ in range(n)]
+    for i in range(n):
+        for j in range(i + 1):
+            v = a[i][j] - sum(low[i][k] * low[j][k] for k in range(j))
+            if i == j:
+                if not v > 0:
+                    raise SingularSystem()
+                low[i][i] = math.sqrt(v)
+            else:
+                low[i][j] = v / low[j][j]
+    y = []
+    for i in range(n):
+        y.append((b[i] - sum(low[i][k] * y[k] for k in range(i))) / low[i][i])
+    x = [0.0] * n
+    for i in reversed(range(n)):
+        x[i] = (y[i] - sum(low[k][i] * x[k] for k in range(i + 1, n))) / low[i][i]
+    return x
+
+
+def inverse3(m):
+    (a, b, c), (d, e, f), (g, h, i) = m
+    det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+    if not abs(det) > 0:
+        raise SingularSystem()
+    return [[(e * i - f * h) / det, (c * h - b * i) / det, (b * f - c * e) / det],
+            [(f * g - d * i) / det, (a * i - c * g) / det, (c * d - a * f) / det],
+            [(d * h - e * g) / det, (b * g - a * h) / det, (a * e - b * d) / det]]
+
+
+class PathProblem:
+    """The path and landmarks that minimise the chi-square of chi_square(), the pose at the first
+    scored stamp held at its start value and the poses of steps whose odometry is exactly zero
+    tied to the pose before (the robot stands). Gauss-Newton with Levenberg-Marquardt damping;
+    the normal equations are solved by eliminating the poses, whose block is block-tridiagonal
+    (odometry ties consecutive poses only), then the landmarks."""
+
+    def __init__(self, args, stamps, odometry, frames):
+        self.so, self.sp = args.odometry_std_xy, math.radians(args.odometry_std_phi_deg)
+        self.sr, self.sb = args.std_range, math.radians(args.std_bearing_deg)
+        self.offset = (args.sensor_pose[0], args.sensor_pose[1],
+                       math.radians(args.sensor_pose[2]))
+        self.group = {stamps[0]: -1}  # pose variable of each stamp; -1: held at the start
+        self.steps = []  # (group before, group after, odometry increment)
+        groups = 0
+        for a, b in zip(stamps, stamps[1:]):
+            u = increment(odometry[a], odometry[b])
+            if u == (0.0, 0.0, 0.0):
+                self.group[b] = self.group[a]
+            else:
+                self.group[b] = groups
+                self.steps.append((self.group[a], groups, u))
+                groups += 1
+        self.poses = groups
+        self.ids = sorted({lid for _, lid, _, _ in frames})  # landmark variable j: ids[j]
+        point = {lid: j for j, lid in enumerate(self.ids)}
+        self.readings = [(self.group[s], point[lid], r, b) for s, lid, r, b in frames]
+
+    def cost(self, start, poses, points):
+        pose = lambda g: start if g < 0 else poses[g]
+        total = 0.0
+        for ga, gb, u in self.steps:
+            total += sum(v * v for v in odometry_residuals(pose(ga), pose(gb), u, self.so,
+                                                            self.sp))
+        for g, j, r, b in self.readings:
+            er, eb, _, _ = residuals(points[j], compose(pose(g), self.offset), r, b, self.sr,
+                                     self.sb)
+            total += er * er + eb * eb
+        return total
+
+    def normal_equations(self, start, poses, points):
+        """Diagonal and super-diagonal 3x3 blocks of the poses, the pose-landmark blocks
+        {(pose, landmark): 3x2}, the landmarks' 2x2 blocks, and the gradient (poses, landmarks)."""
+        n, m = self.poses, len(points)
+        diag = [[[0.0] * 3 for _ in range(3)] for _ in range(n)]
+        upper = [[[0.0] * 3 for _ in range(3)] for _ in range(n)]
+        cross = defaultdict(lambda: [[0.0] * 2 for _ in range(3)])
+        lm = [[[0.0] * 2 for _ in range(2)] for _ in range(m)]
+        gp = [[0.0] * 3 for _ in range(n)]
+        gl = [[0.0] * 2 for _ in range(m)]
+        pose = lambda g: start if g < 0 else poses[g]
+        w = (1 / self.so, 1 / self.so, 1 / self.sp)
+        for ga, gb, u in self.steps:
+            a, b = pose(ga), pose(gb)
+            res = odometry_residuals(a, b, u, self.so, self.sp)
+            c, s = math.cos(a[2]), math.sin(a[2])
+            dx, dy = b[0] - a[0], b[1] - a[1]
+            ja = [[-c * w[0], -s * w[0], (-s * dx + c * dy) * w[0]],
+                  [s * w[1], -c * w[1], (-c * dx - s * dy) * w[1]], [0.0, 0.0, -w[2]]]
+            jb = [[c * w[0], s * w[0], 0.0], [-s * w[1], c * w[1], 0.0], [0.0, 0.0, w[2]]]
+            for g, jac in ((ga, ja), (gb, jb)):
+                if g < 0:
+                    continue
+                for r in range(3):
+                    gp[g][r] += sum(jac[k][r] * res[k] for k in range(3))
+                    for q in range(3):
+                        diag[g][r][q] += sum(jac[k][r] * jac[k][q] for k in range(3))
+            if ga >= 0:  # gb = ga + 1
+                for r in range(3):
+                    for q in range(3):
+                        upper[ga][r][q] += sum(ja[k][r] * jb[k][q] for k in range(3))
+        ox, oy, _ = self.offset
+        for g, j, r, b in self.readings:
+            p = pose(g)
+            sensor = compose(p, self.offset)
+            er, eb, jr, jb = residuals(points[j], sensor, r, b, self.sr, self.sb)
+            res = (er, eb)
+            jl = (jr, jb)
+            c, s = math.cos(p[2]), math.sin(p[2])
+            dsx, dsy = -s * ox - c * oy, c * ox - s * oy  # sensor position w.r.t. heading
+            jp = ((-jr[0], -jr[1], -jr[0] * dsx - jr[1] * dsy),
+                  (-jb[0], -jb[1], -jb[0] * dsx - jb[1] * dsy - 1 / self.sb))
+            for q in range(2):
+                gl[j][q] += jl[0][q] * res[0] + jl[1][q] * res[1]
+                for t in range(2):
+                    lm[j][q][t] += jl[0][q] * jl[0][t] + jl[1][q] * jl[1][t]
+            if g < 0:
+                continue
+            block = cross[(g, j)]
+            for q in range(3):
+                gp[g][q] += jp[0][q] * res[0] + jp[1][q] * res[1]
+                for t in range(3):
+                    diag[g][q][t] += jp[0][q] * jp[0][t] + jp[1][q] * jp[1][t]
+                for t in range(2):
+                    block[q][t] += jp[0][q] * jl[0][t] + jp[1][q] * jl[1][t]
+        return diag, upper, cross, lm, gp, gl
+
+    def step(self, equations, damping):
+        """The damped Gauss-Newton step (poses, landmarks)."""
+        diag, upper, cross, lm, gp, gl = equations
+        n, m = self.poses, len(lm)
+        width = 2 * m + 1  # columns: the pose-landmark blocks, then the gradient
+        rhs = [[[0.0] * width for _ in range(3)] for _ in range(n)]
+        for (g, j), block in cross.items():
+            for q in range(3):
+                rhs[g][q][2 * j:2 * j + 2] = block[q]
+        for g in range(n):
+            for q in range(3):
+                rhs[g][q][-1] = gp[g][q]
+        damped = [[[v * (1 + damping) if q == t else v for t, v in enumerate(row)]
+                   for q, row in enumerate(d)] for d in diag]
+        # block-tridiagonal elimination: x = poses⁻¹ rhs
+        inv, red = [None] * n, [None] * n
+        for g in range(n):
+            d, r = damped[g], rhs[g]
+            if g > 0:
+                lower = transpose(upper[g - 1])
+                li = mat_mul(lower, inv[g - 1])
+                d = mat_sub(d, mat_mul(li, upper[g - 1]))
+                r = mat_sub(r, mat_mul(li, red[g - 1]))
+            inv[g], red[g] = inverse3(d), r
+        x = [None] * n
+        for g in reversed(range(n)):
+            r = red[g]
+            if g + 1 < n:
+                r = mat_sub(r, mat_mul(upper[g], x[g + 1]))
+            x[g] = mat_mul(inv[g], r)
+        # the landmarks' reduced system
+        size = 2 * m
+        s = [[0.0] * size for _ in range(size)]
+        b = [0.0] * size
+        for j in range(m):
+            for q in range(2):
+                for t in range(2):
+                    s[2 * j + q][2 * j + t] = lm[j][q][t] * ((1 + damping) if q == t else 1)
+                b[2 * j + q] = -gl[j][q]
+        for (g, j), block in cross.items():
+            for q in range(2):
+                row = s[2 * j + q]
+                for k in range(3):
+                    v = block[k][q]
+                    if v:
+                        xr = x[g][k]
+                        for col in range(size):
+                            row[col] -= v * xr[col]
+                        b[2 * j + q] += v * xr[-1]
+        dl = cholesky_solve(s, b)
+        dp = [[-x[g][q][-1] - sum(x[g][q][c] * dl[c] for c in range(size)) for q in range(3)]
+              for g in range(n)]
+        return dp, [(dl[2 * j], dl[2 * j + 1]) for j in range(m)]
+
+    def solve(self, start, poses, points):
+        """Levenberg-Marquardt from poses (one per pose variable) and points: the minimum's
+        (poses, points, chi-square)."""
+        cost = self.cost(start, poses, points)
+        damping = 1e-4
+        for _ in range(100):
+            equations = self.normal_equations(start, poses, points)
+            while True:
+                try:
+                    dp, dl = self.step(equations, damping)
+                    trial_poses = [(p[0] + d[0], p[1] + d[1], wrap(p[2] + d[2]))
+                                   for p, d in zip(poses, dp)]
+                    trial_points = [(p[0] + d[0], p[1] + d[1]) for p, d in zip(points, dl)]
+                    trial_cost = self.cost(start, trial_poses, trial_points)
+                except SingularSystem:  # rounding, e.g. a landmark at the sensor: damp more
+                    trial_cost = math.inf
+                if trial_cost < cost:
+                    break
+                damping *= 10
+                if damping > 1e8:
+                    return poses, points, cost
+            poses, points, decrease = trial_poses, trial_points, cost - trial_cost
+            cost, damping = trial_cost, max(damping / 10, 1e-9)
+            if decrease < 1e-10 * cost:
+                break
+        return poses, points, cost
+
+
 def chi_square(path, name, args, stamps, odometry, frames, landmarks):
     require_stamps(path, stamps, name)
     so, sp = args.odometry_std_xy, math.radians(args.odometry_std_phi_deg)
@@ -215,9 +455,7 @@ def chi_square(path, name, args, stamps, odometry, frames, landmarks):
         u = increment(odometry[a], odometry[b])
         if u == (0.0, 0.0, 0.0):
             continue
-        e = increment(path[a], path[b])
-        odo_chi2 += ((e[0] - u[0]) / so) ** 2 + ((e[1] - u[1]) / so) ** 2 + \
-            (wrap(e[2] - u[2]) / sp) ** 2
+        odo_chi2 += sum(v * v for v in odometry_residuals(path[a], path[b], u, so, sp))
         odo_values += 3
     sr, sb = args.std_range, math.radians(args.std_bearing_deg)
     offset = (args.sensor_pose[0], args.sensor_pose[1], math.radians(args.sensor_pose[2]))
@@ -228,6 +466,35 @@ def chi_square(path, name, args, stamps, odometry, frames, landmarks):
     for lid, readings in by_landmark.items():
         readings_chi2 += best_landmark(readings, sr, sb, landmarks.get(lid))[1]
     return odo_chi2, readings_chi2, odo_values + 2 * len(frames)
+
+
+def write_most_probable(args, stamps, odometry, frames, landmarks):
+    """PathProblem's path started from the first path given and each landmark's fit along it,
+    written to args.most_probable (TUM, a pose per scored stamp)."""
+    first = read_tum(args.paths[0])
+    require_stamps(first, stamps, args.paths[0])
+    problem = PathProblem(args, stamps, odometry, frames)
+    poses = [None] * problem.poses
+    for stamp in stamps:
+        g = problem.group[stamp]
+        if g >= 0 and poses[g] is None:
+            poses[g] = first[stamp]
+    offset = problem.offset
+    by_landmark = defaultdict(list)
+    for stamp, lid, r, b in frames:
+        by_landmark[lid].append((compose(first[stamp], offset), r, b))
+    points = [best_landmark(by_landmark[lid], problem.sr, problem.sb, landmarks.get(lid))[0]
+              for lid in problem.ids]
+    start = first[stamps[0]]
+    poses, _, _ = problem.solve(start, poses, points)
+    tmp = args.most_probable + ".tmp"
+    with open(tmp, "w") as f:
+        f.write("# timestamp x y z qx qy qz qw\n")
+        for stamp in stamps:
+            g = problem.group[stamp]
+            x, y, a = start if g < 0 else poses[g]
+            f.write(f"{stamp} {x:.9f} {y:.9f} 0 0 0 {math.sin(a / 2):.9f} {math.cos(a / 2):.9f}\n")
+    os.replace(tmp, args.most_probable)
 
 
 def main():
@@ -248,6 +515,10 @@ def main():
                    "too: the true ones of a simulation")
     p.add_argument("--sensor-pose", type=float, nargs=3, default=(0.0, 0.0, 0.0),
                    metavar=("X", "Y", "YAW_DEG"), help="[m, m, deg] sensor on the robot")
+    p.add_argument("--most-probable", metavar="OUT.tum",
+                   help="also write the path of least chi-square, its pose at the first scored "
+                   "stamp held at the first path's and the poses of steps whose odometry is "
+                   "zero at the pose before, started from the first path (TUM), and score it")
     p.add_argument("paths", nargs="+", help="paths to score (TUM)")
     args = p.parse_args()
     for key in ("std_range", "std_bearing_deg", "odometry_std_xy", "odometry_std_phi_deg"):
@@ -273,7 +544,11 @@ def main():
         landmarks = read_landmarks(args.landmarks) if args.landmarks else {}
         odometry = read_tum(args.odometry)
         require_stamps(odometry, stamps, args.odometry)
-        for name in args.paths:
+        names = list(args.paths)
+        if args.most_probable:
+            write_most_probable(args, stamps, odometry, frames, landmarks)
+            names.append(args.most_probable)
+        for name in names:
             o, z, n = chi_square(read_tum(name), name, args, stamps, odometry, frames, landmarks)
             print(f"{name} {o + z:.3f} {o:.3f} {z:.3f} {n}")
     except (InputError, OSError) as e:

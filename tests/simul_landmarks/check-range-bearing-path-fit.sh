@@ -5,6 +5,10 @@
 #   - with medium noise, the true path's chi-square is the chi-square of the measured values less
 #     the landmarks' two coordinates each (within 4 std), the odometry path's odometry part is 0,
 #     and multirobot-vslam's path, fitted to the data, has a lower chi-square than the truth;
+#   - the most probable path (--most-probable): without noise, the truth (to 1e-5: rawlog-edit
+#     lists the readings to 1e-6 m and rad); with medium noise, the same from the truth and from
+#     multirobot-vslam's path, its first pose the truth's and its chi-square below every path
+#     scored;
 #   - readings that are not those of the IDs-kept twin give one line and exit 1.
 # Usage: check-range-bearing-path-fit.sh SOURCE_DIR BUILD_DIR
 # Exits 77 (skipped) without mrpt-apps' simul-landmarks and rawlog-edit.
@@ -50,6 +54,25 @@ run exact --set MultiRobotVSLAM.range_bearing_std_range=0.01 \
 out="$(score exact 1 1 1 1 "$scratch/exact-hidden.groundtruth.tum")"
 echo "without noise, the true path: $out"
 awk '{ exit !($2 < 1e-3) }' <<< "$out" || fail "the true path does not explain noise-free data: $out"
+out="$(score exact 1 1 1 1 --most-probable "$scratch/exact-most-probable.tum" \
+  "$scratch/run-exact/estimated_path_R1.tum")"
+echo "without noise, from multirobot-vslam's path (its chi2, then the most probable path's):"
+echo "$out"
+# largest_difference A.tum B.tum: the largest |x|, |y| or |yaw| difference of two paths, pose by pose
+largest_difference() {
+  awk '/^#/ { next } NR == FNR { p[$1] = $2 " " $3 " " $7 " " $8; next }
+    { split(p[$1], q, " "); if (!($1 in p)) { print "no pose at " $1; exit 1 }
+      d = atan2(q[3], q[4]) - atan2($7, $8); d = sin(d) ^ 2
+      for (i = 1; i <= 2; i++) { e = (q[i] - $(i + 1)) ^ 2; if (e > d) d = e }
+      if (d > m) m = d }
+    END { printf "%.3g\n", sqrt(m) }' "$1" "$2"
+}
+difference=$(largest_difference "$scratch/exact-hidden.groundtruth.tum" "$scratch/exact-most-probable.tum")
+echo "without noise, against the truth: multirobot-vslam's path $(largest_difference \
+  "$scratch/exact-hidden.groundtruth.tum" "$scratch/run-exact/estimated_path_R1.tum"), the most" \
+  "probable path $difference (rawlog-edit lists readings to 1e-6 m and rad)"
+awk -v d="$difference" 'NR == 2 { exit !($2 < 1e-6 && d < 1e-5) }' <<< "$out" ||
+  fail "the most probable path of noise-free data is not the truth"
 
 # medium noise: 0.1 m, 2 deg; odometry 0.01 m, 0.5 deg
 simulate medium-kept true 0.1 2 0.01 0.5
@@ -65,6 +88,24 @@ awk -v landmarks="$landmarks" 'NR == 1 { dof = $5 - 2 * landmarks; truth = $2
   NR == 2 && $3 != 0 { print "the odometry path: odometry chi2 " $3 ", expected 0"; bad = 1 }
   NR == 3 && !($2 < truth) { print "multirobot-vslam: chi2 " $2 ", not below the true path " truth; bad = 1 }
   END { exit bad || NR != 3 }' <<< "$out" || fail "medium noise"
+for start in truth ours; do
+  first="$scratch/medium-hidden.groundtruth.tum"
+  [ $start = ours ] && first="$scratch/run-medium/estimated_path_R1.tum"
+  score medium 0.1 2 0.01 0.5 --most-probable "$scratch/most-probable-$start.tum" "$first" |
+    tail -1 > "$scratch/most-probable-$start.txt"
+done
+echo "medium noise, the most probable path from the truth and from multirobot-vslam's path:"
+cat "$scratch/most-probable-truth.txt" "$scratch/most-probable-ours.txt" | tee "$scratch/most-probable.txt"
+least=$(awk 'NR == 1 || $2 < m { m = $2 } END { print m }' <<< "$out")
+awk -v least="$least" 'NR == 1 { chi2 = $2
+    if (!(chi2 < least)) { print "chi2 " chi2 ", not below the least of the paths, " least; bad = 1 } }
+  NR == 2 && (chi2 - $2) ^ 2 > (1e-6 * chi2) ^ 2 { print "from the truth " chi2 ", from multirobot-vslam " $2; bad = 1 }
+  END { exit bad || NR != 2 }' "$scratch/most-probable.txt" || fail "medium noise: the most probable path"
+awk '!/^#/ { print; exit }' "$scratch/medium-hidden.groundtruth.tum" > "$scratch/first-truth.tum"
+awk '!/^#/ { print; exit }' "$scratch/most-probable-truth.tum" > "$scratch/first-most-probable.tum"
+difference=$(largest_difference "$scratch/first-truth.tum" "$scratch/first-most-probable.tum")
+awk -v d="$difference" 'BEGIN { exit !(d < 1e-6) }' ||
+  fail "medium noise: the most probable path starts $difference from the truth's first pose"
 
 # readings of another simulation: one line naming the file, exit 1
 awk '!/^%/ && !done { $4 = $4 + 0.5; done = 1 } { print }' "$scratch/medium-kept.readings.txt" \
