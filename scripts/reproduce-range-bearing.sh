@@ -13,14 +13,15 @@
 #      folder (estimated_path.tum, map.txt); where it diverges (NaN poses), diverged.txt instead;
 #   3. multirobot-vslam (multirobot-vslam/range-bearing.ini) on each rawlog, per seed, timed;
 #   4. with IDs hidden, how well each tool's path and the true one fit the rawlog's odometry and
-#      readings (their chi-square, scripts/range-bearing-path-fit.py);
+#      readings (their chi-square, scripts/range-bearing-path-fit.py), and the most probable path
+#      given them and the true associations, a run folder evaluated as the tools' are;
 #   5. vslam-eval on every run folder, and the table of both to doc/results/range-bearing.md (or
 #      $RESULTS): position RMSE (unaligned and SE(2)-aligned), landmarks mapped vs true, landmark
 #      error mean (one-to-one matching within vslam-eval's 1.5 m), run time (wall clock of the
 #      process), and the turn of each path's best alignment to the truth; the figures of both
 #      tools' RMSE per rawlog beside it (doc/results/range-bearing/).
 # Writes rawlogs, run folders (metrics.json, paths.png, ...) and logs under
-# out/reproduce-range-bearing/ (or $OUT). Builds first (scripts/setup.sh). Takes about 7 min
+# out/reproduce-range-bearing/ (or $OUT). Builds first (scripts/setup.sh). Takes about 6 min
 # (120 rawlogs; each tool about a second or less per rawlog at the default SEEDS).
 # Environment: OUT, SIM_SEEDS (simulation seeds, default 1 to 20: one rawlog per noise level,
 # IDs kept or hidden and seed; twenty worlds, because which tool is the more accurate on a
@@ -226,18 +227,23 @@ run_multirobot_vslam() {  # run_multirobot_vslam NAME SEED
 }
 
 # --- 4. fit to the data -------------------------------------------------------------------------
-# path_fit NAME NOISE: "truth kf-slam multirobot-vslam values", the chi-square of the true path,
-# kf-slam's and multirobot-vslam's (the mean over its seeds) given the odometry and readings of
-# hidden-ID rawlog NAME (scripts/range-bearing-path-fit.py; each reading's landmark from its
-# IDs-kept twin), and the number of measured values; "- - - -" where kf-slam diverged. The
-# odometry is that of multirobot-vslam's first run folder (the rawlog's increments, composed).
+# path_fit NAME NOISE: "truth kf-slam multirobot-vslam most-probable values", the chi-square of
+# the true path, kf-slam's, multirobot-vslam's (the mean over its seeds) and the most probable
+# path's given the odometry and readings of hidden-ID rawlog NAME (scripts/range-bearing-path-fit.py;
+# each reading's landmark from its IDs-kept twin), and the number of measured values; "- - - - -"
+# where kf-slam diverged. The odometry is that of multirobot-vslam's first run folder (the
+# rawlog's increments, composed). The most probable path (started from the true one, its first
+# pose held at the truth's) becomes run folder OUT/most-probable/NAME, evaluated as the tools' are.
 path_fit() {
   local name="$1" noise="$2"
   local sim="$PEER/simul-landmarks-noise-$noise.ini" kf="$OUT/kf-slam/$name" fit
-  [ -f "$kf/diverged.txt" ] && { echo "- - - -"; return; }
-  local dirs
+  [ -f "$kf/diverged.txt" ] && { echo "- - - - -"; return; }
+  local dirs mp="$OUT/most-probable/$name"
   mapfile -t dirs < <(mrv_dirs "$name")
+  mkdir -p "$mp"
+  rm -f "$mp/metrics.json" "$mp/summary.txt"
   fit="$("$REPO_DIR/scripts/range-bearing-path-fit.py" --readings "$DATA/$name.readings.txt" \
+    --most-probable "$mp/estimated_path.tum" \
     --ids-from "$DATA/${name/-ids-hidden-/-ids-kept-}.readings.txt" \
     --stamps "$DATA/$name.stamps.txt" --landmarks "$DATA/$name.landmarks.txt" \
     --odometry "${dirs[0]}/odometry_path_R1.tum" \
@@ -248,8 +254,11 @@ path_fit() {
       "$(ini_value "$sim" sensorPose_yaw_deg)" \
     "$DATA/$name.groundtruth.tum" "$kf/estimated_path.tum" \
     "${dirs[@]/%//estimated_path_R1.tum}")"
-  awk '{ c[NR] = $2; n = $5 } END { for (i = 3; i <= NR; i++) m += c[i]
-    printf "%.1f %.1f %.1f %d\n", c[1], c[2], m / (NR - 2), n }' <<< "$fit"
+  printf '{"app": "range-bearing-path-fit", "rawlog": "%s", "ground_truth": "%s"}\n' \
+    "$DATA/$name.rawlog" "$DATA/$name.rawlog" > "$mp/run.json"
+  evaluate "$mp" "$name" --ground-truth "$DATA/$name.rawlog"
+  awk '{ c[NR] = $2; n = $5 } END { for (i = 3; i < NR; i++) m += c[i]
+    printf "%.1f %.1f %.1f %.1f %d\n", c[1], c[2], m / (NR - 3), c[NR], n }' <<< "$fit"
 }
 
 # --- 5. table ----------------------------------------------------------------------------------
@@ -482,16 +491,17 @@ fi
       for sim in $SIM_SEEDS; do
         name="range-bearing-ids-hidden-noise-$noise-sim$sim"
         fits+="$name $noise $(metrics "$OUT/kf-slam/$name" | cut -d' ' -f1)"
-        fits+=" $(mrv_figures "$name" | cut -d' ' -f1) $(cat "$OUT/path-fit/$name.txt")"$'\n'
+        fits+=" $(mrv_figures "$name" | cut -d' ' -f1)"
+        fits+=" $(metrics "$OUT/most-probable/$name" | cut -d' ' -f1) $(cat "$OUT/path-fit/$name.txt")"$'\n'
       done
     done
-    # rawlog, noise, RMSE of kf-slam and multirobot-vslam, chi-square of the true path, kf-slam,
-    # multirobot-vslam, measured values
-    fits="$(awk "$MM_AWK"'$3 != "-" && $4 != "-" && $5 != "-" { print $0, mm($3) < mm($4) ? "closer" : "-" }' \
+    # rawlog, noise, RMSE of kf-slam, multirobot-vslam and the most probable path, chi-square of
+    # the true path, kf-slam, multirobot-vslam and the most probable path, measured values
+    fits="$(awk "$MM_AWK"'$3 != "-" && $4 != "-" && $6 != "-" { print $0, mm($3) < mm($4) ? "closer" : "-" }' \
       <<< "$fits")"
     for noise in $NOISE_LEVELS; do
-      awk -v noise="$noise" '$2 == noise { n++; v += $8; t += $5; mt += $7 < $6; mu += $7 < $5
-          if ($9 == "closer") { c++; mc += $7 < $6; d = $6 - $7; if (c == 1 || d < md) md = d } }
+      awk -v noise="$noise" '$2 == noise { n++; v += $10; t += $6; mt += $8 < $7; mu += $8 < $6
+          if ($11 == "closer") { c++; mc += $8 < $7; d = $7 - $8; if (c == 1 || d < md) md = d } }
         END { printf "| %s | %d | %.0f | %.0f | %d of %d | %d of %d | %d of %d | %d of %d | %s |\n",
                 noise, n, n ? v / n : 0, n ? t / n : 0, mt, n, mu, n, c, n, mc, c,
                 c ? sprintf("%.0f", md) : "-" }' <<< "$fits"
@@ -501,7 +511,37 @@ fi
     echo
     echo "| rawlog | kf-slam RMSE [m] | multirobot-vslam RMSE [m] | χ² true path | χ² kf-slam | χ² multirobot-vslam | measured values |"
     echo "|---|---|---|---|---|---|---|"
-    awk '$9 == "closer" { printf "| %s | %.3f | %.3f | %.1f | %.1f | %.1f | %d |\n", $1, $3, $4, $5, $6, $7, $8 }' \
+    awk '$11 == "closer" { printf "| %s | %.3f | %.3f | %.1f | %.1f | %.1f | %d |\n", $1, $3, $4, $6, $7, $8, $10 }' \
+      <<< "$fits"
+    echo
+    echo "## The most probable path"
+    echo
+    echo "The χ² does not see where a whole path lies: moving or turning a path and its landmarks" \
+      "together leaves it unchanged, and such a turn about the start is most of the unaligned" \
+      "RMSE (the last section). The most probable path sees it: the path and landmarks of least" \
+      "χ², the pose at the first scored reading held at the true start and the robot standing" \
+      "where its odometry is exactly zero, each reading's landmark from the IDs-kept twin" \
+      "(scripts/range-bearing-path-fit.py --most-probable; exact range-bearing model," \
+      "Levenberg-Marquardt from the true path and landmarks). It has what neither tool has, the" \
+      "true associations, and it takes the data at their true noise; per rawlog, it is the" \
+      "estimate the data support best. IDs hidden, per noise level, on the rawlogs where kf-slam" \
+      "finished (RMSE to the millimetre):"
+    echo
+    echo "| noise | rawlogs | kf-slam RMSE [m] (mean) | multirobot-vslam RMSE [m] (mean) | most probable path RMSE [m] (mean) | kf-slam's RMSE < multirobot-vslam's | kf-slam's RMSE < the most probable path's | multirobot-vslam's χ² above the most probable path's (mean, largest) |"
+    echo "|---|---|---|---|---|---|---|---|"
+    for noise in $NOISE_LEVELS; do
+      awk -v noise="$noise" "$MM_AWK"'$2 == noise && $5 != "-" { n++; k += $3; o += $4; p += $5
+          ko += mm($3) < mm($4); kp += mm($3) < mm($5); d = $8 - $9; dd += d
+          if (n == 1 || d > dmax) dmax = d }
+        END { if (n) printf "| %s | %d | %.3f | %.3f | %.3f | %d of %d | %d of %d | %.1f, %.1f |\n",
+                noise, n, k / n, o / n, p / n, ko, n, kp, n, dd / n, dmax }' <<< "$fits"
+    done
+    echo
+    echo "The rawlogs where kf-slam's path is nearer to the truth than the most probable path:"
+    echo
+    echo "| rawlog | kf-slam RMSE [m] | multirobot-vslam RMSE [m] | most probable path RMSE [m] |"
+    echo "|---|---|---|---|"
+    awk "$MM_AWK"'$5 != "-" && mm($3) < mm($5) { printf "| %s | %.3f | %.3f | %.3f |\n", $1, $3, $4, $5 }' \
       <<< "$fits"
   fi
   echo
@@ -554,4 +594,4 @@ fi
 mv "$RESULTS.tmp" "$RESULTS"
 cat "$RESULTS"
 echo
-echo "Rawlogs and ground truth in $DATA; run folders in $OUT/kf-slam and $OUT/multirobot-vslam"
+echo "Rawlogs and ground truth in $DATA; run folders in $OUT/kf-slam, $OUT/multirobot-vslam and $OUT/most-probable"
