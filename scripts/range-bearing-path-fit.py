@@ -25,7 +25,7 @@ import argparse
 import math
 import os
 import sys
-from collections import defaultdict
+from collections import defaultdict, namedtuple
 from decimal import Decimal, InvalidOperation
 
 MICROSECOND = Decimal("0.000001")
@@ -145,6 +145,16 @@ def increment(a, b):
     c, s = math.cos(a[2]), math.sin(a[2])
     dx, dy = b[0] - a[0], b[1] - a[1]
     return (c * dx + s * dy, -s * dx + c * dy, wrap(b[2] - a[2]))
+
+
+NoiseModel = namedtuple("NoiseModel", "so sp sr sb offset")  # m, rad; offset: sensor on robot
+
+
+def noise_model(args):
+    """The odometry and reading std and the sensor pose of the command line, in m and rad."""
+    return NoiseModel(args.odometry_std_xy, math.radians(args.odometry_std_phi_deg),
+                      args.std_range, math.radians(args.std_bearing_deg),
+                      (args.sensor_pose[0], args.sensor_pose[1], math.radians(args.sensor_pose[2])))
 
 
 def odometry_residuals(a, b, u, so, sp):
@@ -275,11 +285,8 @@ class PathProblem:
     the normal equations are solved by eliminating the poses, whose block is block-tridiagonal
     (odometry ties consecutive poses only), then the landmarks."""
 
-    def __init__(self, args, stamps, odometry, frames):
-        self.so, self.sp = args.odometry_std_xy, math.radians(args.odometry_std_phi_deg)
-        self.sr, self.sb = args.std_range, math.radians(args.std_bearing_deg)
-        self.offset = (args.sensor_pose[0], args.sensor_pose[1],
-                       math.radians(args.sensor_pose[2]))
+    def __init__(self, model, stamps, odometry, frames):
+        self.so, self.sp, self.sr, self.sb, self.offset = model
         self.group = {stamps[0]: -1}  # pose variable of each stamp; -1: held at the start
         self.steps = []  # (group before, group after, odometry increment)
         groups = 0
@@ -447,9 +454,18 @@ class PathProblem:
         return poses, points, cost
 
 
-def chi_square(path, name, args, stamps, odometry, frames, landmarks):
+def landmark_fits(path, model, frames, landmarks):
+    """Each landmark's best_landmark fit (point, chi-square) to its readings from path."""
+    by_landmark = defaultdict(list)
+    for stamp, lid, r, b in frames:
+        by_landmark[lid].append((compose(path[stamp], model.offset), r, b))
+    return {lid: best_landmark(readings, model.sr, model.sb, landmarks.get(lid))
+            for lid, readings in by_landmark.items()}
+
+
+def chi_square(path, name, model, stamps, odometry, frames, landmarks):
     require_stamps(path, stamps, name)
-    so, sp = args.odometry_std_xy, math.radians(args.odometry_std_phi_deg)
+    so, sp = model.so, model.sp
     odo_chi2, odo_values = 0.0, 0
     for a, b in zip(stamps, stamps[1:]):
         u = increment(odometry[a], odometry[b])
@@ -457,34 +473,23 @@ def chi_square(path, name, args, stamps, odometry, frames, landmarks):
             continue
         odo_chi2 += sum(v * v for v in odometry_residuals(path[a], path[b], u, so, sp))
         odo_values += 3
-    sr, sb = args.std_range, math.radians(args.std_bearing_deg)
-    offset = (args.sensor_pose[0], args.sensor_pose[1], math.radians(args.sensor_pose[2]))
-    by_landmark = defaultdict(list)
-    for stamp, lid, r, b in frames:
-        by_landmark[lid].append((compose(path[stamp], offset), r, b))
-    readings_chi2 = 0.0
-    for lid, readings in by_landmark.items():
-        readings_chi2 += best_landmark(readings, sr, sb, landmarks.get(lid))[1]
+    readings_chi2 = sum(fit[1] for fit in landmark_fits(path, model, frames, landmarks).values())
     return odo_chi2, readings_chi2, odo_values + 2 * len(frames)
 
 
-def write_most_probable(args, stamps, odometry, frames, landmarks):
+def write_most_probable(args, model, stamps, odometry, frames, landmarks):
     """PathProblem's path started from the first path given and each landmark's fit along it,
     written to args.most_probable (TUM, a pose per scored stamp)."""
     first = read_tum(args.paths[0])
     require_stamps(first, stamps, args.paths[0])
-    problem = PathProblem(args, stamps, odometry, frames)
+    problem = PathProblem(model, stamps, odometry, frames)
     poses = [None] * problem.poses
     for stamp in stamps:
         g = problem.group[stamp]
         if g >= 0 and poses[g] is None:
             poses[g] = first[stamp]
-    offset = problem.offset
-    by_landmark = defaultdict(list)
-    for stamp, lid, r, b in frames:
-        by_landmark[lid].append((compose(first[stamp], offset), r, b))
-    points = [best_landmark(by_landmark[lid], problem.sr, problem.sb, landmarks.get(lid))[0]
-              for lid in problem.ids]
+    fits = landmark_fits(first, model, frames, landmarks)
+    points = [fits[lid][0] for lid in problem.ids]
     start = first[stamps[0]]
     poses, _, _ = problem.solve(start, poses, points)
     tmp = args.most_probable + ".tmp"
@@ -544,12 +549,13 @@ def main():
         landmarks = read_landmarks(args.landmarks) if args.landmarks else {}
         odometry = read_tum(args.odometry)
         require_stamps(odometry, stamps, args.odometry)
+        model = noise_model(args)
         names = list(args.paths)
         if args.most_probable:
-            write_most_probable(args, stamps, odometry, frames, landmarks)
+            write_most_probable(args, model, stamps, odometry, frames, landmarks)
             names.append(args.most_probable)
         for name in names:
-            o, z, n = chi_square(read_tum(name), name, args, stamps, odometry, frames, landmarks)
+            o, z, n = chi_square(read_tum(name), name, model, stamps, odometry, frames, landmarks)
             print(f"{name} {o + z:.3f} {o:.3f} {z:.3f} {n}")
     except (InputError, OSError) as e:
         print(f"range-bearing-path-fit: {e}", file=sys.stderr)
