@@ -303,8 +303,13 @@ class PathProblem:
         point = {lid: j for j, lid in enumerate(self.ids)}
         self.readings = [(self.group[s], point[lid], r, b) for s, lid, r, b in frames]
 
+    @staticmethod
+    def pose_of(group, start, poses):
+        """The pose of a pose variable (self.group's values): the start for -1."""
+        return start if group < 0 else poses[group]
+
     def cost(self, start, poses, points):
-        pose = lambda g: start if g < 0 else poses[g]
+        pose = lambda g: self.pose_of(g, start, poses)
         total = 0.0
         for ga, gb, u in self.steps:
             total += sum(v * v for v in odometry_residuals(pose(ga), pose(gb), u, self.so,
@@ -325,7 +330,7 @@ class PathProblem:
         lm = [[[0.0] * 2 for _ in range(2)] for _ in range(m)]
         gp = [[0.0] * 3 for _ in range(n)]
         gl = [[0.0] * 2 for _ in range(m)]
-        pose = lambda g: start if g < 0 else poses[g]
+        pose = lambda g: self.pose_of(g, start, poses)
         w = (1 / self.so, 1 / self.so, 1 / self.sp)
         for ga, gb, u in self.steps:
             a, b = pose(ga), pose(gb)
@@ -496,8 +501,7 @@ def write_most_probable(args, model, stamps, odometry, frames, landmarks):
     with open(tmp, "w") as f:
         f.write("# timestamp x y z qx qy qz qw\n")
         for stamp in stamps:
-            g = problem.group[stamp]
-            x, y, a = start if g < 0 else poses[g]
+            x, y, a = problem.pose_of(problem.group[stamp], start, poses)
             f.write(f"{stamp} {x:.9f} {y:.9f} 0 0 0 {math.sin(a / 2):.9f} {math.cos(a / 2):.9f}\n")
     os.replace(tmp, args.most_probable)
 
