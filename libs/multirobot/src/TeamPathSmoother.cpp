@@ -12,6 +12,25 @@ namespace mrpt_vslam::multirobot {
 using mrpt::math::TPose2D;
 
 namespace {
+/// σ [m, rad] of the first start pose's prior, which defines the map frame (the filter's
+/// reset() keeps it exact), and of the tie of a robot that stood
+constexpr double kFixedStd = 1e-3;
+
+/// Adds to `to` each landmark of `from` as `as(id, landmark)` gives it, with its descriptor and
+/// identity (known correspondences).
+template <class F>
+void addLandmarksOf(const CVisualLandmarksMap& from, CVisualLandmarksMap& to, F as)
+{
+    std::map<uint32_t, int64_t> identityOf;
+    for (const auto& [identity, id] : from.descriptorPool().identities())
+        identityOf.emplace(id, identity);
+    from.landmarks().forEach([&](uint32_t id, const TVisualLandmark& lm) {
+        const uint32_t added = to.addLandmark(as(id, lm), from.descriptorPool().descriptor(id));
+        if (const auto it = identityOf.find(id); it != identityOf.end())
+            to.sharedDescriptorPool()->setLandmarkOfIdentity(it->second, added);
+    });
+}
+
 void requireKey(bool ok, const std::string& section, const char* key, const char* what)
 {
     if (!ok) throw std::invalid_argument("[" + section + "] " + key + ": " + what);
@@ -37,6 +56,7 @@ void TeamPathSmoother::TOptions::loadFromConfigFile(const mrpt::config::CConfigF
     MRPT_LOAD_CONFIG_VAR(zero_odometry_stands_still, bool, cfg, section);
     MRPT_LOAD_CONFIG_VAR(reanchor_gap, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(reanchor_gain, double, cfg, section);
+    MRPT_LOAD_CONFIG_VAR(reassociate, bool, cfg, section);
 
     requireKey(!cfg.keyExists(section, "min_times_seen"), section, "min_times_seen",
                "replaced by min_seen_fraction, a fraction of the frames with landmark readings");
@@ -45,6 +65,7 @@ void TeamPathSmoother::TOptions::loadFromConfigFile(const mrpt::config::CConfigF
                "must be in [0, 1]");
     requireKey(!smooth_paths || map_along_path, section, "smooth_paths",
                "needs map_along_path = true");
+    requireKey(!reassociate || smooth_paths, section, "reassociate", "needs smooth_paths = true");
     requireKey(huber >= 0, section, "huber", "must be >= 0");
     requireKey(odometry_scale_std >= 0, section, "odometry_scale_std", "must be >= 0");
     requireKey(motion_cov_factor > 0, section, "motion_cov_factor", "must be > 0");
@@ -68,6 +89,7 @@ void TeamPathSmoother::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase&
     cfg.write(section, "zero_odometry_stands_still", zero_odometry_stands_still);
     cfg.write(section, "reanchor_gap", reanchor_gap);
     cfg.write(section, "reanchor_gain", reanchor_gain);
+    cfg.write(section, "reassociate", reassociate);
 }
 
 TeamPathSmoother::TeamPathSmoother(const CVisualLandmarksMap& map_template)
@@ -109,7 +131,7 @@ TeamPathSmoother::TTeamPath TeamPathSmoother::recordedPathOf(const TTeamParticle
     return path;
 }
 
-CVisualLandmarksMap TeamPathSmoother::mapAlong(const TTeamPath& path, TFrameIds* ids) const
+CVisualLandmarksMap TeamPathSmoother::emptyMap() const
 {
     CVisualLandmarksMap map(
         std::make_shared<LandmarkDescriptorPool>(m_template.insertionOptions.grid_cell_size));
@@ -117,15 +139,43 @@ CVisualLandmarksMap TeamPathSmoother::mapAlong(const TTeamPath& path, TFrameIds*
     map.insertionOptions.D0 = options.D0;
     map.renderOptions = m_template.renderOptions;
     map.genericMapParams = m_template.genericMapParams;
+    return map;
+}
+
+Eigen::Matrix3d TeamPathSmoother::stepCovariance(size_t step, size_t robot) const
+{
+    const core::TOdometryGaussian& u = m_motions.at(step - 1).at(robot);
+    const bool stood = u.mean.x == 0 && u.mean.y == 0 && u.mean.phi == 0;
+    if (options.zero_odometry_stands_still && stood)
+        return Eigen::Vector3d::Constant(kFixedStd * kFixedStd).asDiagonal();
+    return u.cov * options.motion_cov_factor;
+}
+
+CVisualLandmarksMap TeamPathSmoother::mapAlong(const TTeamPath& path, TFrameIds* ids,
+                                               const CVisualLandmarksMap* seeds) const
+{
+    CVisualLandmarksMap map = emptyMap();
+    if (seeds) addLandmarksOf(*seeds, map, [](uint32_t, const TVisualLandmark& lm) { return lm; });
     std::vector<TMapMeasurement> in_map;
     std::vector<TMeasurementCandidates> candidates;
     if (ids) ids->clear();
     for (const auto& f : m_fusedFrames) {
-        const TPlanarTransform pose(path.at(f.step).at(f.robot));
+        const TPose2D& x = path.at(f.step).at(f.robot);
+        const TPlanarTransform pose(x);
         in_map.resize(f.z.size());
         candidates.resize(f.z.size());
         for (size_t j = 0; j < f.z.size(); j++) {
             in_map[j] = toMapFrame(f.z[j], pose);
+            if (options.reassociate && f.step > 0) {
+                // the point x ⊕ z moves with the step's increment (in the previous pose's
+                // frame): Rot(φ_prev) δu_xy + (p − x)^⊥ δu_φ
+                const double prevPhi = path[f.step - 1][f.robot].phi;
+                Eigen::Matrix<double, 2, 3> A;
+                A << std::cos(prevPhi), -std::sin(prevPhi), -(in_map[j].z.y() - x.y),
+                    std::sin(prevPhi), std::cos(prevPhi), in_map[j].z.x() - x.x;
+                in_map[j].R.topLeftCorner<2, 2>() +=
+                    A * stepCovariance(f.step, f.robot) * A.transpose();
+            }
             candidates[j] = map.findCandidates(f.z[j], in_map[j]);
         }
         const auto fused =
@@ -138,7 +188,8 @@ CVisualLandmarksMap TeamPathSmoother::mapAlong(const TTeamPath& path, TFrameIds*
             for (const auto& r : fused) ids->back().push_back(r.id);
         }
     }
-    map.removeLandmarksSeenLessThan(minTimesSeen());
+    // seeds no reading went to are dropped whatever the threshold
+    map.removeLandmarksSeenLessThan(std::max(1u, minTimesSeen()));
     if (ids)
         for (auto& frame : *ids)
             for (auto& id : frame)
@@ -175,6 +226,21 @@ CVisualLandmarksMap TeamPathSmoother::mapAlongPath(
     return map;
 }
 
+CVisualLandmarksMap TeamPathSmoother::seedsFrom(const CVisualLandmarksMap& map,
+                                                const PlanarPoseLandmarkGraph& graph,
+                                                const std::map<uint32_t, size_t>& pointOf) const
+{
+    CVisualLandmarksMap seeds = emptyMap();
+    addLandmarksOf(map, seeds, [&](uint32_t id, const TVisualLandmark& lm) {
+        TVisualLandmark seed;  // times_seen and seen_by 0
+        seed.mean = lm.mean;
+        seed.mean.head<2>() = graph.point(pointOf.at(id));
+        seed.cov = lm.cov;
+        return seed;
+    });
+    return seeds;
+}
+
 TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticle& p) const
 {
     const size_t K = robotCount();
@@ -183,12 +249,10 @@ TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticl
     auto planar = [](const Eigen::Matrix3d& R) { return Eigen::Matrix2d(R.topLeftCorner<2, 2>()); };
     // the start poses: the first robot's defines the map frame (a tight prior, as the filter's
     // reset() keeps it exact), the others as reset() spreads them
-    const double fixed = 1e-3;
-    const double sxy = std::max(m_initialStdXY, fixed);
-    const double sphi = std::max(m_initialStdPhi, fixed);
+    const double sxy = std::max(m_initialStdXY, kFixedStd);
+    const double sphi = std::max(m_initialStdPhi, kFixedStd);
     const Eigen::Matrix3d spread = Eigen::Vector3d(sxy * sxy, sxy * sxy, sphi * sphi).asDiagonal();
-    // also the tie of a robot that stood (zero_odometry_stands_still)
-    const Eigen::Matrix3d exact = Eigen::Vector3d::Constant(fixed * fixed).asDiagonal();
+    const Eigen::Matrix3d exact = Eigen::Vector3d::Constant(kFixedStd * kFixedStd).asDiagonal();
     const double scaleStd = options.odometry_scale_std;
 
     TSmoothedTeam result;
@@ -196,10 +260,13 @@ TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticl
     std::vector<double> times;
     for (const auto& [t, pose] : CMultiRobotVisualSLAM::pathOf(p, 0)) times.push_back(t);
     TFrameIds ids;
+    std::optional<CVisualLandmarksMap> seeds;  // options.reassociate
     for (unsigned round = 0; round < options.rounds; round++) {
-        CVisualLandmarksMap map = mapAlong(path, &ids);
+        const CVisualLandmarksMap* seed = seeds ? &*seeds : nullptr;
+        CVisualLandmarksMap map = mapAlong(path, &ids, seed);
         if (options.reanchor_gap > 0)
-            result.reanchored += reanchorAfterGaps(path, times, result.odometry_scales, map, ids);
+            result.reanchored +=
+                reanchorAfterGaps(path, times, result.odometry_scales, map, ids, seed);
         PlanarPoseLandmarkGraph graph;
         for (const auto& poses : path)
             for (const auto& x : poses) graph.addPose(x);
@@ -215,11 +282,7 @@ TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticl
         for (size_t step = 1; step < path.size(); step++)
             for (size_t k = 0; k < K; k++) {
                 const core::TOdometryGaussian& u = m_motions[step - 1][k];
-                const bool stood = u.mean.x == 0 && u.mean.y == 0 && u.mean.phi == 0;
-                const Eigen::Matrix3d cov =
-                    options.zero_odometry_stands_still && stood
-                        ? exact
-                        : Eigen::Matrix3d(u.cov * options.motion_cov_factor);
+                const Eigen::Matrix3d cov = stepCovariance(step, k);
                 if (scaleStd > 0)
                     graph.addOdometry(node(step - 1, k), node(step, k), u.mean, cov, k);
                 else
@@ -246,6 +309,7 @@ TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticl
             for (size_t k = 0; k < K; k++) path[step][k] = graph.pose(node(step, k));
         for (size_t k = 0; k < result.odometry_scales.size(); k++)
             result.odometry_scales[k] = graph.odometryScale(k);
+        if (options.reassociate) seeds = seedsFrom(map, graph, pointOf);
     }
     result.map = mapAlong(path, &ids);
     result.correspondences = correspondencesOf(ids);

@@ -38,7 +38,8 @@ double TeamPathSmoother::supportedFraction(const std::vector<size_t>& frames, co
 
 size_t TeamPathSmoother::reanchorAfterGaps(TTeamPath& path, const std::vector<double>& times,
                                            const std::vector<Eigen::Vector2d>& scales,
-                                           CVisualLandmarksMap& map, TFrameIds& ids) const
+                                           CVisualLandmarksMap& map, TFrameIds& ids,
+                                           const CVisualLandmarksMap* seeds) const
 {
     const double gap = options.reanchor_gap, gain = options.reanchor_gain;
     size_t moved = 0;
@@ -66,7 +67,7 @@ size_t TeamPathSmoother::reanchorAfterGaps(TTeamPath& path, const std::vector<do
                     (scales.empty() ? u : PlanarPoseLandmarkGraph::scaled(u, scales[k]));
             }
             TFrameIds candidateIds;
-            CVisualLandmarksMap candidateMap = mapAlong(candidate, &candidateIds);
+            CVisualLandmarksMap candidateMap = mapAlong(candidate, &candidateIds, seeds);
             if (supportedFraction(part, candidate, candidateMap, candidateIds) > current + gain) {
                 path = std::move(candidate);
                 map = std::move(candidateMap);

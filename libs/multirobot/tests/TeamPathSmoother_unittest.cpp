@@ -295,6 +295,74 @@ TEST(TeamPathSmoother, ZeroOdometryTiesTheStandingPosesToTheStart)
     EXPECT_GT(tied.paths[0][standing + 1].second.x, 0.215);
 }
 
+// A robot drives 4 m along x and back (odometry with 1 cm and 0.5 deg per step), reading four
+// posts 2 m off its line (1 cm) and, within 0.6 m, a post 0.15 m off it (1 mm): on the way back
+// those close readings put that post 2 cm from where the way out put it, about the step's
+// odometry noise. Mapped along the path with the readings' own covariance, the close post
+// splits in two; with reassociate (each reading widened by its step's odometry covariance,
+// later rounds starting from the landmarks solved before) it stays one, between the two.
+TEST(TeamPathSmoother, ReassociationKeepsAPostReadFromCloseByOnTwoPassesOne)
+{
+    TeamPathSmoother smoother(CVisualLandmarksMap{});
+    smoother.options.map_along_path = true;
+    smoother.options.smooth_paths = true;
+    const std::vector<mrpt::math::TPose2D> start{{0, 0, 0}};
+    smoother.onReset(start, 0, 0);
+    const std::vector<Eigen::Vector2d> far{{1, 2}, {3, 2}, {1, -2}, {3, -2}};
+    const Eigen::Vector2d close(2, 0.15);
+    auto readingsFrom = [&](const mrpt::math::TPose2D& x, const Eigen::Vector2d& closeAt) {
+        const mrpt::poses::CPose2D pose(x);
+        std::vector<TLandmarkMeasurement> z;
+        auto add = [&](const Eigen::Vector2d& post, double std) {
+            double lx = 0, ly = 0;
+            pose.inverseComposePoint(post.x(), post.y(), lx, ly);
+            TLandmarkMeasurement m;
+            m.z << lx, ly, 0;
+            m.R = Eigen::Matrix3d::Identity() * std * std;
+            z.push_back(m);
+        };
+        for (const auto& post : far) add(post, 0.01);
+        if ((closeAt - Eigen::Vector2d(x.x, x.y)).norm() < 0.6) add(closeAt, 0.001);
+        return z;
+    };
+    mrpt_vslam::core::TOdometryGaussian forward, turn;
+    forward.mean.x = 0.2;
+    forward.cov = Eigen::Vector3d(1e-4, 1e-4, std::pow(0.5 * M_PI / 180, 2)).asDiagonal();
+    turn.mean.phi = M_PI;
+    turn.cov = forward.cov;
+    TTeamParticle p;
+    p.path.append(0, teamPoses(start));
+    mrpt::poses::CPose2D x(start[0]);
+    size_t step = 0;
+    auto drive = [&](const mrpt_vslam::core::TOdometryGaussian& u, const Eigen::Vector2d& closeAt) {
+        x = x + mrpt::poses::CPose2D(u.mean);
+        step++;
+        smoother.onRobotStep(step, 0, u, readingsFrom(x.asTPose(), closeAt), {});
+        p.path.append(static_cast<double>(step), teamPoses({x.asTPose()}));
+    };
+    for (int i = 0; i < 20; i++) drive(forward, close);
+    drive(turn, close);
+    for (int i = 0; i < 20; i++) drive(forward, close + Eigen::Vector2d(0, 0.02));
+
+    auto nearClose = [&](const CVisualLandmarksMap& map) {
+        std::vector<Eigen::Vector2d> near;
+        map.landmarks().forEach([&](uint32_t, const TVisualLandmark& lm) {
+            if ((lm.mean.head<2>() - close).norm() < 0.1) near.push_back(lm.mean.head<2>());
+        });
+        return near;
+    };
+    const auto split = smoother.smoothPaths(p);
+    EXPECT_EQ(split.map.size(), 6u);
+    EXPECT_EQ(nearClose(split.map).size(), 2u);
+    smoother.options.reassociate = true;
+    const auto joined = smoother.smoothPaths(p);
+    EXPECT_EQ(joined.map.size(), 5u);
+    const auto one = nearClose(joined.map);
+    ASSERT_EQ(one.size(), 1u);
+    EXPECT_GT(one[0].y(), close.y());
+    EXPECT_LT(one[0].y(), close.y() + 0.02);
+}
+
 TEST(TeamPathSmoother, OptionsLoadFromTheirSectionAndRejectImpossibleValues)
 {
     mrpt::config::CConfigFileMemory ini(R"([TeamPathSmoother]
@@ -310,6 +378,7 @@ motion_cov_factor = 0.5
 zero_odometry_stands_still = false
 reanchor_gap = 10
 reanchor_gain = 0.2
+reassociate = true
 )");
     TeamPathSmoother::TOptions o;
     o.loadFromConfigFile(ini, "TeamPathSmoother");
@@ -325,6 +394,7 @@ reanchor_gain = 0.2
     EXPECT_FALSE(o.zero_odometry_stands_still);
     EXPECT_EQ(o.reanchor_gap, 10);
     EXPECT_EQ(o.reanchor_gain, 0.2);
+    EXPECT_TRUE(o.reassociate);
     // what saveToConfigFile() writes loads back the same
     mrpt::config::CConfigFileMemory saved;
     o.saveToConfigFile(saved, "TeamPathSmoother");
@@ -336,6 +406,7 @@ reanchor_gain = 0.2
     EXPECT_TRUE(back.smooth_paths);
     EXPECT_TRUE(back.nearest_pair_first);
     EXPECT_FALSE(back.zero_odometry_stands_still);
+    EXPECT_TRUE(back.reassociate);
 
     EXPECT_EQ(errorOf(""), "") << "the defaults are valid";
     EXPECT_NE(errorOf("D0 = 0").find("[TeamPathSmoother] D0: must be > 0"), std::string::npos);
@@ -356,6 +427,9 @@ reanchor_gain = 0.2
     EXPECT_NE(errorOf("motion_cov_factor = 0").find("motion_cov_factor: must be > 0"),
               std::string::npos);
     EXPECT_NE(errorOf("reanchor_gap = -1").find("reanchor_gap: must be >= 0"), std::string::npos);
+    EXPECT_NE(errorOf("map_along_path = true\nreassociate = true")
+                  .find("reassociate: needs smooth_paths = true"),
+              std::string::npos);
     EXPECT_NE(errorOf("reanchor_gain = 1").find("reanchor_gain: must be in (0, 1)"),
               std::string::npos);
 }

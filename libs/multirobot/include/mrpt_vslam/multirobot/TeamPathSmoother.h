@@ -4,9 +4,11 @@
 #include <mrpt/math/TPose2D.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
 #include <mrpt_vslam/multirobot/CVisualLandmarksMap.h>
+#include <mrpt_vslam/multirobot/PlanarPoseLandmarkGraph.h>
 #include <mrpt_vslam/multirobot/TeamParticle.h>
 
 #include <Eigen/Core>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -62,6 +64,14 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
         /// read outside it by more than reanchor_gain (reanchorAfterGaps()).
         double reanchor_gap = 0;
         double reanchor_gain = 0.1;
+        /// smoothPaths(): each round after the first maps the readings onto the previous
+        /// round's landmarks, at their least-squares positions and with their mapped covariance
+        /// (a reading that fits none starts a landmark), instead of onto an empty map; and
+        /// every map along a path widens each reading's covariance by the odometry covariance
+        /// of the step into its pose, so that a landmark read from close by on two passes is
+        /// not split by the paths' small disagreement. More accurate at high noise on the
+        /// simul-landmarks rawlogs (doc/multirobot.md §3).
+        bool reassociate = false;
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                 const std::string& section) override;
@@ -117,12 +127,12 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
     /** The most probable paths given every odometry increment and reading since reset() and
      *  the associations of the map along particle `p`'s path: options.rounds times, map along
      *  the current paths (mapAlongPath()'s rules, the landmarks below the count threshold left
-     *  out), then solve the PlanarPoseLandmarkGraph of the start poses (the first robot's
-     *  fixed, the others with the filter's initial_std_*), the odometry Gaussians (covariance
-     *  × options.motion_cov_factor, a zero increment as tight as the first start pose with
-     *  options.zero_odometry_stands_still; with options.odometry_scale_std, scaled by one
-     *  distance and one turn scale per robot, estimated with the rest), the readings of the
-     *  mapped landmarks and of the other robots (Huber); with options.reanchor_gap,
+     *  out; with options.reassociate, after the first round from the round before's
+     *  landmarks, seedsFrom()), then solve the PlanarPoseLandmarkGraph of the start poses
+     *  (the first robot's fixed, the others with the filter's initial_std_*), the odometry
+     *  Gaussians (stepCovariance(); with options.odometry_scale_std, scaled by one distance
+     *  and one turn scale per robot, estimated with the rest), the readings of the mapped
+     *  landmarks and of the other robots (Huber); with options.reanchor_gap,
      *  reanchorAfterGaps() after each mapping; finally map along the result.
      *  \pre registered with the filter before its reset() */
     TSmoothedTeam smoothPaths(const TTeamParticle& p) const;
@@ -149,7 +159,20 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
     /// mapAlongPath() along `path`; `ids` (if given) gets, per fused frame and measurement,
     /// the landmark it went to, or std::nullopt if that landmark was removed.
     using TFrameIds = std::vector<std::vector<std::optional<uint32_t>>>;
-    CVisualLandmarksMap mapAlong(const TTeamPath& path, TFrameIds* ids) const;
+    /// An empty map with the options of maps along paths (the filter's, D0 = options.D0).
+    CVisualLandmarksMap emptyMap() const;
+    /// With `seeds` (options.reassociate), the map starts from their landmarks, unseen.
+    CVisualLandmarksMap mapAlong(const TTeamPath& path, TFrameIds* ids,
+                                 const CVisualLandmarksMap* seeds = nullptr) const;
+    /// The odometry covariance of step `step` (≥ 1) of robot `robot` as smoothPaths() weighs
+    /// it: × options.motion_cov_factor, or as tight as the first start pose where the robot
+    /// stood (options.zero_odometry_stands_still).
+    Eigen::Matrix3d stepCovariance(size_t step, size_t robot) const;
+    /// The landmarks of `map` (made along a path) at their positions solved in `graph`
+    /// (`pointOf`: landmark id → point), unseen: the next round's seeds.
+    CVisualLandmarksMap seedsFrom(const CVisualLandmarksMap& map,
+                                  const PlanarPoseLandmarkGraph& graph,
+                                  const std::map<uint32_t, size_t>& pointOf) const;
     /// The correspondences of mapAlong()'s `ids`, those of removed landmarks left out.
     std::vector<TCorrespondence> correspondencesOf(const TFrameIds& ids) const;
     /** Of the landmark readings in fused frames `frames` (one robot's), the fraction that fit
@@ -161,10 +184,11 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
      *  options.reanchor_gap apart; in the order of the run, each part after a gap (the gap
      *  included) is replaced by the robot's odometry (scaled by `scales`, if any) from the
      *  last pose before it, where that raises the part's supportedFraction() by more than
-     *  options.reanchor_gain. `map` and `ids` follow `path`. \return how many parts moved */
+     *  options.reanchor_gain. `map` and `ids` follow `path`; maps along candidate paths start
+     *  from `seeds` (mapAlong()). \return how many parts moved */
     size_t reanchorAfterGaps(TTeamPath& path, const std::vector<double>& times,
                              const std::vector<Eigen::Vector2d>& scales, CVisualLandmarksMap& map,
-                             TFrameIds& ids) const;
+                             TFrameIds& ids, const CVisualLandmarksMap* seeds) const;
 
     CVisualLandmarksMap m_template;  ///< empty; the options of the maps along paths
 };
