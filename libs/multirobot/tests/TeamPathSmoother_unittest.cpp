@@ -31,6 +31,14 @@ std::string errorOf(const std::string& lines)
     }
     return "";
 }
+
+/// `smoother` set to smooth (map_along_path, smooth_paths) a run from `start`.
+void startSmoothing(TeamPathSmoother& smoother, const std::vector<mrpt::math::TPose2D>& start)
+{
+    smoother.options.map_along_path = true;
+    smoother.options.smooth_paths = true;
+    smoother.onReset(start, 0, 0);
+}
 }  // namespace
 
 // With one particle and the filter's own gate, the map made again along the particle's path
@@ -251,10 +259,8 @@ TEST(TeamPathSmoother, SmoothingReanchorsAPartDisplacedAfterAGap)
 TEST(TeamPathSmoother, ZeroOdometryTiesTheStandingPosesToTheStart)
 {
     TeamPathSmoother smoother(CVisualLandmarksMap{});
-    smoother.options.map_along_path = true;
-    smoother.options.smooth_paths = true;
     const std::vector<mrpt::math::TPose2D> start{{0, 0, 0}};
-    smoother.onReset(start, 0, 0);
+    startSmoothing(smoother, start);
     const std::vector<Eigen::Vector2d> posts{{3, 0}, {0, 3}, {-3, 0}, {0, -3}};
     auto readingsFrom = [&](const Eigen::Vector2d& at) {
         std::vector<TLandmarkMeasurement> z;
@@ -304,10 +310,8 @@ TEST(TeamPathSmoother, ZeroOdometryTiesTheStandingPosesToTheStart)
 TEST(TeamPathSmoother, ReassociationKeepsAPostReadFromCloseByOnTwoPassesOne)
 {
     TeamPathSmoother smoother(CVisualLandmarksMap{});
-    smoother.options.map_along_path = true;
-    smoother.options.smooth_paths = true;
     const std::vector<mrpt::math::TPose2D> start{{0, 0, 0}};
-    smoother.onReset(start, 0, 0);
+    startSmoothing(smoother, start);
     const std::vector<Eigen::Vector2d> far{{1, 2}, {3, 2}, {1, -2}, {3, -2}};
     const Eigen::Vector2d close(2, 0.15);
     auto readingsFrom = [&](const mrpt::math::TPose2D& x, const Eigen::Vector2d& closeAt) {
