@@ -450,10 +450,7 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussi
             auto& p = *m_particles[i].d;
             const auto assoc_i = assoc.begin() + static_cast<std::ptrdiff_t>(i * n);
             // prior N(x̂, J C Jᵀ), J the rotation of the increment into the map frame
-            const double c = std::cos(p.poses[k].phi), s = std::sin(p.poses[k].phi);
-            Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
-            J.topLeftCorner<2, 2>() << c, -s, s, c;
-            Eigen::Matrix3d Sigma = J * motion.cov * J.transpose();
+            Eigen::Matrix3d Sigma = incrementCovInMapFrame(motion.cov, p.poses[k].phi);
             Eigen::Vector3d mu(predicted[i].x, predicted[i].y, predicted[i].phi);
 
             // Gaussian proposal p(x_t | x_{t-1}, u_t, z_t) by sequential EKF updates of the pose,
@@ -463,12 +460,9 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussi
             Eigen::Matrix3d HS;
             // the point measured from the current mean, with H Σ Hᵀ added to its covariance
             const auto linearize = [&](const TLandmarkMeasurement& m) {
-                const TMapMeasurement w = toMapFrame(m, TPose2D(mu[0], mu[1], mu[2]));
-                // H = ∂z_w/∂(x, y, θ): identity in x, y, and ∂R(θ)z/∂θ
-                Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-                H(0, 0) = H(1, 1) = 1;
-                H(0, 2) = -(w.z.y() - mu[1]);
-                H(1, 2) = w.z.x() - mu[0];
+                const TPose2D x(mu[0], mu[1], mu[2]);
+                const TMapMeasurement w = toMapFrame(m, x);
+                const Eigen::Matrix3d H = poseJacobian(w.z, x);
                 HS = H * Sigma;
                 return TMapMeasurement{w.z, w.R + HS * H.transpose()};
             };

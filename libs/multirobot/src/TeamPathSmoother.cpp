@@ -15,6 +15,10 @@ namespace {
 /// σ [m, rad] of the first start pose's prior, which defines the map frame (the filter's
 /// reset() keeps it exact), and of the tie of a robot that stood
 constexpr double kFixedStd = 1e-3;
+Eigen::Matrix3d fixedCovariance()
+{
+    return Eigen::Vector3d::Constant(kFixedStd * kFixedStd).asDiagonal();
+}
 
 /// Adds to `to` each landmark of `from` as `as(id, landmark)` gives it, with its descriptor and
 /// identity (known correspondences).
@@ -146,8 +150,7 @@ Eigen::Matrix3d TeamPathSmoother::stepCovariance(size_t step, size_t robot) cons
 {
     const core::TOdometryGaussian& u = m_motions.at(step - 1).at(robot);
     const bool stood = u.mean.x == 0 && u.mean.y == 0 && u.mean.phi == 0;
-    if (options.zero_odometry_stands_still && stood)
-        return Eigen::Vector3d::Constant(kFixedStd * kFixedStd).asDiagonal();
+    if (options.zero_odometry_stands_still && stood) return fixedCovariance();
     return u.cov * options.motion_cov_factor;
 }
 
@@ -162,19 +165,19 @@ CVisualLandmarksMap TeamPathSmoother::mapAlong(const TTeamPath& path, TFrameIds*
     for (const auto& f : m_fusedFrames) {
         const TPose2D& x = path.at(f.step).at(f.robot);
         const TPlanarTransform pose(x);
+        // reassociate: the pose is as uncertain as the step into it, H Σ Hᵀ on each point
+        const bool widen = options.reassociate && f.step > 0;
+        const Eigen::Matrix3d Sigma = widen
+                                          ? incrementCovInMapFrame(stepCovariance(f.step, f.robot),
+                                                                   path[f.step - 1][f.robot].phi)
+                                          : Eigen::Matrix3d::Zero();
         in_map.resize(f.z.size());
         candidates.resize(f.z.size());
         for (size_t j = 0; j < f.z.size(); j++) {
             in_map[j] = toMapFrame(f.z[j], pose);
-            if (options.reassociate && f.step > 0) {
-                // the point x ⊕ z moves with the step's increment (in the previous pose's
-                // frame): Rot(φ_prev) δu_xy + (p − x)^⊥ δu_φ
-                const double prevPhi = path[f.step - 1][f.robot].phi;
-                Eigen::Matrix<double, 2, 3> A;
-                A << std::cos(prevPhi), -std::sin(prevPhi), -(in_map[j].z.y() - x.y),
-                    std::sin(prevPhi), std::cos(prevPhi), in_map[j].z.x() - x.x;
-                in_map[j].R.topLeftCorner<2, 2>() +=
-                    A * stepCovariance(f.step, f.robot) * A.transpose();
+            if (widen) {
+                const Eigen::Matrix3d H = poseJacobian(in_map[j].z, x);
+                in_map[j].R += H * Sigma * H.transpose();
             }
             candidates[j] = map.findCandidates(f.z[j], in_map[j]);
         }
@@ -252,7 +255,7 @@ TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticl
     const double sxy = std::max(m_initialStdXY, kFixedStd);
     const double sphi = std::max(m_initialStdPhi, kFixedStd);
     const Eigen::Matrix3d spread = Eigen::Vector3d(sxy * sxy, sxy * sxy, sphi * sphi).asDiagonal();
-    const Eigen::Matrix3d exact = Eigen::Vector3d::Constant(kFixedStd * kFixedStd).asDiagonal();
+    const Eigen::Matrix3d exact = fixedCovariance();
     const double scaleStd = options.odometry_scale_std;
 
     TSmoothedTeam result;
