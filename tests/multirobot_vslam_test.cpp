@@ -119,6 +119,35 @@ TEST_F(MultiRobotVSLAMApp, SingleRobotRangeBearingRawlogsRunFromTheTemplate)
     }
 }
 
+// filter_runs = 4 from --seed 5 runs the filters of seeds 5 to 8 side by side: each gives what
+// the run of its seed alone gives (the resampling of one does not draw from another's
+// generator), so the kept run is repeated with filter_runs = 1 and its seed.
+TEST_F(MultiRobotVSLAMApp, EachFilterRunIsTheRunOfItsSeedAlone)
+{
+    mrpt_vslam::test::SingleRobotRangeBearingLog().write(out("rb-runs"));
+    const std::string cmd = kConfigs + "range-bearing.ini " + out("rb-runs") + ".rawlog -q ";
+    const TCommandResult all = run(cmd + "--seed 5 --out " + out("rb-runs-all"));
+    ASSERT_EQ(all.exit_code, 0) << all.out;
+    const auto runJson = json(out("rb-runs-all/run.json"));
+    const auto& runs = runJson["results"]["filter_runs"];
+    ASSERT_EQ(runs.size(), 4u) << runs.dump();
+    for (const auto& r : runs) {
+        const int seed = r["seed"];
+        const std::string dir = out("rb-runs-" + std::to_string(seed));
+        const TCommandResult alone = run(cmd + "--set MultiRobotVSLAM.filter_runs=1 --seed " +
+                                         std::to_string(seed) + " --out " + dir);
+        ASSERT_EQ(alone.exit_code, 0) << alone.out;
+        EXPECT_EQ(json(dir + "/run.json")["results"]["smoothing_cost"].get<double>(),
+                  r["smoothing_cost"].get<double>())
+            << "seed " << seed;
+        if (seed == runJson["counts"]["kept_seed"].get<int>()) {
+            EXPECT_TRUE(bytes(dir + "/estimated_path_R1.tum") ==
+                        bytes(out("rb-runs-all/estimated_path_R1.tum")))
+                << "the kept run's path differs from that of seed " << seed << " alone";
+        }
+    }
+}
+
 // Readings given a noise a hundred times below their own (the config's range_bearing_std_*
 // override, a unit slip say) are rarely associated again: the best particle starts a landmark
 // for most of them and the path is the odometry's. The run completes and says so.

@@ -98,7 +98,6 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
     };
     /// filter_runs of them, from the seeds --seed, --seed + 1, ...; after endSteps() the kept one
     std::vector<TFilterRun> runs;
-    std::vector<mrpt::bayes::CParticleFilterCapable*> stepped;  ///< runs' filters, each step
     /// The first run during the steps (its figures stand for all: they read the same data), the
     /// kept one after endSteps().
     CMultiRobotVisualSLAM& filter() const { return *runs.front().filter; }
@@ -347,7 +346,6 @@ void MultiRobotVSLAMApp::Impl::prepare()
             r.smoother->options = smootherOptions;
             r.filter->setStepObserver(r.smoother.get());
         }
-        stepped.push_back(r.filter.get());
         runs.push_back(std::move(r));
     }
     for (const auto& p : startPoses) odometry.emplace_back(p);
@@ -423,7 +421,7 @@ void MultiRobotVSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
     const double t = stepTime(actions->begin()->get()->timestamp);
     if (steps == 0)
         for (auto& run : runs) run.filter->reset(startPoses, t);
-    filterStep(stepped, *actions, frame, timer);
+    filterStep(*actions, frame, timer);
 
     for (size_t k = 0; k < robots.size(); k++) {
         const auto move =
@@ -476,7 +474,7 @@ void MultiRobotVSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
         TFilterRun kept = std::move(runs[keptRun]);
         runs.clear();
         runs.push_back(std::move(kept));
-        stepped.clear();
+        stopStepping();
         smoothingSeconds = smoothing.elapsedSeconds();
     }
     for (size_t k = 0; k < robots.size(); k++) app.estimatedPaths[k] = bestParticlePath(k);

@@ -214,7 +214,7 @@ void OmniFastSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
     const double t =
         stepTime(frame.size() ? (*frame.begin())->timestamp : actions->begin()->get()->timestamp);
     if (steps == 0) filter->reset(start.pose, t);
-    filterStep({filter.get()}, *actions, frame, timer);
+    filterStep(*actions, frame, timer);
 
     odometry = odometry + actions->getBestMovementEstimation()->poseChange->getMeanVal();
     app.odometryPath.push_back(t, mrpt::math::TPose3D(odometry.asTPose()));

@@ -33,13 +33,16 @@ void ParticleFilterApp::checkParticleFilterOptions(const std::string& proposals,
         throw usageError("[ParticleFilter] PF_algorithm must be " + proposals);
 }
 
-void ParticleFilterApp::filterStep(const std::vector<mrpt::bayes::CParticleFilterCapable*>& filters,
-                                   const mrpt::obs::CActionCollection& actions,
-                                   const mrpt::obs::CSensoryFrame& frame,
-                                   core::RunTimer& timer) const
+void ParticleFilterApp::filterStep(const mrpt::obs::CActionCollection& actions,
+                                   const mrpt::obs::CSensoryFrame& frame, core::RunTimer& timer)
 {
     timedStep(timer, "step " + std::to_string(steps), [&] {
-        for (auto* filter : filters) pf.executeOn(*filter, &actions, &frame);
+        auto& global = mrpt::random::getRandomGenerator();
+        for (auto& f : m_stepped) {
+            global = f.resampling;
+            pf.executeOn(*f.filter, &actions, &frame);
+            f.resampling = global;
+        }
     });
 }
 

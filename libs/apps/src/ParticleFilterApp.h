@@ -74,28 +74,37 @@ class ParticleFilterApp : public SlamApp {
     }
 
     /// The filter over copies of `mapTemplate`, with sampleSize particles and the run's seed
-    /// (plus `seedOffset`, for a filter run beside the first).
+    /// (plus `seedOffset`, for a filter run beside the first); filterStep() steps it until
+    /// stopStepping().
     template <class FILTER, class MAP>
-    std::unique_ptr<FILTER> makeFilter(const MAP& mapTemplate, uint32_t seedOffset = 0) const
+    std::unique_ptr<FILTER> makeFilter(const MAP& mapTemplate, uint32_t seedOffset = 0)
     {
         auto filter =
             std::make_unique<FILTER>(mapTemplate, pf.m_options.sampleSize, seed + seedOffset);
         filter->setThreadCount(args.threads);
-        // CParticleFilter's resampling draws from MRPT's global generator.
-        mrpt::random::getRandomGenerator().randomize(seed);
+        m_stepped.push_back({filter.get(), mrpt::random::CRandomGenerator(seed + seedOffset)});
         return filter;
     }
 
-    /// One step of each of `filters`, in order, as one timedStep(); its errors name the rawlog
-    /// and the step.
-    void filterStep(const std::vector<mrpt::bayes::CParticleFilterCapable*>& filters,
-                    const mrpt::obs::CActionCollection& actions,
-                    const mrpt::obs::CSensoryFrame& frame, core::RunTimer& timer) const;
+    /// One step of each filter of makeFilter(), in the order made, as one timedStep(); its
+    /// errors name the rawlog and the step.
+    void filterStep(const mrpt::obs::CActionCollection& actions,
+                    const mrpt::obs::CSensoryFrame& frame, core::RunTimer& timer);
+    /// filterStep() steps none of the filters made so far (they may be destroyed).
+    void stopStepping() { m_stepped.clear(); }
 
     mrpt::bayes::CParticleFilter pf;  ///< options from `[ParticleFilter]`
 
   private:
     static constexpr const char* kMapSection = "MappingApplication";
+    /// A filter filterStep() steps, and the state of the generator its resampling draws from:
+    /// CParticleFilter's resampling draws from MRPT's global generator, so each filter's state
+    /// is put there for its step and a filter run beside others draws as it would alone.
+    struct TSteppedFilter {
+        mrpt::bayes::CParticleFilterCapable* filter;
+        mrpt::random::CRandomGenerator resampling;
+    };
+    std::vector<TSteppedFilter> m_stepped;
 };
 
 }  // namespace mrpt_vslam::apps
