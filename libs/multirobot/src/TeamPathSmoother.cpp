@@ -244,25 +244,63 @@ CVisualLandmarksMap TeamPathSmoother::seedsFrom(const CVisualLandmarksMap& map,
     return seeds;
 }
 
-TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticle& p) const
+PlanarPoseLandmarkGraph TeamPathSmoother::graphOf(const TTeamPath& path,
+                                                  const CVisualLandmarksMap& map,
+                                                  const TFrameIds& ids,
+                                                  const std::vector<Eigen::Vector2d>& scales,
+                                                  std::map<uint32_t, size_t>& pointOf) const
 {
     const size_t K = robotCount();
-    TTeamPath path = recordedPathOf(p);
-    auto node = [K](size_t step, size_t robot) { return step * K + robot; };
     auto planar = [](const Eigen::Matrix3d& R) { return Eigen::Matrix2d(R.topLeftCorner<2, 2>()); };
+    PlanarPoseLandmarkGraph graph;
+    for (const auto& poses : path)
+        for (const auto& x : poses) graph.addPose(x);
+    pointOf.clear();
+    map.landmarks().forEach([&](uint32_t id, const TVisualLandmark& lm) {
+        pointOf[id] = graph.addPoint(lm.mean.head<2>());
+    });
     // the start poses: the first robot's defines the map frame (a tight prior, as the filter's
     // reset() keeps it exact), the others as reset() spreads them
     const double sxy = std::max(m_initialStdXY, kFixedStd);
     const double sphi = std::max(m_initialStdPhi, kFixedStd);
     const Eigen::Matrix3d spread = Eigen::Vector3d(sxy * sxy, sxy * sxy, sphi * sphi).asDiagonal();
-    const Eigen::Matrix3d exact = fixedCovariance();
+    for (size_t k = 0; k < K; k++)
+        graph.addPosePrior(nodeOf(0, k), m_startPoses[k], k == 0 ? fixedCovariance() : spread);
     const double scaleStd = options.odometry_scale_std;
+    for (const auto& initial : scales)
+        graph.addOdometryScale(initial, {1, 1}, Eigen::Matrix2d::Identity() * scaleStd * scaleStd);
+    for (size_t step = 1; step < path.size(); step++)
+        for (size_t k = 0; k < K; k++) {
+            const core::TOdometryGaussian& u = m_motions[step - 1][k];
+            const Eigen::Matrix3d cov = stepCovariance(step, k);
+            if (scaleStd > 0)
+                graph.addOdometry(nodeOf(step - 1, k), nodeOf(step, k), u.mean, cov, k);
+            else
+                graph.addOdometry(nodeOf(step - 1, k), nodeOf(step, k), u.mean, cov);
+        }
+    for (size_t f = 0; f < m_fusedFrames.size(); f++) {
+        const TFusedFrame& frame = m_fusedFrames[f];
+        const size_t from = nodeOf(frame.step, frame.robot);
+        for (size_t j = 0; j < frame.z.size(); j++)
+            if (ids[f][j])
+                graph.addPointReading(from, pointOf.at(*ids[f][j]), frame.z[j].z.head<2>(),
+                                      planar(frame.z[j].R));
+        for (const auto& r : frame.readings)
+            graph.addPoseReading(from, nodeOf(frame.step, r.robot), r.m.z.head<2>(), planar(r.m.R));
+    }
+    return graph;
+}
 
+TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticle& p) const
+{
+    const size_t K = robotCount();
+    TTeamPath path = recordedPathOf(p);
     TSmoothedTeam result;
-    result.odometry_scales.assign(scaleStd > 0 ? K : 0, Eigen::Vector2d(1, 1));
+    result.odometry_scales.assign(options.odometry_scale_std > 0 ? K : 0, Eigen::Vector2d(1, 1));
     std::vector<double> times;
     for (const auto& [t, pose] : CMultiRobotVisualSLAM::pathOf(p, 0)) times.push_back(t);
     TFrameIds ids;
+    std::map<uint32_t, size_t> pointOf;
     std::optional<CVisualLandmarksMap> seeds;  // options.reassociate
     for (unsigned round = 0; round < options.rounds; round++) {
         const CVisualLandmarksMap* seed = seeds ? &*seeds : nullptr;
@@ -270,52 +308,23 @@ TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticl
         if (options.reanchor_gap > 0)
             result.reanchored +=
                 reanchorAfterGaps(path, times, result.odometry_scales, map, ids, seed);
-        PlanarPoseLandmarkGraph graph;
-        for (const auto& poses : path)
-            for (const auto& x : poses) graph.addPose(x);
-        std::map<uint32_t, size_t> pointOf;
-        map.landmarks().forEach([&](uint32_t id, const TVisualLandmark& lm) {
-            pointOf[id] = graph.addPoint(lm.mean.head<2>());
-        });
-        for (size_t k = 0; k < K; k++)
-            graph.addPosePrior(node(0, k), m_startPoses[k], k == 0 ? exact : spread);
-        for (const auto& initial : result.odometry_scales)
-            graph.addOdometryScale(initial, {1, 1},
-                                   Eigen::Matrix2d::Identity() * scaleStd * scaleStd);
-        for (size_t step = 1; step < path.size(); step++)
-            for (size_t k = 0; k < K; k++) {
-                const core::TOdometryGaussian& u = m_motions[step - 1][k];
-                const Eigen::Matrix3d cov = stepCovariance(step, k);
-                if (scaleStd > 0)
-                    graph.addOdometry(node(step - 1, k), node(step, k), u.mean, cov, k);
-                else
-                    graph.addOdometry(node(step - 1, k), node(step, k), u.mean, cov);
-            }
-        for (size_t f = 0; f < m_fusedFrames.size(); f++) {
-            const TFusedFrame& frame = m_fusedFrames[f];
-            const size_t from = node(frame.step, frame.robot);
-            for (size_t j = 0; j < frame.z.size(); j++)
-                if (ids[f][j])
-                    graph.addPointReading(from, pointOf.at(*ids[f][j]), frame.z[j].z.head<2>(),
-                                          planar(frame.z[j].R));
-            for (const auto& r : frame.readings)
-                graph.addPoseReading(from, node(frame.step, r.robot), r.m.z.head<2>(),
-                                     planar(r.m.R));
-        }
+        PlanarPoseLandmarkGraph graph = graphOf(path, map, ids, result.odometry_scales, pointOf);
         PlanarPoseLandmarkGraph::TOptions lsq;
         lsq.huber_threshold = options.huber;
         const auto solved = graph.optimize(lsq);
         result.iterations += solved.iterations;
         result.outlier_readings = solved.outlier_readings;
-        result.cost = solved.final_cost;
         for (size_t step = 0; step < path.size(); step++)
-            for (size_t k = 0; k < K; k++) path[step][k] = graph.pose(node(step, k));
+            for (size_t k = 0; k < K; k++) path[step][k] = graph.pose(nodeOf(step, k));
         for (size_t k = 0; k < result.odometry_scales.size(); k++)
             result.odometry_scales[k] = graph.odometryScale(k);
         if (options.reassociate) seeds = seedsFrom(map, graph, pointOf);
     }
     result.map = mapAlong(path, &ids);
     result.correspondences = correspondencesOf(ids);
+    // the output's own cost: its paths and map, through the associations it was mapped with
+    result.cost =
+        graphOf(path, result.map, ids, result.odometry_scales, pointOf).cost(options.huber);
     for (size_t k = 0; k < K; k++) {
         result.paths.push_back(CMultiRobotVisualSLAM::pathOf(p, k));  // for the timestamps
         for (size_t step = 0; step < path.size(); step++)

@@ -119,7 +119,9 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
         size_t iterations = 0;        ///< least-squares iterations, all rounds
         size_t outlier_readings = 0;  ///< beyond the Huber threshold after the last round
         size_t reanchored = 0;        ///< parts of paths reanchorAfterGaps() moved, all rounds
-        /// the last round's least-squares cost (PlanarPoseLandmarkGraph::TResult::final_cost)
+        /// the cost (PlanarPoseLandmarkGraph::cost()) of `paths` and `map` through
+        /// `correspondences`, the landmarks at their mapped positions: what the output leaves
+        /// unexplained of the odometry and readings
         double cost = 0;
         /// per robot (distance, turn), with options.odometry_scale_std > 0
         std::vector<Eigen::Vector2d> odometry_scales;
@@ -168,6 +170,17 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
     /// it: × options.motion_cov_factor, or as tight as the first start pose where the robot
     /// stood (options.zero_odometry_stands_still).
     Eigen::Matrix3d stepCovariance(size_t step, size_t robot) const;
+    /// The pose variable of robot `robot` at step `step` in graphOf()'s graph.
+    size_t nodeOf(size_t step, size_t robot) const { return step * robotCount() + robot; }
+    /// The least squares of `path`, the landmarks of `map` (made along it; `pointOf`: landmark
+    /// id → point, at the landmark's mapped position) and the readings `ids` associates: the
+    /// start poses' priors (the first robot's fixed, the others with the filter's
+    /// initial_std_*), the odometry (stepCovariance(); scale variables from `scales`, one per
+    /// robot, with options.odometry_scale_std), the readings of the landmarks and of other robots.
+    PlanarPoseLandmarkGraph graphOf(const TTeamPath& path, const CVisualLandmarksMap& map,
+                                    const TFrameIds& ids,
+                                    const std::vector<Eigen::Vector2d>& scales,
+                                    std::map<uint32_t, size_t>& pointOf) const;
     /// The landmarks of `map` (made along a path) at their positions solved in `graph`
     /// (`pointOf`: landmark id → point), unseen: the next round's seeds.
     CVisualLandmarksMap seedsFrom(const CVisualLandmarksMap& map,
