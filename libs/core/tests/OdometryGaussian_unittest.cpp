@@ -85,6 +85,22 @@ TEST(OdometryGaussian, DrawsHaveTheCovarianceLLt)
     EXPECT_EQ(mrpt_vslam::core::drawGaussian(a, L), mrpt_vslam::core::drawGaussian(b, L));
 }
 
+// Against MRPT's composition of Gaussian poses, an exact start (zero covariance) ⊕ the increment:
+// its first-order covariance is J cov Jᵀ, J = ∂(a ⊕ b)/∂b.
+TEST(OdometryGaussian, IncrementCovarianceInTheMapFrameIsMrptsComposition)
+{
+    mrpt::math::CMatrixDouble33 cov;
+    cov.asEigen() << 4e-4, 1e-4, 2e-5, 1e-4, 9e-4, -3e-5, 2e-5, -3e-5, 1e-4;
+    const mrpt::poses::CPose2D increment(0.3, -0.1, 0.2);
+    for (const double phi : {0.0, 0.7, -2.5, M_PI}) {
+        const mrpt::poses::CPosePDFGaussian start(mrpt::poses::CPose2D(1, 2, phi));
+        const mrpt::poses::CPosePDFGaussian composed =
+            start + mrpt::poses::CPosePDFGaussian(increment, cov);
+        const Eigen::Matrix3d ours = mrpt_vslam::core::incrementCovInMapFrame(cov.asEigen(), phi);
+        EXPECT_LT((ours - composed.cov.asEigen()).cwiseAbs().maxCoeff(), 1e-15) << "phi " << phi;
+    }
+}
+
 TEST(OdometryGaussian, StandardNormalsAreTheSerialDrawsBitForBit)
 {
     // drawStandardNormals() draws the generator's sequence itself: against a serial loop of

@@ -450,7 +450,7 @@ void CMultiRobotVisualSLAM::proposeAndFuse(size_t k, const core::TOdometryGaussi
             auto& p = *m_particles[i].d;
             const auto assoc_i = assoc.begin() + static_cast<std::ptrdiff_t>(i * n);
             // prior N(x̂, J C Jᵀ), J the rotation of the increment into the map frame
-            Eigen::Matrix3d Sigma = incrementCovInMapFrame(motion.cov, p.poses[k].phi);
+            Eigen::Matrix3d Sigma = core::incrementCovInMapFrame(motion.cov, p.poses[k].phi);
             Eigen::Vector3d mu(predicted[i].x, predicted[i].y, predicted[i].phi);
 
             // Gaussian proposal p(x_t | x_{t-1}, u_t, z_t) by sequential EKF updates of the pose,

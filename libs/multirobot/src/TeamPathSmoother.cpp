@@ -167,10 +167,10 @@ CVisualLandmarksMap TeamPathSmoother::mapAlong(const TTeamPath& path, TFrameIds*
         const TPlanarTransform pose(x);
         // reassociate: the pose is as uncertain as the step into it, H Σ Hᵀ on each point
         const bool widen = options.reassociate && f.step > 0;
-        const Eigen::Matrix3d Sigma = widen
-                                          ? incrementCovInMapFrame(stepCovariance(f.step, f.robot),
-                                                                   path[f.step - 1][f.robot].phi)
-                                          : Eigen::Matrix3d::Zero();
+        const Eigen::Matrix3d Sigma =
+            widen ? core::incrementCovInMapFrame(stepCovariance(f.step, f.robot),
+                                                 path[f.step - 1][f.robot].phi)
+                  : Eigen::Matrix3d::Zero();
         in_map.resize(f.z.size());
         candidates.resize(f.z.size());
         for (size_t j = 0; j < f.z.size(); j++) {

@@ -31,15 +31,6 @@ TPose2D plus(const TPose2D& x, const Eigen::Vector3d& dx)
 {
     return {x.x + dx[0], x.y + dx[1], mrpt::math::wrapToPi(x.phi + dx[2])};
 }
-
-/// ∂(a ⊕ b)/∂b: the rotation of the increment into the map frame.
-Eigen::Matrix3d composeJacobianWrtIncrement(double yaw)
-{
-    const double c = std::cos(yaw), s = std::sin(yaw);
-    Eigen::Matrix3d J;
-    J << c, -s, 0, s, c, 0, 0, 0, 1;
-    return J;
-}
 }  // namespace
 
 void COmniFastSLAM::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
@@ -297,8 +288,7 @@ void COmniFastSLAM::runStep(const mrpt::obs::CActionCollection* action,
         Eigen::Matrix3d R_t = Eigen::Matrix3d::Zero();
         if (fastslam2) {
             // R_t: the odometry covariance in the map frame
-            const Eigen::Matrix3d Jd = composeJacobianWrtIncrement(p.robot_in_map.phi);
-            R_t = Jd * motion.cov * Jd.transpose();
+            R_t = core::incrementCovInMapFrame(motion.cov, p.robot_in_map.phi);
             x_t = sampleFastSLAM2Proposal(p, z, motion, R_t, noise[i], assoc);
         } else {
             x_t = sampleMotion(p.robot_in_map, motion, noise[i]);

@@ -5,6 +5,7 @@
 #include <mrpt/random/RandomGenerators.h>
 
 #include <Eigen/Core>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,17 @@ struct TOdometryGaussian {
     static TOdometryGaussian from(const mrpt::obs::CActionRobotMovement2D* odometry,
                                   const TMotionNoiseFloor& floor);
 };
+
+/// The covariance in the map frame of an odometry increment's covariance `cov`, given in the
+/// frame of the pose it starts from (heading `phi`): J cov Jᵀ, J = ∂(a ⊕ b)/∂b the rotation
+/// of the increment into the map frame.
+inline Eigen::Matrix3d incrementCovInMapFrame(const Eigen::Matrix3d& cov, double phi)
+{
+    const double c = std::cos(phi), s = std::sin(phi);
+    Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
+    J.topLeftCorner<2, 2>() << c, -s, s, c;
+    return J * cov * J.transpose();
+}
 
 /// A sample of N(0, L Lᵀ) from `rng` (three normal draws, in order).
 Eigen::Vector3d drawGaussian(mrpt::random::CRandomGenerator& rng, const Eigen::Matrix3d& L);

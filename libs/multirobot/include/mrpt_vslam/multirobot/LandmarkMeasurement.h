@@ -115,16 +115,6 @@ inline TMapMeasurement toMapFrame(const TLandmarkMeasurement& m, const mrpt::mat
     return toMapFrame(m, TPlanarTransform(robot));
 }
 
-/// The covariance in the map frame of an odometry increment's covariance `cov`, given in the
-/// frame of the pose it starts from (heading `phi`): J cov Jᵀ, J the increment's rotation.
-inline Eigen::Matrix3d incrementCovInMapFrame(const Eigen::Matrix3d& cov, double phi)
-{
-    const double c = std::cos(phi), s = std::sin(phi);
-    Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
-    J.topLeftCorner<2, 2>() << c, -s, s, c;
-    return J * cov * J.transpose();
-}
-
 /// H = ∂z_w/∂(x, y, θ) of a point z_w measured from `robot`: identity in x, y, and ∂R(θ)z/∂θ.
 inline Eigen::Matrix3d poseJacobian(const Eigen::Vector3d& z_w, const mrpt::math::TPose2D& robot)
 {
