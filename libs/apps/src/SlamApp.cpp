@@ -166,6 +166,8 @@ void SlamApp::writeRunFolder(const core::OutputDirectory& out, const core::RunTi
     // last: a run.json that says completed stands for a whole folder
     report.setCompleted();
     report.write(out.file("run.json"));
+    for (const auto& warning : report.warnings())  // on stderr, --quiet or not
+        std::cerr << name << ": warning: " << warning << "\n";
     if (args.quiet) return;
     if (const auto& odometry = m_odometryTiming;
         odometry.interpolated + odometry.latest_reading > 0)
@@ -173,8 +175,6 @@ void SlamApp::writeRunFolder(const core::OutputDirectory& out, const core::RunTi
                   << " read at the step's time, " << odometry.interpolated
                   << " interpolated to it, " << odometry.latest_reading
                   << " from the latest reading before it (doc/app-conventions.md)\n";
-    for (const auto& warning : report.warnings())
-        std::cout << name << ": warning: " << warning << "\n";
     std::cout << name << ": results in " << out.path() << " (final.3Dscene opens in SceneViewer3D)"
               << (evaluation ? "; against ground truth " + *groundTruth + " (metrics.json):\n"
                              : "; no ground truth, no metrics.json\n");
