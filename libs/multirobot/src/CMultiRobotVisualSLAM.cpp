@@ -245,17 +245,19 @@ std::vector<TLandmarkMeasurement> CMultiRobotVisualSLAM::measurementsOf(
 {
     using core::ObservationSelector;
     std::vector<TLandmarkMeasurement> z;
+    uint16_t sensor = 0;
+    const auto append = [&](std::vector<TLandmarkMeasurement> of_sensor) {
+        for (auto& m : of_sensor) m.sensor = sensor;
+        z.insert(z.end(), of_sensor.begin(), of_sensor.end());
+        sensor++;
+    };
     for (const auto& obs : ObservationSelector::allIn<mrpt::obs::CObservationVisualLandmarks>(
-             frame, options.inputLabel(k, options.landmarks_suffix))) {
-        const auto v = measurementsFromObservation(*obs);
-        z.insert(z.end(), v.begin(), v.end());
-    }
+             frame, options.inputLabel(k, options.landmarks_suffix)))
+        append(measurementsFromObservation(*obs));
     for (const auto& obs : ObservationSelector::allIn<mrpt::obs::CObservationBearingRange>(
-             frame, options.inputLabel(k, options.range_bearing_suffix))) {
-        const auto rb = measurementsFromBearingRange(*obs, options.range_bearing_noise,
-                                                     &lastStepStats.non_positive_ranges);
-        z.insert(z.end(), rb.begin(), rb.end());
-    }
+             frame, options.inputLabel(k, options.range_bearing_suffix)))
+        append(measurementsFromBearingRange(*obs, options.range_bearing_noise,
+                                            &lastStepStats.non_positive_ranges));
     const size_t B = options.max_observations_per_robot;
     return options.observation_selection == TOptions::TSelection::Random
                ? selectAtRandom(std::move(z), B, m_rng)
@@ -391,7 +393,8 @@ void CMultiRobotVisualSLAM::forEachParticle(const std::function<void(size_t)>& b
         first);
 }
 
-void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandmarkMeasurement>& z)
+void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandmarkMeasurement>& z,
+                                             CVisualLandmarksMap::TFrameAssociation rule)
 {
     auto candidates = searchCandidates(posesOf(k), 0, 0, z);
     const size_t n = z.size();
@@ -406,8 +409,8 @@ void CMultiRobotVisualSLAM::fuseMeasurements(size_t k, const std::vector<TLandma
         const TPlanarTransform pose(p.d->poses[k]);
         std::vector<TMapMeasurement> in_map(n);
         for (size_t j = 0; j < n; j++) in_map[j] = toMapFrame(z[j], pose);
-        const auto r = p.d->map.fuseFrame(z, in_map, candidates, static_cast<unsigned>(k),
-                                          CVisualLandmarksMap::TFrameAssociation::OneByOne, serial);
+        const auto r =
+            p.d->map.fuseFrame(z, in_map, candidates, static_cast<unsigned>(k), rule, serial);
         std::copy(r.begin(), r.end(), fused.begin() + static_cast<std::ptrdiff_t>(i * n));
         for (size_t j = 0; j < n; j++) {
             addLogWeight(p, r[j].log_w);  // line 44 and line 11: the product over the team
@@ -586,11 +589,15 @@ void CMultiRobotVisualSLAM::runStep(
         if (m_observer) m_observer->onRobotStep(m_steps + 1, k, motion, z, readings);
         if (z.empty() && readings.empty() && core::ActionFrameSource::standsStill(*odo))
             continue;  // no reading of this robot since the last step (a live team)
+        const auto bySensor = splitBySensor(z);
+        using TRule = CVisualLandmarksMap::TFrameAssociation;
         if (optimal && !(z.empty() && readings.empty())) {
-            proposeAndFuse(k, motion, z, readings);
+            proposeAndFuse(k, motion, bySensor.empty() ? z : bySensor.front(), readings);
+            for (size_t s = 1; s < bySensor.size(); s++)
+                fuseMeasurements(k, bySensor[s], TRule::DistinctInOrder);  // as in the proposal
         } else {
             sampleMotion(k, motion);
-            if (!z.empty()) fuseMeasurements(k, z);
+            for (const auto& of_sensor : bySensor) fuseMeasurements(k, of_sensor, TRule::OneByOne);
             weighRobotReadings(k, readings);
         }
         // after the last robot the framework resamples (Alg. 1 line 13)

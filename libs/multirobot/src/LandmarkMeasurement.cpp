@@ -162,6 +162,20 @@ void sortByDepth(std::vector<TLandmarkMeasurement>& z)
 }
 }  // namespace
 
+std::vector<std::vector<TLandmarkMeasurement>> splitBySensor(
+    const std::vector<TLandmarkMeasurement>& z)
+{
+    std::vector<std::vector<TLandmarkMeasurement>> bySensor;
+    for (const auto& m : z) {
+        if (bySensor.size() <= m.sensor) bySensor.resize(m.sensor + 1u);
+        bySensor[m.sensor].push_back(m);
+    }
+    bySensor.erase(std::remove_if(bySensor.begin(), bySensor.end(),
+                                  [](const auto& list) { return list.empty(); }),
+                   bySensor.end());
+    return bySensor;
+}
+
 std::vector<TLandmarkMeasurement> selectNearest(std::vector<TLandmarkMeasurement> z, size_t B)
 {
     sortByDepth(z);

@@ -276,6 +276,7 @@ PlanarPoseLandmarkGraph::TResult PlanarPoseLandmarkGraph::optimize(const TOption
 
 PlanarPoseLandmarkGraph::TResult PlanarPoseLandmarkGraph::finish(TResult result) const
 {
+    result.readings = m_readings.size();
     for (const auto& f : m_readings)
         if (m_huber > 0 && readingError(f).squaredNorm() > m_huber * m_huber)
             result.outlier_readings++;

@@ -120,7 +120,13 @@ void TeamPathSmoother::onRobotStep(
 {
     if (robot == 0) m_motions.emplace_back();
     m_motions.back().push_back(motion);
-    if (!z.empty() || !readings.empty()) m_fusedFrames.push_back({step, robot, z, readings});
+    // a frame per sensor, fused in turn as the filter fuses them; the readings with the first
+    const auto bySensor = splitBySensor(z);
+    if (bySensor.empty() && !readings.empty()) m_fusedFrames.push_back({step, robot, {}, readings});
+    for (size_t s = 0; s < bySensor.size(); s++)
+        m_fusedFrames.push_back(
+            {step, robot, bySensor[s],
+             s == 0 ? readings : std::vector<CMultiRobotVisualSLAM::TRobotReading>()});
 }
 
 TeamPathSmoother::TTeamPath TeamPathSmoother::recordedPathOf(const TTeamParticle& p) const
@@ -202,8 +208,13 @@ CVisualLandmarksMap TeamPathSmoother::mapAlong(const TTeamPath& path, TFrameIds*
 
 unsigned int TeamPathSmoother::minTimesSeen() const
 {
-    const auto frames = std::count_if(m_fusedFrames.begin(), m_fusedFrames.end(),
-                                      [](const TFusedFrame& f) { return !f.z.empty(); });
+    size_t frames = 0;  // robot steps with landmark measurements, of one sensor or more
+    const TFusedFrame* counted = nullptr;
+    for (const auto& f : m_fusedFrames)
+        if (!f.z.empty()) {
+            if (!counted || counted->step != f.step || counted->robot != f.robot) frames++;
+            counted = &f;
+        }
     // a product within 1e-9 of a whole count is that count (0.07 × 100 is 7, not 8)
     return static_cast<unsigned int>(
         std::ceil(options.min_seen_fraction * static_cast<double>(frames) - 1e-9));
@@ -313,6 +324,7 @@ TeamPathSmoother::TSmoothedTeam TeamPathSmoother::smoothPaths(const TTeamParticl
         lsq.huber_threshold = options.huber;
         const auto solved = graph.optimize(lsq);
         result.iterations += solved.iterations;
+        result.readings = solved.readings;
         result.outlier_readings = solved.outlier_readings;
         for (size_t step = 0; step < path.size(); step++)
             for (size_t k = 0; k < K; k++) path[step][k] = graph.pose(nodeOf(step, k));

@@ -1,5 +1,6 @@
 // The B measurements kept per robot and step: the nearest ones, or a uniform random subset
-// (checked against the enumeration of every subset), and the `observation_selection` key.
+// (checked against the enumeration of every subset), the `observation_selection` key, and the
+// split of a frame's measurements by sensor.
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/random/RandomGenerators.h>
@@ -7,6 +8,7 @@
 #include <mrpt_vslam/multirobot/LandmarkMeasurement.h>
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <vector>
 
@@ -87,6 +89,31 @@ TEST(LandmarkMeasurementSelection, RandomKeepsAllWhenBIsNotSmaller)
         ASSERT_EQ(kept.size(), 5u);
         EXPECT_TRUE(isOrderedByDepth(kept));
     }
+}
+
+// Every measurement in the list of its sensor, in the order given; sensors without any left out
+TEST(LandmarkMeasurementSelection, SplitBySensorKeepsEachSensorsOrder)
+{
+    EXPECT_TRUE(splitBySensor({}).empty());
+    auto z = measurements(9);
+    const uint16_t sensors[] = {2, 0, 2, 5, 0, 2, 5, 5, 0};
+    for (size_t i = 0; i < z.size(); i++) z[i].sensor = sensors[i];
+    const auto bySensor = splitBySensor(z);
+    ASSERT_EQ(bySensor.size(), 3u);
+    size_t total = 0;
+    const std::array<uint16_t, 3> present{0, 2, 5};
+    for (size_t s = 0; s < bySensor.size(); s++) {
+        const uint16_t sensor = bySensor[s].front().sensor;
+        EXPECT_EQ(sensor, present[s]);
+        std::vector<int64_t> expected;  // brute force: the track ids of that sensor, in order
+        for (const auto& m : z)
+            if (m.sensor == sensor) expected.push_back(m.track_id);
+        std::vector<int64_t> got;
+        for (const auto& m : bySensor[s]) got.push_back(m.track_id);
+        EXPECT_EQ(got, expected) << "sensor " << sensor;
+        total += got.size();
+    }
+    EXPECT_EQ(total, z.size());
 }
 
 TEST(LandmarkMeasurementSelection, IniKeyRoundTripsAndRejectsUnknownValues)

@@ -256,6 +256,7 @@ TEST(PlanarPoseLandmarkGraph, HuberBoundsTheForceOfAWrongReading)
         PlanarPoseLandmarkGraph::TOptions options;
         options.huber_threshold = huber;
         const auto result = g.optimize(options);
+        EXPECT_EQ(result.readings, m.readings.size());
         EXPECT_EQ(result.outlier_readings, huber > 0 ? 1u : 0u);
         error[huber > 0] = (g.point(0) - truth.points[0]).norm();
     }

@@ -14,6 +14,7 @@
 #include <mrpt_vslam/core/TumTrajectory.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,12 @@ struct SingleRobotRangeBearingLog {
     double odometry_std_xy = 0.02;                      ///< [m] per step
     double odometry_std_phi = 0.01;                     ///< [rad] per step
     mrpt::poses::CPose3D sensor{0.2, 0, 0.3, 0, 0, 0};  ///< on the robot
+    /// The sensor pose the observations state, where it is not the true one (a wrong
+    /// calibration).
+    std::optional<mrpt::poses::CPose3D> stated_sensor;
+    /// A second sensor on the robot, at the first one's height: each frame then holds an
+    /// observation of each, of the same landmarks where their fields of view overlap.
+    std::optional<mrpt::poses::CPose3D> second_sensor;
     uint32_t seed = 1;
 
     /// The true landmarks, at the sensor's height: a ring around the path, a few inside it.
@@ -76,25 +83,30 @@ struct SingleRobotRangeBearingLog {
             truth.push_back(mrpt::Clock::toDouble(stamp),
                             {pose.x(), pose.y(), 0, pose.phi(), 0, 0});
 
-            auto obs = mrpt::obs::CObservationBearingRange::Create();
-            obs->timestamp = stamp;
-            obs->sensorLocationOnRobot = sensor;
-            obs->minSensorDistance = 0;
-            obs->maxSensorDistance = static_cast<float>(max_range);
-            obs->sensor_std_range = static_cast<float>(std_range);
-            obs->sensor_std_yaw = static_cast<float>(std_bearing);
-            const mrpt::poses::CPose3D sensorInMap = mrpt::poses::CPose3D(pose) + sensor;
-            for (const auto& p : pts) {
-                double r = 0, yaw = 0, pitch = 0;
-                sensorInMap.sphericalCoordinates(p, r, yaw, pitch);
-                if (r > max_range) continue;
-                mrpt::obs::CObservationBearingRange::TMeasurement m;
-                m.range = static_cast<float>(r + rng.drawGaussian1D(0, std_range));
-                m.yaw = static_cast<float>(yaw + rng.drawGaussian1D(0, std_bearing));
-                m.pitch = 0;  // the landmarks are at the sensor's height
-                m.landmarkID = -1;
-                obs->sensedData.push_back(m);
-            }
+            const auto observe = [&](const mrpt::poses::CPose3D& on_robot) {
+                auto obs = mrpt::obs::CObservationBearingRange::Create();
+                obs->timestamp = stamp;
+                obs->sensorLocationOnRobot = stated_sensor.value_or(on_robot);
+                obs->minSensorDistance = 0;
+                obs->maxSensorDistance = static_cast<float>(max_range);
+                obs->sensor_std_range = static_cast<float>(std_range);
+                obs->sensor_std_yaw = static_cast<float>(std_bearing);
+                const mrpt::poses::CPose3D sensorInMap = mrpt::poses::CPose3D(pose) + on_robot;
+                for (const auto& p : pts) {
+                    double r = 0, yaw = 0, pitch = 0;
+                    sensorInMap.sphericalCoordinates(p, r, yaw, pitch);
+                    if (r > max_range) continue;
+                    mrpt::obs::CObservationBearingRange::TMeasurement m;
+                    m.range = static_cast<float>(r + rng.drawGaussian1D(0, std_range));
+                    m.yaw = static_cast<float>(yaw + rng.drawGaussian1D(0, std_bearing));
+                    m.pitch = 0;  // the landmarks are at the sensor's height
+                    m.landmarkID = -1;
+                    obs->sensedData.push_back(m);
+                }
+                return obs;
+            };
+            std::vector<mrpt::obs::CObservationBearingRange::Ptr> observations{observe(sensor)};
+            if (second_sensor) observations.push_back(observe(*second_sensor));
             if (format != Format::ObservationsOnly) {
                 if (format == Format::ActionsAndFrames || i > 0) {
                     mrpt::obs::CActionCollection acts;
@@ -106,13 +118,14 @@ struct SingleRobotRangeBearingLog {
                     out << acts;
                 }
                 mrpt::obs::CSensoryFrame sf;
-                sf.insert(obs);
+                for (const auto& obs : observations) sf.insert(obs);
                 out << sf;
             } else {
                 mrpt::obs::CObservationOdometry odo;
                 odo.timestamp = stamp;
                 odo.odometry = odometry;
-                out << odo << *obs;
+                out << odo;
+                for (const auto& obs : observations) out << *obs;
             }
         }
         truth.save(prefix + ".groundtruth.tum", "true robot poses");

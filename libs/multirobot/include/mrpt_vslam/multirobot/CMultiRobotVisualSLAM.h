@@ -46,7 +46,9 @@ namespace mrpt_vslam::multirobot {
  *      the map's joint_association, associated all at once first by associateJointly()) and
  *      multiply its weight by ω (Eq. 13) or p0; the weights of the K robots multiply (line 11).
  *      The candidates are searched before the frame is fused, so two points of one frame never
- *      become one landmark;
+ *      become one landmark. A robot with several sensors (observations in the frame) fuses
+ *      them one after the other, the first in the proposal, so that the points of two
+ *      sensors may become one landmark, and a sensor's points take distinct landmarks;
  *   4. with `resample_per_robot` (ours), resample when N_eff < BETA before the next robot's
  *      motion is sampled. The robots' motions are independent, so this is the same posterior
  *      processed one robot at a time; it keeps the particles from having to be good for all
@@ -182,7 +184,8 @@ class CMultiRobotVisualSLAM
     core::TOdometryGaussian motionOf(size_t k,
                                      const mrpt::obs::CActionRobotMovement2D& odometry) const;
     /// Robot k's B measurements in the frame (`<ROBOT>_LANDMARKS` or `<ROBOT>_RB`), selected as
-    /// `observation_selection` says (random: drawn from the filter's generator).
+    /// `observation_selection` says (random: drawn from the filter's generator), each with the
+    /// index of its observation in the frame as its sensor.
     std::vector<TLandmarkMeasurement> measurementsOf(size_t k,
                                                      const mrpt::obs::CSensoryFrame& frame);
     /// Robot k's readings of the other robots of the team (`<ROBOT>_ROBOTS`); others dropped.
@@ -218,8 +221,10 @@ class CMultiRobotVisualSLAM
     std::vector<TMeasurementCandidates> searchCandidates(
         const std::vector<mrpt::math::TPose2D>& poses, double extra_xy, double extra_phi,
         const std::vector<TLandmarkMeasurement>& z);
-    /// Steps 2-3 for robot k with its measurements, after sampleMotion().
-    void fuseMeasurements(size_t k, const std::vector<TLandmarkMeasurement>& z);
+    /// Steps 2-3 for robot k with its measurements of one sensor, after sampleMotion() or
+    /// proposeAndFuse() (`rule` as CVisualLandmarksMap::fuseFrame() takes it).
+    void fuseMeasurements(size_t k, const std::vector<TLandmarkMeasurement>& z,
+                          CVisualLandmarksMap::TFrameAssociation rule);
     /// pfOptimalProposal for robot k: Gaussian proposal from the motion and the measurements,
     /// weight p(z | x_{t-1}, u, map), then the landmark updates from the sampled pose.
     void proposeAndFuse(size_t k, const core::TOdometryGaussian& motion,

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,6 +29,10 @@ struct TLandmarkMeasurement {
     /// The landmark's identity where the data gives one (range-bearing `landmarkID` ≥ 0), else
     /// −1: associates only with `associate_by_identity` (known correspondences).
     int64_t identity = -1;
+    /// Which of the robot's observations of the step it came from (0, 1, ...: one per sensor).
+    /// A frame's measurements are associated one-to-one per sensor, sensor after sensor, so
+    /// that one sensor's may take the landmarks another started in the same frame.
+    uint16_t sensor = 0;
 };
 
 /** The same measurement in the map frame for one particle's robot pose x:
@@ -73,6 +78,11 @@ struct TRangeBearingNoise {
 std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
     const mrpt::obs::CObservationBearingRange& obs, const TRangeBearingNoise& noise,
     size_t* non_positive = nullptr);
+
+/** `z` cut into one list per sensor (TLandmarkMeasurement::sensor), in increasing sensor
+ *  index, each in the order of `z`; none for an empty `z`. */
+std::vector<std::vector<TLandmarkMeasurement>> splitBySensor(
+    const std::vector<TLandmarkMeasurement>& z);
 
 /** The (at most) B measurements with the smallest depth, the most precise for a stereo pair,
  *  in that order (ties: in the order given); all of them if B = 0 or fewer. */

@@ -57,6 +57,7 @@ class PlanarPoseLandmarkGraph {
     struct TResult {
         double initial_cost = 0, final_cost = 0;  ///< Σ ρ(‖e‖²) over the factors
         size_t iterations = 0;
+        size_t readings = 0;  ///< reading factors (of points and of poses)
         /// readings whose final whitened residual exceeds the Huber threshold
         size_t outlier_readings = 0;
     };

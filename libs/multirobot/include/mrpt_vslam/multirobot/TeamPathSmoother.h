@@ -96,8 +96,8 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
     /** The map of every measurement fused since reset(), made again along the final path of
      *  particle `p` (mapping with known poses): frame by frame in the order of the run, each
      *  robot's measurements at that particle's pose of the step, fused by
-     *  CVisualLandmarksMap::fuseFrame() (distinct landmarks per frame, in the order
-     *  options.nearest_pair_first chooses) with the filter's
+     *  CVisualLandmarksMap::fuseFrame() (sensor by sensor, each sensor's measurements to
+     *  distinct landmarks in the order options.nearest_pair_first chooses) with the filter's
      *  insertion options but D0 = options.D0; then the landmarks seen fewer than
      *  minTimesSeen() times are removed. The poses do not move, so a wrong
      *  association here costs the map only, not the paths, and the gate can be wider than
@@ -106,7 +106,7 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
     CVisualLandmarksMap mapAlongPath(const TTeamParticle& p,
                                      std::vector<TCorrespondence>* correspondences = nullptr) const;
     /// The fewest measurements a landmark of a map along a path keeps: options.min_seen_fraction
-    /// of the frames with landmark measurements recorded since reset(), rounded up.
+    /// of the robot steps with landmark measurements recorded since reset(), rounded up.
     unsigned int minTimesSeen() const;
 
     /// The team's paths and map after smoothPaths().
@@ -117,7 +117,8 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
         /// those `map` was made with, as mapAlongPath() gives them
         std::vector<TCorrespondence> correspondences;
         size_t iterations = 0;        ///< least-squares iterations, all rounds
-        size_t outlier_readings = 0;  ///< beyond the Huber threshold after the last round
+        size_t readings = 0;          ///< in the last round's least squares
+        size_t outlier_readings = 0;  ///< of those, beyond the Huber threshold
         size_t reanchored = 0;        ///< parts of paths reanchorAfterGaps() moved, all rounds
         /// the cost (PlanarPoseLandmarkGraph::cost()) of `paths` and `map` through
         /// `correspondences`, the landmarks at their mapped positions: what the output leaves
@@ -140,8 +141,8 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
     TSmoothedTeam smoothPaths(const TTeamParticle& p) const;
 
   private:
-    /// A robot's measurements of one step: `step` indexes that step in the path (0: the
-    /// start poses).
+    /// A robot's measurements of one step from one sensor: `step` indexes that step in the path
+    /// (0: the start poses).
     struct TFusedFrame {
         size_t step, robot;
         std::vector<TLandmarkMeasurement> z;
