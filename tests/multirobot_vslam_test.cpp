@@ -178,6 +178,42 @@ TEST_F(MultiRobotVSLAMApp, SaysWhenReadingsAndOdometryDisagree)
         << r.out;
 }
 
+// A rawlog cut from a longer one, beside the longer one's ground truth: the run starts from the
+// true pose at its first step, not from the ground truth's first pose (10 s earlier, 5 m away),
+// and a ground truth that starts after the rawlog's first step is an error naming the file.
+TEST_F(MultiRobotVSLAMApp, StartsFromTheTruePoseAtTheFirstStep)
+{
+    mrpt_vslam::test::SingleRobotRangeBearingLog().write(out("rb-cut"));
+    const std::string gt = out("rb-cut.groundtruth.tum");
+    const auto truth = mrpt_vslam::core::TumTrajectory::load(gt);
+    mrpt_vslam::core::TumTrajectory longer;
+    for (int i = 20; i > 0; i--)
+        longer.push_back(truth.timestamps.front() - 0.5 * i,
+                         mrpt::math::TPose3D(-5 + 0.1 * i, -1, 0, 1, 0, 0));
+    for (size_t i = 0; i < truth.size(); i++) longer.push_back(truth.timestamps[i], truth.poses[i]);
+    longer.save(gt);
+    TCommandResult r = run(kConfigs + "range-bearing.ini " + out("rb-cut") +
+                           ".rawlog --seed 1 -q --out " + out("rb-cut-run"));
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    const auto path =
+        mrpt_vslam::core::TumTrajectory::load(out("rb-cut-run/estimated_path_R1.tum"));
+    EXPECT_NEAR(path.poses.front().x, truth.poses.front().x, 0.05);
+    EXPECT_NEAR(path.poses.front().y, truth.poses.front().y, 0.05);
+    const double est =
+        json(out("rb-cut-run/metrics.json"))["robots"]["R1"]["estimate"]["ate_rmse_m"];
+    EXPECT_LT(est, 0.15);
+
+    mrpt_vslam::core::TumTrajectory later;  // from the second step on, 0.5 s after the first
+    for (size_t i = 1; i < truth.size(); i++) later.push_back(truth.timestamps[i], truth.poses[i]);
+    later.save(gt);
+    r = run(kConfigs + "range-bearing.ini " + out("rb-cut") + ".rawlog --seed 1 -q --out " +
+            out("rb-cut-run"));
+    EXPECT_EQ(r.exit_code, 1) << r.out;
+    EXPECT_NE(r.out.find(gt + ": no true pose within 0.05 s of the rawlog's first step"),
+              std::string::npos)
+        << r.out;
+}
+
 // filter_runs = 4 from --seed 5 runs the filters of seeds 5 to 8 side by side: each gives what
 // the run of its seed alone gives (the resampling of one does not draw from another's
 // generator), so the kept run is repeated with filter_runs = 1 and its seed.

@@ -345,13 +345,17 @@ TEST(OmniFastSLAMPlanar, AppRunsOneRobotOfATeamRawlog)
                           "final_map.gz", "final.3Dscene", "run.json", "metrics.json"})
         EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
     EXPECT_FALSE(std::filesystem::exists(out + "/estimated_path.tum"));
-    // started at R1's first true pose, and its dead reckoning is R1's odometry alone
+    // the first step (R1's first frame with measurements) at R1's true pose then, and its dead
+    // reckoning R1's odometry alone
     const auto odo = core::TumTrajectory::load(out + "/odometry_path_R1.tum");
     ASSERT_FALSE(odo.empty());
-    size_t k_last = seq.bearings.size() - 1;
+    size_t k_first = 0, k_last = seq.bearings.size() - 1;
+    while (seq.bearings[k_first].sensedData.empty()) k_first++;
     while (seq.bearings[k_last].sensedData.empty()) k_last--;
+    EXPECT_NEAR(odo.poses.front().x, seq.truth[k_first].x, 1e-6);
+    EXPECT_NEAR(odo.poses.front().y, seq.truth[k_first].y, 1e-6);
     const auto last =
-        (mrpt::poses::CPose2D(seq.truth.front()) + (seq.odometry[k_last] - seq.odometry.front()));
+        (mrpt::poses::CPose2D(seq.truth[k_first]) + (seq.odometry[k_last] - seq.odometry[k_first]));
     EXPECT_NEAR(odo.poses.back().x, last.x(), 1e-3);
     EXPECT_NEAR(odo.poses.back().y, last.y(), 1e-3);
 

@@ -12,6 +12,7 @@
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/RawlogReader.h>
 #include <mrpt_vslam/core/RunOutputs.h>
+#include <mrpt_vslam/core/SingleRobotStart.h>
 #include <mrpt_vslam/core/TextColumns.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
 #include <mrpt_vslam/multirobot/LandmarkIdentityTally.h>
@@ -252,10 +253,6 @@ void MultiRobotVSLAMApp::Impl::findGroundTruth()
         if (!mrpt::system::fileExists(tum)) continue;
         groundTruth.back() = core::TumTrajectory::load(tum);
         found++;
-        if (startFromGroundTruth && !groundTruth.back()->empty()) {
-            const auto& p = groundTruth.back()->poses.front();
-            startPoses[k] = {p.x, p.y, p.yaw};
-        }
     }
     if (found == 0 && !args.groundTruth.empty()) {
         std::string looked;
@@ -420,8 +417,22 @@ void MultiRobotVSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
     if (robots.size() == 1) actions = singleRobotAction(*actions, frame);
     prepareFrame(frame);
     const double t = stepTime(actions->begin()->get()->timestamp);
-    if (steps == 0)
+    if (steps == 0) {
+        for (size_t k = 0; k < robots.size(); k++)
+            if (startFromGroundTruth && groundTruth[k] && !groundTruth[k]->empty()) {
+                const auto move =
+                    std::dynamic_pointer_cast<mrpt::obs::CActionRobotMovement2D>(actions->get(k));
+                // (no movement: the filter's step says so)
+                const auto u =
+                    move ? move->poseChange->getMeanVal().asTPose() : mrpt::math::TPose2D();
+                startPoses[k] = core::groundTruthPoseAtStart(
+                    *groundTruth[k], t, u,
+                    core::groundTruthFileOf(groundTruthPrefix, robots[k], robots.size() == 1),
+                    "[MultiRobotVSLAM] start_poses_from_ground_truth");
+                odometry[k] = mrpt::poses::CPose2D(startPoses[k]);
+            }
         for (auto& run : runs) run.filter->reset(startPoses, t);
+    }
     filterStep(*actions, frame, timer);
 
     for (size_t k = 0; k < robots.size(); k++) {

@@ -138,7 +138,6 @@ void OmniFastSLAMApp::Impl::loadConfig()
 void OmniFastSLAMApp::Impl::prepare()
 {
     start.resolve(args, rawlog, robot);
-    odometry = mrpt::poses::CPose2D(start.pose);
     filter = makeFilter<COmniFastSLAM>(mapTemplate);
     filter->options = filterOptions;
     filter->kld = kld;
@@ -213,7 +212,12 @@ void OmniFastSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
     prepareFrame(frame);
     const double t =
         stepTime(frame.size() ? (*frame.begin())->timestamp : actions->begin()->get()->timestamp);
-    if (steps == 0) filter->reset(start.pose, t);
+    if (steps == 0) {
+        const auto move = actions->getBestMovementEstimation();  // none: the filter says so
+        odometry = mrpt::poses::CPose2D(start.atFirstStep(
+            t, move ? move->poseChange->getMeanVal().asTPose() : mrpt::math::TPose2D()));
+        filter->reset(start.pose, t);
+    }
     filterStep(*actions, frame, timer);
 
     odometry = odometry + actions->getBestMovementEstimation()->poseChange->getMeanVal();

@@ -113,11 +113,7 @@ void ViewSLAMApp::Impl::loadConfig()
     }
 }
 
-void ViewSLAMApp::Impl::prepare()
-{
-    start.resolve(args, rawlog);
-    odometry = mrpt::poses::CPose2D(start.pose);
-}
+void ViewSLAMApp::Impl::prepare() { start.resolve(args, rawlog); }
 
 void ViewSLAMApp::Impl::draw(mrpt::opengl::COpenGLScene& scene,
                              const core::TumTrajectory& path) const
@@ -163,7 +159,10 @@ void ViewSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
     mrpt::poses::CPose2D u;
     move->poseChange->getCovarianceAndMean(Q, u);
     const double t = stepTime(image ? image->timestamp : actions->begin()->get()->timestamp);
-    if (steps == 0) slam->reset(start.pose);
+    if (steps == 0) {
+        odometry = mrpt::poses::CPose2D(start.atFirstStep(t, u.asTPose()));
+        slam->reset(start.pose);
+    }
     if (image) framesWithImages++;
     const bool externalImage = image && image->image.isExternallyStored();
     COmniViewSLAM::TStepResult r;

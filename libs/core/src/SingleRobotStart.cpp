@@ -1,8 +1,11 @@
 #include <mrpt/core/bits_math.h>
+#include <mrpt/core/format.h>
+#include <mrpt/poses/CPose2D.h>
 #include <mrpt/system/filesystem.h>
 #include <mrpt_vslam/core/EvalInputs.h>
 #include <mrpt_vslam/core/SingleRobotStart.h>
 
+#include <cmath>
 #include <stdexcept>
 
 namespace mrpt_vslam::core {
@@ -10,6 +13,7 @@ namespace mrpt_vslam::core {
 void SingleRobotStart::loadFromConfig(const mrpt::config::CConfigFileBase& cfg,
                                       const std::string& section)
 {
+    m_section = section;
     m_from_ground_truth =
         cfg.read_bool(section, "initial_pose_from_ground_truth", m_from_ground_truth);
     pose.x = cfg.read_double(section, "initial_x", 0);
@@ -21,15 +25,42 @@ void SingleRobotStart::resolve(const AppArguments& args, const std::string& rawl
                                const std::string& robot)
 {
     groundTruthPrefix = args.groundTruthPrefix(rawlog);
-    const std::string tum = groundTruthFileOf(groundTruthPrefix, robot, false);
-    if (mrpt::system::fileExists(tum))
-        groundTruth = TumTrajectory::load(tum);
+    m_file = groundTruthFileOf(groundTruthPrefix, robot, false);
+    if (mrpt::system::fileExists(m_file))
+        groundTruth = TumTrajectory::load(m_file);
     else if (!args.groundTruth.empty())
-        throw std::runtime_error("--ground-truth " + args.groundTruth + ": no such file: " + tum);
-    if (m_from_ground_truth && groundTruth && !groundTruth->empty()) {
-        const auto& p = groundTruth->poses.front();
-        pose = {p.x, p.y, p.yaw};
-    }
+        throw std::runtime_error("--ground-truth " + args.groundTruth +
+                                 ": no such file: " + m_file);
+}
+
+const mrpt::math::TPose2D& SingleRobotStart::atFirstStep(double t, const mrpt::math::TPose2D& u)
+{
+    if (m_from_ground_truth && groundTruth && !groundTruth->empty())
+        pose = groundTruthPoseAtStart(*groundTruth, t, u, m_file,
+                                      "[" + m_section + "] initial_pose_from_ground_truth");
+    return pose;
+}
+
+mrpt::math::TPose2D groundTruthPoseAtStart(const TumTrajectory& truth, double t,
+                                           const mrpt::math::TPose2D& u, const std::string& file,
+                                           const std::string& key, double tolerance)
+{
+    const auto planar = [](const mrpt::math::TPose3D& p) {
+        return mrpt::math::TPose2D(p.x, p.y, p.yaw);
+    };
+    if (std::abs(truth.timestamps.front() - t) <= tolerance) return planar(truth.poses.front());
+    const int i = truth.nearestIndex(t, tolerance);
+    if (i < 0)
+        throw std::runtime_error(mrpt::format(
+            "%s: no true pose within %g s of the rawlog's first step at %.6f s (the ground truth "
+            "runs from %.6f to %.6f s), so the run cannot start from it: give the rawlog its own "
+            "ground truth, or set %s = false",
+            file.c_str(), tolerance, t, truth.timestamps.front(), truth.timestamps.back(),
+            key.c_str()));
+    // start ⊕ u = the true pose at the first step
+    return (mrpt::poses::CPose2D(planar(truth.poses[static_cast<size_t>(i)])) +
+            -mrpt::poses::CPose2D(u))
+        .asTPose();
 }
 
 }  // namespace mrpt_vslam::core

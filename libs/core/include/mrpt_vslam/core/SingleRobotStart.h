@@ -10,14 +10,26 @@
 
 namespace mrpt_vslam::core {
 
+/** The start pose of a run from its ground truth `truth`, the pose before the first step (at
+ *  time `t` [s], odometry increment `u`): where the ground truth begins within `tolerance` [s]
+ *  of `t`, its first pose; where it begins earlier (a rawlog cut from a longer one beside the
+ *  longer one's ground truth), its pose nearest to `t` (within `tolerance`, the evaluation's
+ *  pairing) less `u`, so that the first step's pose is the true one.
+ *  \throw std::runtime_error naming `file`, its time span and `key` (the config key that takes
+ *  the start pose from the ground truth) when no pose is that near. */
+mrpt::math::TPose2D groundTruthPoseAtStart(const TumTrajectory& truth, double t,
+                                           const mrpt::math::TPose2D& u, const std::string& file,
+                                           const std::string& key, double tolerance = 0.05);
+
 /** The ground truth and the start pose of a single-robot run (doc/data-formats.md): the ground
  *  truth `NAME.groundtruth.tum` beside the rawlog (or named by `--ground-truth`), and the start
  *  pose from the config keys of one section: `initial_pose_from_ground_truth` (default true: the
- *  first true pose when there is ground truth), else `initial_x`, `initial_y` [m],
+ *  true pose at the first step when there is ground truth), else `initial_x`, `initial_y` [m],
  *  `initial_yaw_deg`.
  *
  *  Usage: `start.loadFromConfig(cfg, "MyApp");` before `cfg.throwIfUnreadKeys()`, then
- *  `start.resolve(args, rawlog);` once the rawlog is known. */
+ *  `start.resolve(args, rawlog);` once the rawlog is known and `start.atFirstStep(t)` at the
+ *  first step's time. */
 class SingleRobotStart {
   public:
     /// Reads the keys of `section`.
@@ -29,12 +41,17 @@ class SingleRobotStart {
     void resolve(const AppArguments& args, const std::string& rawlog,
                  const std::string& robot = "");
 
+    /** Sets pose from the ground truth, when it comes from there, for a first step at time
+     *  `t` [s] with odometry increment `u` (groundTruthPoseAtStart()). \return pose */
+    const mrpt::math::TPose2D& atFirstStep(double t, const mrpt::math::TPose2D& u);
+
     std::string groundTruthPrefix;             ///< `NAME` of the ground-truth files
     std::optional<TumTrajectory> groundTruth;  ///< when the ground-truth file exists
-    mrpt::math::TPose2D pose;                  ///< the start pose
+    mrpt::math::TPose2D pose;  ///< the start pose (from the config until atFirstStep())
 
   private:
     bool m_from_ground_truth = true;
+    std::string m_section, m_file;  ///< for messages
 };
 
 }  // namespace mrpt_vslam::core
