@@ -176,6 +176,9 @@ void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
         if (hasBearings) framesWithBearingsUsed++;
         return;
     }
+    // images are the input: the frame's bearings are not used, with an image or without
+    ObservationSelector::of<mrpt::obs::CObservationBearingRange>(filterOptions.bearings_label)
+        .eraseFrom(sf);
     if (!image) return;
     imagesSearched++;
     if (!detector) detector = std::make_unique<CeilingLightDetector>(camera, detectorOptions);
@@ -188,9 +191,6 @@ void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
                                  ObservationSelector::nameOf(*image) +
                                  (file.empty() ? "" : " " + file) + ": " + core::oneLineMessage(e));
     }
-    // the image's bearings replace any the frame had
-    ObservationSelector::of<mrpt::obs::CObservationBearingRange>(filterOptions.bearings_label)
-        .eraseFrom(sf);
     sf.insert(bearings);
     image->unload();
 }
@@ -228,10 +228,14 @@ void OmniFastSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
 void OmniFastSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
 {
     using core::ObservationSelector;
-    const std::string inputs =
+    const std::string bearings =
         ObservationSelector::of<mrpt::obs::CObservationBearingRange>(filterOptions.bearings_label)
-            .describe() +
-        " or " + ObservationSelector::of<mrpt::obs::CObservationImage>(imageLabel).describe();
+            .describe();
+    const std::string images =
+        ObservationSelector::of<mrpt::obs::CObservationImage>(imageLabel).describe();
+    const std::string inputs = input == TInput::Bearings ? bearings
+                               : input == TInput::Images ? images
+                                                         : bearings + " or " + images;
     if (steps == 0) throw noFramesError(inputs, contents);
     if (measurements == 0 && framesWithBearingsUsed + imagesSearched == 0)
         throw std::runtime_error(rawlog + ": no ceiling-light measurements (" + inputs +
@@ -239,15 +243,11 @@ void OmniFastSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
     if (measurements == 0) {  // there were bearings or images, but no light in them
         std::string why;
         if (framesWithBearingsUsed > 0)
-            why = "the " + std::to_string(framesWithBearingsUsed) + " frames' " +
-                  ObservationSelector::of<mrpt::obs::CObservationBearingRange>(
-                      filterOptions.bearings_label)
-                      .describe() +
+            why = "the " + std::to_string(framesWithBearingsUsed) + " frames' " + bearings +
                   " hold no bearing";
         if (imagesSearched > 0)
             why += (why.empty() ? "" : "; ") + std::string("no light was detected in the ") +
-                   std::to_string(imagesSearched) + " images (" +
-                   ObservationSelector::of<mrpt::obs::CObservationImage>(imageLabel).describe() +
+                   std::to_string(imagesSearched) + " images (" + images +
                    "): check [LightDetector] intensity_threshold, min_blob_area, max_blob_area "
                    "and [Camera] (doc/omni-fastslam.md)";
         throw std::runtime_error(rawlog + ": no ceiling-light measurement in any frame: " + why);
@@ -298,6 +298,9 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
 
     report.setCount("frames", steps);
     report.setCount("frames_with_images", framesWithImages);
+    // the input the measurements came from, frame by frame (`input`)
+    report.setCount("frames_with_bearings_used", framesWithBearingsUsed);
+    report.setCount("images_searched", imagesSearched);
     report.setCount("measurements", measurements);
     report.setCount("particles", filter->particlesCount());
     report.setCount("landmarks", (smoothed ? smoothed->map : best.map).landmarks().size());

@@ -146,6 +146,37 @@ TEST(OmniFastSLAMApp, FailsOnARawlogWithoutLightMeasurements)
     EXPECT_FALSE(mrpt::system::fileExists(out + "/metrics.json"));
 }
 
+// `input` chooses where the lights come from: with `images`, a rawlog with bearings but none of
+// the configured images is refused (it used to run on the bearings), and each choice names
+// only its own input.
+TEST(OmniFastSLAMApp, TheChosenInputIsTheOnlyOne)
+{
+    const test::ScratchFolder scratch("OmniFastSLAMApp_input");
+    const auto errorOf = [&](const std::vector<std::string>& extra) {
+        std::vector<std::string> a{kConfig, kRawlog, "--out", scratch.file("out"), "--quiet"};
+        a.insert(a.end(), extra.begin(), extra.end());
+        apps::OmniFastSLAMApp app(args(a));
+        app.initialize();
+        try {
+            app.run();
+        } catch (const std::runtime_error& e) {
+            return std::string(e.what());
+        }
+        return std::string("ran");
+    };
+    const std::string has =
+        "; the rawlog has: 320 x CActionRobotMovement2D, 320 x CObservationBearingRange "
+        "(OMNICAM_BEARINGS), 320 x CObservationImage (OMNICAM), 320 x CObservationRobotPose "
+        "(GROUND_TRUTH)";
+    EXPECT_EQ(
+        errorOf({"--set", "OmniFastSLAM.input=images", "--set", "OmniFastSLAM.image_label=NONE"}),
+        kRawlog + ": no ceiling-light measurements (CObservationImage labelled 'NONE')" + has);
+    EXPECT_EQ(errorOf({"--set", "OmniFastSLAM.input=bearings", "--set",
+                       "OmniFastSLAM.bearings_label=NONE"}),
+              kRawlog + ": no ceiling-light measurements (CObservationBearingRange labelled " +
+                  "'NONE')" + has);
+}
+
 // Images of the camera in which the detector finds no light (blobs of at least 3999 px; the
 // hall's lights are smaller), and bearing observations that hold no bearing, say so (and which
 // keys set the detector) rather than that the rawlog has no such observations.
