@@ -400,6 +400,10 @@ LightsPathSmoother::TResult LightsPathSmoother::smooth(const TOmniFastSLAMPartic
     }
     result.final_cost = problem.cost();
     result.outliers = problem.outliers();
+    const double h = options.huber;
+    if (h > 0)
+        result.outlier_probability =
+            model.isPlanar() ? std::erfc(h / std::sqrt(2.0)) : std::exp(-h * h / 2);
 
     for (size_t k = 0; k < steps.size(); k++)
         result.path.emplace_back(steps[k]->timestamp, problem.poses[k]);

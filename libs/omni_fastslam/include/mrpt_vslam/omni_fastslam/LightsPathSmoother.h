@@ -51,7 +51,10 @@ class LightsPathSmoother : public COmniFastSLAM::TStepObserver {
         size_t iterations = 0;
         size_t bearings = 0;  ///< bearing terms
         size_t outliers = 0;  ///< bearings beyond the Huber threshold at the end
-        size_t merged = 0;    ///< lights merged into another
+        /// The probability of a bearing beyond the Huber threshold with the noise and camera
+        /// right: the χ² tail of its dimension (1 planar, 2 spatial); 0 without Huber.
+        double outlier_probability = 0;
+        size_t merged = 0;                        ///< lights merged into another
         double initial_cost = 0, final_cost = 0;  ///< Σ of the squared whitened residuals
     };
     /** Smooths particle `p`'s path and the lights of its map it associated measurements with.
