@@ -81,7 +81,9 @@ AppArguments AppArguments::parse(int argc, const char* const* argv, const std::s
                        "stream to this ZeroMQ address, e.g. tcp://*:5555, instead of a rawlog "
                        "(doc/team-online.md).",
                        false, "", "ENDPOINT", cmd);
-    TCLAP::SwitchArg quiet("q", "quiet", "No progress line or log output.", cmd, false);
+    TCLAP::SwitchArg quiet(
+        "q", "quiet", "No progress line or log output (errors and warnings still go to stderr).",
+        cmd, false);
     TCLAP::SwitchArg gui("", "gui",
                          "Live 3D view of the estimate while it runs; at the end the window stays "
                          "open until closed (unless --quiet).",

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -131,6 +132,8 @@ CheckedConfigFile::TKeyId CheckedConfigFile::keyId(const std::string& section,
 void CheckedConfigFile::loadFile(const std::string& file,
                                  const std::vector<TConfigOverride>& overrides)
 {
+    if (std::filesystem::is_directory(file))
+        throw UsageError(file + ": a folder, not a configuration file");
     std::ifstream in(file);
     if (!in) throw UsageError(file + ": cannot open configuration file");
     std::ostringstream text;
@@ -168,8 +171,21 @@ std::string CheckedConfigFile::readString(const std::string& section, const std:
         std::lock_guard<std::mutex> lock(m_read_mutex);
         m_read.emplace(keyId(section, name), TReadKey{section, name, kind});
     }
-    const std::string value =
-        CConfigFileMemory::readString(section, name, defaultStr, failIfNotFound);
+    std::string value;
+    try {
+        value = CConfigFileMemory::readString(section, name, defaultStr, failIfNotFound);
+    } catch (const std::exception&) {  // a key the program needs is not there
+        std::vector<std::string> sections;
+        getAllSections(sections);
+        std::string present;
+        for (const auto& s : sections) present += (present.empty() ? "[" : ", [") + s + "]";
+        m_valueError =
+            m_name + ": [" + section + "] " + name + " is missing (required)" +
+            (sectionExists(section) ? ""
+                                    : "; there is no section [" + section + "], the file has " +
+                                          (present.empty() ? "none" : present));
+        throw UsageError(m_valueError);
+    }
     // the program's own default is not the user's to fix (it may be e.g. "inf")
     const std::string why = value == defaultStr ? "" : typeError(kind, mrpt::system::trim(value));
     if (!why.empty()) {

@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <new>
+#include <regex>
 #include <stdexcept>
 
 // A sanitizer's report ends the process through its death callback (a fuzzer's, say)
@@ -277,10 +278,15 @@ CSerializable::Ptr RawlogReader::readFromFile()
         const std::string reason = innermostMessage(e.what());
         const auto registered = reason.find("' which is not registered");
         const auto name_start = reason.find('\'');
-        if (registered != std::string::npos && name_start < registered)
-            fail("entry " + std::to_string(n + 1) + " has class '" +
-                 reason.substr(name_start + 1, registered - name_start - 1) +
+        if (registered != std::string::npos && name_start < registered) {
+            const std::string name = reason.substr(name_start + 1, registered - name_start - 1);
+            // a C++ class name, or bytes of a damaged file read as one
+            static const std::regex identifier(
+                R"([A-Za-z_][A-Za-z0-9_]*(::[A-Za-z_][A-Za-z0-9_]*)*)");
+            if (!std::regex_match(name, identifier)) fail(after + "an unreadable class name");
+            fail("entry " + std::to_string(n + 1) + " has class '" + name +
                  "', which is not registered (load the library that defines it)");
+        }
         const bool nothing_read = dynamic_cast<const mrpt::serialization::CExceptionEOF*>(&e) &&
                                   m_impl->in.getPosition() == start && m_impl->in.checkEOF();
         // a corrupt length beyond validate()'s memory bound

@@ -145,6 +145,49 @@ TEST(CheckedConfigFile, MissingFileIsNamed)
     }
 }
 
+TEST(CheckedConfigFile, AFolderIsNotAConfigFile)
+{
+    CheckedConfigFile cfg;
+    try {
+        cfg.loadFile("/tmp");
+        FAIL() << "no exception";
+    } catch (const UsageError& e) {
+        EXPECT_EQ(std::string(e.what()), "/tmp: a folder, not a configuration file");
+    }
+}
+
+// A key the program requires (MRPT_LOAD_CONFIG_VAR_NO_DEFAULT, which replaces the reader's error
+// with its own) is named as missing, with the sections the file has when its section is absent
+// (a misspelt section name)
+TEST(CheckedConfigFile, ARequiredKeyOrSectionThatIsMissingIsNamed)
+{
+    struct TRequired : public mrpt::config::CLoadableOptions {
+        int sampleSize = 0;
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                const std::string& s) override
+        {
+            MRPT_LOAD_CONFIG_VAR_NO_DEFAULT(sampleSize, int, c, s);
+        }
+    };
+    const auto errorOf = [](const std::string& text, const std::string& section) {
+        CheckedConfigFile cfg;
+        cfg.loadText(text, "t.ini");
+        TRequired options;
+        try {
+            options.loadFromConfigFile(cfg, section);
+        } catch (const std::exception&) {
+            return cfg.valueError();
+        }
+        return std::string("read");
+    };
+    EXPECT_EQ(errorOf("[Filter]\nsampelSize = 3\n", "Filter"),
+              "t.ini: [Filter] sampleSize is missing (required)");
+    EXPECT_EQ(errorOf("[Filters]\nsampleSize = 3\n[Camera]\nfx = 1\n", "Filter"),
+              "t.ini: [Filter] sampleSize is missing (required); there is no section [Filter], "
+              "the file has [Camera], [Filters]");
+    EXPECT_EQ(errorOf("[Filter]\nsampleSize = 3\n", "Filter"), "read");
+}
+
 TEST(CheckedConfigFile, EffectiveConfigRoundTripsWithOverrides)
 {
     const std::string file =

@@ -259,23 +259,29 @@ TEST(RawlogReader, MissingFileIsAnError)
     EXPECT_EQ(readAllError(scratchDir().string()), scratchDir().string() + ": cannot open rawlog");
 }
 
+// A class name is named as a plugin's to load; bytes that cannot be a class name (a damaged
+// file) are a damaged file
 TEST(RawlogReader, UnregisteredClassIsNamed)
 {
-    const std::string file = (scratchDir() / "unknown_class.rawlog").string();
-    {
+    const auto withClass = [](const std::string& name) {
+        const std::string file = (scratchDir() / "unknown_class.rawlog").string();
         mrpt::io::CFileGZOutputStream f(file);
         auto ar = mrpt::serialization::archiveFrom(f);
         ar << *odometry(1.0);
         // What a plugin class would look like: header with its name, version, end flag.
-        const std::string name = "myplugin::CObservationThing";
         ar << static_cast<uint8_t>(0x80 | name.size());
         ar.WriteBuffer(name.data(), name.size());
         ar << static_cast<uint8_t>(0) << static_cast<uint8_t>(0x88);
-    }
+        return file;
+    };
+    std::string file = withClass("myplugin::CObservationThing");
     EXPECT_EQ(readAllError(file),
               file +
                   ": entry 2 has class 'myplugin::CObservationThing', which is not registered "
                   "(load the library that defines it)");
+    file = withClass("\x8f?8\x01y\xe2");
+    EXPECT_EQ(readAllError(file),
+              file + ": corrupt or truncated rawlog after entry 1: an unreadable class name");
 }
 
 TEST(RawlogReader, ExternalImagesFolderIsDetected)
