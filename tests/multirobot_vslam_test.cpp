@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -478,6 +479,19 @@ TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
     EXPECT_NE(noLabel.out.find(mrpt::format(expected.c_str(), " labelled 'LIDAR'")),
               std::string::npos)
         << noLabel.out;
+
+    // the template without its robots key: the class's two robots are no guess for a rawlog
+    std::ifstream templateIn(kConfigs + "range-bearing.ini");
+    std::string withoutRobots, line;
+    while (std::getline(templateIn, line))
+        if (line.rfind("robots", 0) != 0) withoutRobots += line + "\n";
+    const TCommandResult noRobots = run(s_scratch->write("no-robots.ini", withoutRobots) + " " +
+                                        images + " -q --out " + out("e-robots"));
+    EXPECT_EQ(noRobots.exit_code, 2);
+    EXPECT_NE(noRobots.out.find("no-robots.ini: [MultiRobotVSLAM] robots is missing: the robots' "
+                                "names, one for a single-robot rawlog (robots = R1)"),
+              std::string::npos)
+        << noRobots.out;
 
     // a stereo rawlog copied without its images folder
     fs::create_directories(s_scratch->path() / "alone");

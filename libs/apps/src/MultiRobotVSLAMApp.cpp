@@ -209,6 +209,10 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
     } catch (const std::exception& e) {
         throw configError(e);
     }
+    // the class's two robots are no guess for a user's rawlog
+    if (!cfg.keyExists(kAppSection, "robots"))
+        throw usageError("[MultiRobotVSLAM] robots is missing: the robots' names, one for a "
+                         "single-robot rawlog (robots = R1)");
     for (const auto& robot : filterOptions.robots) {
         const std::string key = "start_pose_" + robot;
         std::vector<double> v;

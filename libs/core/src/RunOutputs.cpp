@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <stdexcept>
+#include <vector>
 
 namespace mrpt_vslam::core {
 
@@ -14,12 +15,18 @@ template <class T>
 void saveGz(const T& obj, const std::string& file)
 {
     const std::string tmp = file + ".tmp";
-    {
-        mrpt::io::CFileGZOutputStream out;
-        if (!out.open(tmp)) throw std::runtime_error(file + ": cannot create file for writing");
-        mrpt::serialization::archiveFrom(out) << obj;
+    try {
+        {
+            mrpt::io::CFileGZOutputStream out;
+            if (!out.open(tmp)) throw std::runtime_error(file + ": cannot create file for writing");
+            mrpt::serialization::archiveFrom(out) << obj;
+        }
+        AtomicFile::commitRename(tmp, file);
+    } catch (...) {  // no part-written file left behind
+        std::error_code ec;
+        std::filesystem::remove(tmp, ec);
+        throw;
     }
-    AtomicFile::commitRename(tmp, file);
 }
 }  // namespace
 
@@ -33,13 +40,24 @@ void saveMapFiles(const mrpt::maps::CMetricMap& map, const std::string& out_dir,
 {
     namespace fs = std::filesystem;
     const std::string tmp = prefix + ".tmp";
-    map.saveMetricMapRepresentationToFile((fs::path(out_dir) / tmp).string());
-    for (const auto& entry : fs::directory_iterator(out_dir)) {
-        const std::string name = entry.path().filename().string();
-        if (name.rfind(tmp, 0) == 0)
+    std::vector<fs::path> written;  // PREFIX.tmp*, each renamed to PREFIX*
+    try {
+        map.saveMetricMapRepresentationToFile((fs::path(out_dir) / tmp).string());
+        for (const auto& entry : fs::directory_iterator(out_dir))
+            if (entry.path().filename().string().rfind(tmp, 0) == 0)
+                written.push_back(entry.path());
+        for (const auto& file : written)
             AtomicFile::commitRename(
-                entry.path().string(),
-                (fs::path(out_dir) / (prefix + name.substr(tmp.size()))).string());
+                file.string(),
+                (fs::path(out_dir) / (prefix + file.filename().string().substr(tmp.size())))
+                    .string());
+    } catch (...) {  // no part-written file left behind
+        std::error_code ec;
+        std::vector<fs::path> left;
+        for (const auto& entry : fs::directory_iterator(out_dir, ec))
+            if (entry.path().filename().string().rfind(tmp, 0) == 0) left.push_back(entry.path());
+        for (const auto& file : left) fs::remove(file, ec);
+        throw;
     }
 }
 
