@@ -211,8 +211,9 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
     }
     // the class's two robots are no guess for a user's rawlog
     if (!cfg.keyExists(kAppSection, "robots"))
-        throw usageError("[MultiRobotVSLAM] robots is missing: the robots' names, one for a "
-                         "single-robot rawlog (robots = R1)");
+        throw usageError(
+            "[MultiRobotVSLAM] robots is missing: the robots' names, one for a "
+            "single-robot rawlog (robots = R1)");
     for (const auto& robot : filterOptions.robots) {
         const std::string key = "start_pose_" + robot;
         std::vector<double> v;
