@@ -35,6 +35,19 @@ class ViewSLAMApp : public ::testing::Test {
     static std::string out(const std::string& name) { return s_scratch->file(name); }
     static nlohmann::json json(const std::string& file) { return mrpt_vslam::test::readJson(file); }
     static std::string bytes(const std::string& file) { return mrpt_vslam::test::readBytes(file); }
+    /// The first 120 frames of `vslam-sim omni-views --seed 1` with `--set set`, as the rawlog
+    /// prefix `name` in the scratch folder; "" (and a failure) if the simulator failed.
+    static std::string simulate120Frames(const std::string& name, const std::string& set)
+    {
+        const std::string data = out(name);
+        const TCommandResult sim = mrpt_vslam::test::runCommand(
+            std::string(MRPT_VSLAM_BIN_DIR
+                        "/vslam-sim omni-views --seed 1 --frames 120 -q --set ") +
+                set + " --out " + data,
+            s_scratch->path() / "sim.log");
+        EXPECT_EQ(sim.exit_code, 0) << sim.out;
+        return sim.exit_code == 0 ? data : "";
+    }
     static mrpt_vslam::test::ScratchFolder* s_scratch;
 };
 mrpt_vslam::test::ScratchFolder* ViewSLAMApp::s_scratch = nullptr;
@@ -132,14 +145,8 @@ TEST_F(ViewSLAMApp, SaysWhenTheImagesBarelyCorrectTheOdometry)
 // overridden to 0 (the camera taken at the centre) each turn moves the camera unmodelled.
 TEST_F(ViewSLAMApp, ACameraOffTheRobotsCentreIsModelled)
 {
-    const std::string data = out("offset/off");
-    const TCommandResult sim = mrpt_vslam::test::runCommand(
-        std::string(MRPT_VSLAM_BIN_DIR "/vslam-sim omni-views "
-                                       "--seed 1 --frames 120 -q --set "
-                                       "CameraOnRobot.x=0.4 --out ") +
-            data,
-        s_scratch->path() / "sim.log");
-    ASSERT_EQ(sim.exit_code, 0) << sim.out;
+    const std::string data = simulate120Frames("offset/off", "CameraOnRobot.x=0.4");
+    ASSERT_FALSE(data.empty());
     const auto ateOf = [&](const std::string& name, const std::string& extra) {
         const TCommandResult r =
             run(kConfig + " " + data + ".rawlog --seed 1 -q --out " + out(name) + extra);
@@ -166,14 +173,8 @@ TEST_F(ViewSLAMApp, ACameraOffTheRobotsCentreIsModelled)
 // threshold) and the run says so. Measured (seed 1): ATE 0.10 m against 0.17 m, odometry 0.31 m.
 TEST_F(ViewSLAMApp, SaysWhenTheGateRefusesMostObservations)
 {
-    const std::string data = out("turned/turned");
-    const TCommandResult sim = mrpt_vslam::test::runCommand(
-        std::string(MRPT_VSLAM_BIN_DIR "/vslam-sim omni-views "
-                                       "--seed 1 --frames 120 -q --set "
-                                       "CameraOnRobot.yaw_deg=45 --out ") +
-            data,
-        s_scratch->path() / "sim.log");
-    ASSERT_EQ(sim.exit_code, 0) << sim.out;
+    const std::string data = simulate120Frames("turned/turned", "CameraOnRobot.yaw_deg=45");
+    ASSERT_FALSE(data.empty());
     const auto runJsonOf = [&](const std::string& name, const std::string& extra) {
         const TCommandResult r =
             run(kConfig + " " + data + ".rawlog --seed 1 -q --out " + out(name) + extra);

@@ -40,6 +40,23 @@ core::AppArguments args(const std::vector<std::string>& extra)
     return core::AppArguments::parse(static_cast<int>(argv.size()), argv.data(), "omni-fastslam",
                                      "");
 }
+
+/// The error of a run with the shipped config on `rawlog` and the `extra` arguments, into
+/// `out`; "ran" if it ran through.
+std::string runError(const std::string& rawlog, const std::string& out,
+                     const std::vector<std::string>& extra)
+{
+    std::vector<std::string> a{kConfig, rawlog, "--out", out, "--quiet"};
+    a.insert(a.end(), extra.begin(), extra.end());
+    apps::OmniFastSLAMApp app(args(a));
+    app.initialize();
+    try {
+        app.run();
+    } catch (const std::runtime_error& e) {
+        return e.what();
+    }
+    return "ran";
+}
 }  // namespace
 
 TEST(OmniFastSLAMApp, WritesTheRunFolder)
@@ -153,16 +170,7 @@ TEST(OmniFastSLAMApp, TheChosenInputIsTheOnlyOne)
 {
     const test::ScratchFolder scratch("OmniFastSLAMApp_input");
     const auto errorOf = [&](const std::vector<std::string>& extra) {
-        std::vector<std::string> a{kConfig, kRawlog, "--out", scratch.file("out"), "--quiet"};
-        a.insert(a.end(), extra.begin(), extra.end());
-        apps::OmniFastSLAMApp app(args(a));
-        app.initialize();
-        try {
-            app.run();
-        } catch (const std::runtime_error& e) {
-            return std::string(e.what());
-        }
-        return std::string("ran");
+        return runError(kRawlog, scratch.file("out"), extra);
     };
     const std::string has =
         "; the rawlog has: 320 x CActionRobotMovement2D, 320 x CObservationBearingRange "
@@ -184,16 +192,7 @@ TEST(OmniFastSLAMApp, SaysWhenTheFramesHoldNoLight)
 {
     const test::ScratchFolder scratch("OmniFastSLAMApp_nolight");
     const auto errorOf = [&](const std::string& rawlog, const std::vector<std::string>& extra) {
-        std::vector<std::string> a{kConfig, rawlog, "--out", scratch.file("out"), "--quiet"};
-        a.insert(a.end(), extra.begin(), extra.end());
-        apps::OmniFastSLAMApp app(args(a));
-        app.initialize();
-        try {
-            app.run();
-        } catch (const std::runtime_error& e) {
-            return std::string(e.what());
-        }
-        return std::string("ran without a light");
+        return runError(rawlog, scratch.file("out"), extra);
     };
     EXPECT_EQ(errorOf(kRawlog, {"--set", "OmniFastSLAM.input=images", "--set",
                                 "LightDetector.min_blob_area=3999"}),

@@ -28,7 +28,7 @@ mrpt::math::TPose2D groundTruthPoseAtStart(const TumTrajectory& truth, double t,
  *  `initial_yaw_deg`.
  *
  *  Usage: `start.loadFromConfig(cfg, "MyApp");` before `cfg.throwIfUnreadKeys()`, then
- *  `start.resolve(args, rawlog);` once the rawlog is known and `start.atFirstStep(t)` at the
+ *  `start.resolve(args, rawlog);` once the rawlog is known and `start.atFirstStep(t, u)` at the
  *  first step's time. */
 class SingleRobotStart {
   public:
