@@ -3,18 +3,25 @@
 // user's own single-robot range-bearing rawlog in both MRPT formats, from the template.
 #include <gtest/gtest.h>
 #include <mrpt/core/format.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CObservationStereoImages.h>
+#include <mrpt/obs/CObservationVisualLandmarks.h>
+#include <mrpt/serialization/CArchive.h>
+#include <mrpt_vslam/core/RawlogReader.h>
 #include <mrpt_vslam/test/RunCommand.h>
 #include <mrpt_vslam/test/RunFiles.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
 #include <mrpt_vslam/test/SingleRobotRangeBearingLog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -145,6 +152,20 @@ TEST_F(MultiRobotVSLAMApp, TwoSensorsOfOneRobotMapALandmarkOnce)
     EXPECT_LT(est, 0.05);
     const auto runJson = json(out("rb-two-sensors-run/run.json"));
     EXPECT_EQ(runJson["warnings"], nlohmann::json::array());
+    // each sensor's pose as its observations give it
+    const auto& poses = runJson["results"]["sensor_poses_on_robot"];
+    EXPECT_EQ(poses["source"], "observations");
+    const auto& xyzYpr = poses["x_y_z_m_yaw_pitch_roll_deg"];
+    ASSERT_EQ(xyzYpr.size(), 2u) << poses;
+    for (const auto& [sensor, expected] :
+         {std::pair{std::string("R1 CObservationBearingRange"),
+                    std::vector<double>{0.2, 0, 0.3, 0}},
+          {std::string("R1 CObservationBearingRange 2"), std::vector<double>{-0.3, 0, 0.3, 180}}}) {
+        ASSERT_TRUE(xyzYpr.contains(sensor)) << poses;
+        const auto& p = xyzYpr[sensor];
+        for (size_t i = 0; i < 3; i++) EXPECT_NEAR(p[i].get<double>(), expected[i], 1e-9) << sensor;
+        EXPECT_NEAR(std::remainder(p[3].get<double>() - expected[3], 360.0), 0, 1e-9) << sensor;
+    }
 }
 
 // Observations that state the sensor 0.2 m ahead, looking forward, of a sensor that looks to
@@ -213,6 +234,72 @@ TEST_F(MultiRobotVSLAMApp, StartsFromTheTruePoseAtTheFirstStep)
     EXPECT_NE(r.out.find(gt + ": no true pose within 0.05 s of the rawlog's first step"),
               std::string::npos)
         << r.out;
+}
+
+// One robot of the shipped office team as a user's own rawlog: R1's readings under labels of
+// the user's own (BUMBLEBEE, WHEELS), observation-only, images referred to by absolute path,
+// ground truth beside it; the stereo template runs unchanged on its stereo pairs (the 40-frame
+// sequence) and on its stereo landmarks (stereo-frontend's output, the 200-frame run).
+// Measured (seeds 1-3): 200 frames, RMSE 0.12-0.18 m against odometry 0.53 m; 40 frames, where
+// odometry is still good, 0.06-0.18 m against 0.15 m.
+TEST_F(MultiRobotVSLAMApp, SingleRobotStereoRunsFromItsTemplate)
+{
+    // the frames of stereo pairs or of stereo landmarks it wrote
+    const auto writeR1 = [&](const std::string& source, const std::string& name) {
+        size_t frames = 0;
+        mrpt::io::CFileGZOutputStream file(name + ".rawlog");
+        auto ar = mrpt::serialization::archiveFrom(file);
+        mrpt_vslam::core::RawlogReader reader(kData + source + ".rawlog");
+        for (mrpt_vslam::core::TRawlogEntry e; reader.next(e);) {
+            const auto& o = e.observation;
+            if (!o || o->sensorLabel.rfind("R1_", 0) != 0 || o->sensorLabel == "R1_GROUND_TRUTH")
+                continue;
+            if (const auto stereo =
+                    std::dynamic_pointer_cast<mrpt::obs::CObservationStereoImages>(o)) {
+                for (auto* image : {&stereo->imageLeft, &stereo->imageRight})
+                    image->setExternalStorage(image->getExternalStorageFileAbsolutePath());
+                frames++;
+            }
+            if (std::dynamic_pointer_cast<mrpt::obs::CObservationVisualLandmarks>(o)) frames++;
+            o->sensorLabel = o->sensorLabel == "R1_ODOM" ? "WHEELS" : "BUMBLEBEE";
+            ar << *o;
+        }
+        fs::copy_file(kData + source + ".groundtruth_R1.tum", name + ".groundtruth.tum",
+                      fs::copy_options::overwrite_existing);
+        fs::copy_file(kData + source + ".landmarks.txt", name + ".landmarks.txt",
+                      fs::copy_options::overwrite_existing);
+        return frames;
+    };
+    for (const auto& [source, frames, bound] : {std::tuple{std::string("team2"), 200, 0.25},
+                                                {std::string("team2-stereo-short"), 40, 0.25}}) {
+        const std::string name = out("own-" + source);
+        ASSERT_EQ(writeR1(source, name), static_cast<size_t>(frames));
+        for (const int seed : {1, 2, 3}) {
+            const std::string dir = name + "-run" + std::to_string(seed);
+            const TCommandResult r = run(kConfigs + "stereo.ini " + name + ".rawlog --seed " +
+                                         std::to_string(seed) + " -q --out " + dir);
+            ASSERT_EQ(r.exit_code, 0) << r.out;
+            const auto metrics = json(dir + "/metrics.json");
+            const auto& robot = metrics["robots"]["R1"];
+            const double est = robot["estimate"]["ate_rmse_m"];
+            const double odo = robot["odometry"]["ate_rmse_m"];
+            std::printf("R1 of %s, seed %d: RMSE %.3f m (odometry %.3f m)\n", source.c_str(), seed,
+                        est, odo);
+            EXPECT_LT(est, bound) << source << ", seed " << seed;
+            if (frames == 200) {
+                EXPECT_LT(est, 0.5 * odo) << source << ", seed " << seed;
+            }
+            const auto runJson = json(dir + "/run.json");
+            EXPECT_EQ(runJson["counts"]["steps"].get<int>(), frames);
+            EXPECT_EQ(runJson["warnings"], nlohmann::json::array());
+            // the camera's pose on the robot, as the observations give it
+            const auto& camera = runJson["results"]["sensor_poses_on_robot"]
+                                        ["x_y_z_m_yaw_pitch_roll_deg"]["R1 BUMBLEBEE"];
+            ASSERT_EQ(camera.size(), 6u) << runJson["results"];
+            const double position[] = {0.1, 0.06, 0.5};
+            for (size_t i = 0; i < 3; i++) EXPECT_NEAR(camera[i].get<double>(), position[i], 1e-6);
+        }
+    }
 }
 
 // filter_runs = 4 from --seed 5 runs the filters of seeds 5 to 8 side by side: each gives what

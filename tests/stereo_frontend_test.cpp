@@ -89,10 +89,10 @@ mrpt::img::CImage window(const std::vector<uint8_t>& tex, int tex_width, int x0)
 }
 
 /** Writes `DIR/walls.rawlog` (observation-only): per frame and robot a CObservationOdometry
- *  `<R>_ODOM` and a CObservationStereoImages `<R>_STEREO` of a textured wall; R1's images are
- *  stored externally in `walls_Images/`, R2's inside the rawlog. Plus ground-truth files and an
- *  unrelated file beside it. Returns the rawlog path. */
-std::string writeDataset(const fs::path& dir)
+ *  `<R>_ODOM` and a CObservationStereoImages `<R><stereo_suffix>` of a textured wall; R1's
+ *  images are stored externally in `walls_Images/`, R2's inside the rawlog. Plus ground-truth
+ *  files and an unrelated file beside it. Returns the rawlog path. */
+std::string writeDataset(const fs::path& dir, const std::string& stereo_suffix = "_STEREO")
 {
     fs::create_directories(dir / "walls_Images");
     const int tex_width = kWidth + kDisparity + kShiftPerFrame * kFrames + 8;
@@ -110,7 +110,7 @@ std::string writeDataset(const fs::path& dir)
             ar << odo;
 
             mrpt::obs::CObservationStereoImages st;
-            st.sensorLabel = robot + "_STEREO";
+            st.sensorLabel = robot + stereo_suffix;
             st.timestamp = t;
             // left pixel c shows texture column c + x0; right pixel c shows c + x0 + d
             const int x0 = 4 + kShiftPerFrame * k;
@@ -247,6 +247,23 @@ TEST_F(StereoFrontendApp, TurnsStereoIntoLandmarksAndCopiesEverythingElse)
     EXPECT_FALSE(fs::exists(out("walls.notes.txt")));
 }
 
+// Stereo pairs under labels of the user's own are converted too, each label its own front-end,
+// the landmarks labelled LABEL_LANDMARKS.
+TEST_F(StereoFrontendApp, AnyStereoLabelIsConverted)
+{
+    const std::string rawlog = writeDataset(s_scratch->path() / "own", "_HEAD");
+    const TRun r = run(s_config + " " + rawlog + " --out " + out("own"));
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_NE(r.out.find("10 stereo frames (R1_HEAD, R2_HEAD)"), std::string::npos) << r.out;
+    mrpt_vslam::core::RawlogReader result(out("own.rawlog"));
+    std::map<std::string, size_t> landmarks;  // frames per label
+    for (mrpt_vslam::core::TRawlogEntry e; result.next(e);)
+        if (std::dynamic_pointer_cast<mrpt::obs::CObservationVisualLandmarks>(e.observation))
+            landmarks[e.observation->sensorLabel]++;
+    EXPECT_EQ(landmarks, (std::map<std::string, size_t>{{"R1_HEAD_LANDMARKS", kFrames},
+                                                        {"R2_HEAD_LANDMARKS", kFrames}}));
+}
+
 TEST_F(StereoFrontendApp, RerunsGiveByteIdenticalRawlogs)
 {
     ASSERT_EQ(run(s_config + " " + s_rawlog + " --quiet --out " + out("first/a")).exit_code, 0);
@@ -345,7 +362,7 @@ TEST_F(StereoFrontendApp, BadDataExitsWith1AndLeavesNoOutput)
     const TRun none = run(s_config + " " + odo_only.string() + " --out " + out("r2/x"));
     EXPECT_EQ(none.exit_code, 1) << none.out;
     EXPECT_EQ(lineCount(none.out), 1) << none.out;
-    EXPECT_NE(none.out.find("found no CObservationStereoImages labelled <ROBOT>_STEREO; the "
+    EXPECT_NE(none.out.find("found no CObservationStereoImages; the "
                             "rawlog has: 2 x CObservationOdometry (R1_ODOM)"),
               std::string::npos)
         << none.out;
@@ -370,4 +387,14 @@ TEST_F(StereoFrontendApp, BadDataExitsWith1AndLeavesNoOutput)
     EXPECT_FALSE(fs::exists(out("r3/x.rawlog")));
     EXPECT_FALSE(fs::exists(out("r3/x.rawlog.tmp")));
     EXPECT_FALSE(fs::exists(out("r3/x.groundtruth_R1.tum")));
+
+    // The same failure over an earlier run's complete outputs: none of them is left standing.
+    ASSERT_EQ(run(s_config + " " + s_rawlog + " -q --out " + out("r4/x")).exit_code, 0);
+    ASSERT_TRUE(fs::exists(out("r4/x.rawlog")) && fs::exists(out("r4/x.groundtruth_R1.tum")));
+    const TRun over =
+        run(s_config + " " + (copy / "walls.rawlog").string() + " -q --out " + out("r4/x"));
+    EXPECT_EQ(over.exit_code, 1) << over.out;
+    for (const std::string suffix : {".rawlog", ".groundtruth_R1.tum", ".groundtruth_R2.tum",
+                                     ".odometry_R1.tum", ".landmarks.txt"})
+        EXPECT_FALSE(fs::exists(out("r4/x" + suffix))) << suffix;
 }

@@ -103,7 +103,7 @@ mrpt::obs::CObservation::Ptr StereoFrontEndApp::convert(const mrpt::obs::CObserv
                                                         size_t entry_index)
 {
     const auto stereo = std::dynamic_pointer_cast<mrpt::obs::CObservationStereoImages>(obs);
-    if (!stereo || !core::endsWith(stereo->sensorLabel, "_STEREO")) {
+    if (!stereo) {
         m_summary.other_entries++;
         return obs;
     }
@@ -129,13 +129,16 @@ mrpt::obs::CObservation::Ptr StereoFrontEndApp::convert(const mrpt::obs::CObserv
     return landmarks;
 }
 
-void StereoFrontEndApp::copyGroundTruth()
+namespace {
+/** The suffixes of the ground-truth files beside `PREFIX.rawlog` (`PREFIX.groundtruth*.tum`,
+ *  `PREFIX.odometry*.tum`, `PREFIX.landmarks.txt`), sorted. */
+std::vector<std::string> groundTruthSuffixes(const fs::path& prefix)
 {
-    const fs::path prefix(inputPrefix(m_args.input));
     const std::string stem = prefix.filename().string();
     const fs::path dir = prefix.parent_path().empty() ? fs::path(".") : prefix.parent_path();
     std::vector<std::string> suffixes;
-    for (const auto& entry : fs::directory_iterator(dir)) {
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
         const std::string name = entry.path().filename().string();
         if (!entry.is_regular_file() || name.rfind(stem + ".", 0) != 0) continue;
         const std::string suffix = name.substr(stem.size());
@@ -144,7 +147,22 @@ void StereoFrontEndApp::copyGroundTruth()
         if (tum || suffix == ".landmarks.txt") suffixes.push_back(suffix);
     }
     std::sort(suffixes.begin(), suffixes.end());
-    for (const std::string& suffix : suffixes) {
+    return suffixes;
+}
+}  // namespace
+
+void StereoFrontEndApp::removeEarlierOutputs() const
+{
+    std::error_code ec;
+    fs::remove(m_args.out_prefix + ".rawlog", ec);
+    for (const std::string& suffix : groundTruthSuffixes(m_args.out_prefix))
+        fs::remove(m_args.out_prefix + suffix, ec);
+}
+
+void StereoFrontEndApp::copyGroundTruth()
+{
+    const fs::path prefix(inputPrefix(m_args.input));
+    for (const std::string& suffix : groundTruthSuffixes(prefix)) {
         const std::string src = prefix.string() + suffix, dst = m_args.out_prefix + suffix;
         std::error_code ec;
         fs::copy_file(src, dst + ".tmp", fs::copy_options::overwrite_existing, ec);
@@ -159,6 +177,7 @@ void StereoFrontEndApp::run()
     core::RawlogReader reader(m_args.input);
     const fs::path out_dir = fs::path(m_args.out_prefix).parent_path();
     if (!out_dir.empty()) core::OutputDirectory make_dir(out_dir.string());
+    removeEarlierOutputs();  // a failure leaves none of them standing as if this run's
     TemporaryRawlog out(m_args.out_prefix + ".rawlog");
     core::ProgressReporter progress("stereo-frontend", 0, m_args.quiet);
 
@@ -183,7 +202,7 @@ void StereoFrontEndApp::run()
     }
     if (m_summary.frames == 0)
         throw std::runtime_error(m_args.input +
-                                 ": found no CObservationStereoImages labelled <ROBOT>_STEREO; "
+                                 ": found no CObservationStereoImages; "
                                  "the rawlog has: " +
                                  reader.summary().describe());
     progress.finish(m_summary.frames);

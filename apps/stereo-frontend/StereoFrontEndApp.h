@@ -44,10 +44,12 @@ class StereoFrontEndApp {
     const TSummary& summary() const { return m_summary; }
 
   private:
-    /** The entry to write for one observation: the landmarks of a `*_STEREO` stereo
-     *  observation, else `obs` itself. */
+    /** The entry to write for one observation: the landmarks of a stereo observation (any
+     *  label), else `obs` itself. */
     mrpt::obs::CObservation::Ptr convert(const mrpt::obs::CObservation::Ptr& obs,
                                          size_t entry_index);
+    /// Removes `OUT.rawlog` and the ground-truth files of an earlier run with the same --out.
+    void removeEarlierOutputs() const;
     void copyGroundTruth();
     std::string summaryLine() const;
 

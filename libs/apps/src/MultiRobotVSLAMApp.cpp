@@ -124,6 +124,11 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
         const mrpt::obs::CActionCollection& actions, const mrpt::obs::CSensoryFrame& frame);
     /// Stereo images → landmarks where images are the input; counts the landmark inputs.
     void prepareFrame(mrpt::obs::CSensoryFrame& sf);
+    /// Each sensor's pose on its robot as its first observation the filter reads gives it
+    /// ("ROBOT SENSOR" → pose; SENSOR the label, or without one the class and, from the second
+    /// unlabelled one of a frame on, its place): run.json.
+    std::map<std::string, mrpt::poses::CPose3D> sensorPoses;
+    void recordSensorPoses(const mrpt::obs::CSensoryFrame& sf);
     /// With smooth_paths: the result of TeamPathSmoother::smoothPaths() and its time (all runs).
     std::optional<TeamPathSmoother::TSmoothedTeam> smoothed;
     double smoothingSeconds = 0;
@@ -278,6 +283,28 @@ void MultiRobotVSLAMApp::Impl::findGroundTruth()
                                  filterOptions.robots[k] + " = x y yaw_deg");
 }
 
+void MultiRobotVSLAMApp::Impl::recordSensorPoses(const mrpt::obs::CSensoryFrame& sf)
+{
+    using core::ObservationSelector;
+    const auto& o = filterOptions;
+    for (size_t k = 0; k < o.robots.size(); k++) {
+        size_t unlabelled = 0;  // told apart by their order in the frame
+        const auto record = [&](const mrpt::obs::CObservation& obs,
+                                const mrpt::poses::CPose3D& pose) {
+            std::string sensor = o.robots[k] + " " + ObservationSelector::nameOf(obs);
+            if (obs.sensorLabel.empty() && unlabelled++ > 0)
+                sensor += " " + std::to_string(unlabelled);
+            sensorPoses.try_emplace(sensor, pose);
+        };
+        for (const auto& obs : ObservationSelector::allIn<mrpt::obs::CObservationVisualLandmarks>(
+                 sf, o.inputLabel(k, o.landmarks_suffix)))
+            record(*obs, obs->refCameraPose);
+        for (const auto& obs : ObservationSelector::allIn<mrpt::obs::CObservationBearingRange>(
+                 sf, o.inputLabel(k, o.range_bearing_suffix)))
+            record(*obs, obs->sensorLocationOnRobot);
+    }
+}
+
 void MultiRobotVSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
 {
     using core::ObservationSelector;
@@ -421,6 +448,7 @@ void MultiRobotVSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
     const auto& robots = app.robots;
     if (robots.size() == 1) actions = singleRobotAction(*actions, frame);
     prepareFrame(frame);
+    recordSensorPoses(frame);
     const double t = stepTime(actions->begin()->get()->timestamp);
     if (steps == 0) {
         for (size_t k = 0; k < robots.size(); k++)
@@ -618,6 +646,24 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
                     nonPositiveRanges);
     report.setCount("particles", static_cast<double>(filter().particlesCount()));
     report.setCount("landmarks", static_cast<double>(map.size()));
+    // the sensors' poses on the robots: always the observations' own (no config key sets them)
+    std::string poses;
+    for (const auto& [sensor, pose] : sensorPoses) {
+        poses +=
+            mrpt::format("%s\"%s\": [%g, %g, %g, %g, %g, %g]", poses.empty() ? "" : ", ",
+                         sensor.c_str(), pose.x(), pose.y(), pose.z(), mrpt::RAD2DEG(pose.yaw()),
+                         mrpt::RAD2DEG(pose.pitch()), mrpt::RAD2DEG(pose.roll()));
+        if (!args.quiet)
+            std::printf(
+                "multirobot-vslam: %s on the robot from the observations: x %g, y %g, z %g m, "
+                "yaw %g, pitch %g, roll %g deg\n",
+                sensor.c_str(), pose.x(), pose.y(), pose.z(), mrpt::RAD2DEG(pose.yaw()),
+                mrpt::RAD2DEG(pose.pitch()), mrpt::RAD2DEG(pose.roll()));
+    }
+    report.setResultJson("sensor_poses_on_robot",
+                         "{\"source\": \"observations\", "
+                         "\"x_y_z_m_yaw_pitch_roll_deg\": {" +
+                             poses + "}}");
     // The shipped data start a landmark per 5 (office team) to 120 (MRCLAM) measurements; one
     // per two: the measurements are rarely associated again, the paths are the odometry's.
     if (measurements > 0 && 2 * best.map.size() >= measurements)
