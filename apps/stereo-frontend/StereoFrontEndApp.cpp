@@ -72,6 +72,25 @@ std::string inputPrefix(const std::string& input)
     return input;
 }
 
+/** The suffixes of the ground-truth files beside `PREFIX.rawlog` (`PREFIX.groundtruth*.tum`,
+ *  `PREFIX.odometry*.tum`, `PREFIX.landmarks.txt`), sorted. */
+std::vector<std::string> groundTruthSuffixes(const fs::path& prefix)
+{
+    const std::string stem = prefix.filename().string();
+    const fs::path dir = prefix.parent_path().empty() ? fs::path(".") : prefix.parent_path();
+    std::vector<std::string> suffixes;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (!entry.is_regular_file() || name.rfind(stem + ".", 0) != 0) continue;
+        const std::string suffix = name.substr(stem.size());
+        const bool tum = core::endsWith(suffix, ".tum") && (suffix.rfind(".groundtruth", 0) == 0 ||
+                                                            suffix.rfind(".odometry", 0) == 0);
+        if (tum || suffix == ".landmarks.txt") suffixes.push_back(suffix);
+    }
+    std::sort(suffixes.begin(), suffixes.end());
+    return suffixes;
+}
 }  // namespace
 
 StereoFrontEndApp::StereoFrontEndApp(TFrontEndCommandLine args) : m_args(std::move(args)) {}
@@ -128,28 +147,6 @@ mrpt::obs::CObservation::Ptr StereoFrontEndApp::convert(const mrpt::obs::CObserv
     m_summary.landmarks += stats.emitted;
     return landmarks;
 }
-
-namespace {
-/** The suffixes of the ground-truth files beside `PREFIX.rawlog` (`PREFIX.groundtruth*.tum`,
- *  `PREFIX.odometry*.tum`, `PREFIX.landmarks.txt`), sorted. */
-std::vector<std::string> groundTruthSuffixes(const fs::path& prefix)
-{
-    const std::string stem = prefix.filename().string();
-    const fs::path dir = prefix.parent_path().empty() ? fs::path(".") : prefix.parent_path();
-    std::vector<std::string> suffixes;
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(dir, ec)) {
-        const std::string name = entry.path().filename().string();
-        if (!entry.is_regular_file() || name.rfind(stem + ".", 0) != 0) continue;
-        const std::string suffix = name.substr(stem.size());
-        const bool tum = core::endsWith(suffix, ".tum") && (suffix.rfind(".groundtruth", 0) == 0 ||
-                                                            suffix.rfind(".odometry", 0) == 0);
-        if (tum || suffix == ".landmarks.txt") suffixes.push_back(suffix);
-    }
-    std::sort(suffixes.begin(), suffixes.end());
-    return suffixes;
-}
-}  // namespace
 
 void StereoFrontEndApp::removeEarlierOutputs() const
 {
