@@ -649,16 +649,10 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     // the sensors' poses on the robots: always the observations' own (no config key sets them)
     std::string poses;
     for (const auto& [sensor, pose] : sensorPoses) {
-        poses +=
-            mrpt::format("%s\"%s\": [%g, %g, %g, %g, %g, %g]", poses.empty() ? "" : ", ",
-                         sensor.c_str(), pose.x(), pose.y(), pose.z(), mrpt::RAD2DEG(pose.yaw()),
-                         mrpt::RAD2DEG(pose.pitch()), mrpt::RAD2DEG(pose.roll()));
+        poses += (poses.empty() ? "\"" : ", \"") + sensor + "\": " + poseJsonArray(pose);
         if (!args.quiet)
-            std::printf(
-                "multirobot-vslam: %s on the robot from the observations: x %g, y %g, z %g m, "
-                "yaw %g, pitch %g, roll %g deg\n",
-                sensor.c_str(), pose.x(), pose.y(), pose.z(), mrpt::RAD2DEG(pose.yaw()),
-                mrpt::RAD2DEG(pose.pitch()), mrpt::RAD2DEG(pose.roll()));
+            std::printf("multirobot-vslam: %s on the robot from the observations: %s\n",
+                        sensor.c_str(), poseText(pose).c_str());
     }
     report.setResultJson("sensor_poses_on_robot",
                          "{\"source\": \"observations\", "

@@ -330,17 +330,12 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     const auto& pose = best.map.sensorPoseInUse();
     const bool configured = best.map.sensorOptions.sensor_in_robot.has_value();
     report.setResultJson("camera_pose_on_robot",
-                         mrpt::format("{\"source\": \"%s\", \"x_y_z_m_yaw_pitch_roll_deg\": "
-                                      "[%g, %g, %g, %g, %g, %g]}",
-                                      configured ? "config" : "observations", pose.x(), pose.y(),
-                                      pose.z(), mrpt::RAD2DEG(pose.yaw()),
-                                      mrpt::RAD2DEG(pose.pitch()), mrpt::RAD2DEG(pose.roll())));
+                         std::string("{\"source\": \"") + (configured ? "config" : "observations") +
+                             "\", \"x_y_z_m_yaw_pitch_roll_deg\": " + poseJsonArray(pose) + "}");
     if (!args.quiet)
-        std::printf(
-            "omni-fastslam: camera pose on the robot from the %s: x %g, y %g, z %g m, yaw %g, "
-            "pitch %g, roll %g deg\n",
-            configured ? "config (sensor_in_robot)" : "observations", pose.x(), pose.y(), pose.z(),
-            mrpt::RAD2DEG(pose.yaw()), mrpt::RAD2DEG(pose.pitch()), mrpt::RAD2DEG(pose.roll()));
+        std::printf("omni-fastslam: camera pose on the robot from the %s: %s\n",
+                    configured ? "config (sensor_in_robot)" : "observations",
+                    poseText(pose).c_str());
     if (const auto associations = COmniFastSLAM::associationsOf(best);
         associations.labelled() > 0) {
         // evaluation only: the rawlog gave landmark numbers (landmarkID), the filter ignored them

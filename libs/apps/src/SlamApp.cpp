@@ -1,5 +1,6 @@
 #include "SlamApp.h"
 
+#include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 #include <mrpt/system/filesystem.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
@@ -15,6 +16,20 @@
 #include <stdexcept>
 
 namespace mrpt_vslam::apps {
+
+std::string poseJsonArray(const mrpt::poses::CPose3D& pose)
+{
+    return mrpt::format("[%g, %g, %g, %g, %g, %g]", pose.x(), pose.y(), pose.z(),
+                        mrpt::RAD2DEG(pose.yaw()), mrpt::RAD2DEG(pose.pitch()),
+                        mrpt::RAD2DEG(pose.roll()));
+}
+
+std::string poseText(const mrpt::poses::CPose3D& pose)
+{
+    return mrpt::format("x %g, y %g, z %g m, yaw %g, pitch %g, roll %g deg", pose.x(), pose.y(),
+                        pose.z(), mrpt::RAD2DEG(pose.yaw()), mrpt::RAD2DEG(pose.pitch()),
+                        mrpt::RAD2DEG(pose.roll()));
+}
 
 SlamApp::SlamApp(core::AppArguments arguments, std::string appName, std::string section)
     : name(std::move(appName)), args(std::move(arguments)), m_section(std::move(section))

@@ -5,6 +5,7 @@
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/poses/CPose3D.h>
 #include <mrpt_vslam/apps/LiveView.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/AppArguments.h>
@@ -28,6 +29,11 @@
 #include <vector>
 
 namespace mrpt_vslam::apps {
+
+/// A sensor's pose on the robot as run.json gives it: "[x, y, z, yaw, pitch, roll]" (m, deg).
+std::string poseJsonArray(const mrpt::poses::CPose3D& pose);
+/// The same for a log line: "x X, y Y, z Z m, yaw A, pitch B, roll C deg".
+std::string poseText(const mrpt::poses::CPose3D& pose);
 
 /// A SLAM app: its name (messages, progress line, run.json) and the ini section of its own keys.
 struct TSlamAppId {
