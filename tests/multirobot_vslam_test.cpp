@@ -2,6 +2,7 @@
 // (accuracy against ground truth, stereo vs pre-extracted input, outputs and errors) and on a
 // user's own single-robot range-bearing rawlog in both MRPT formats, from the template.
 #include <gtest/gtest.h>
+#include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CObservationStereoImages.h>
@@ -348,9 +349,12 @@ TEST_F(MultiRobotVSLAMApp, SaysWhenTheMeasurementsAreRarelyAssociatedAgain)
     const size_t started = runJson["counts"]["particle_map_landmarks"];
     std::printf("tiny noise: %zu landmarks started for %zu measurements\n", started, measurements);
     EXPECT_GE(2 * started, measurements);
-    // the first of two: the readings' disagreement with the odometry follows
-    ASSERT_EQ(runJson["warnings"].size(), 2u) << runJson["warnings"];
-    const std::string warning = runJson["warnings"][0];
+    // the second of three: the sensor pose check finds 1 pair in 3 beyond 3 sigma before it,
+    // the readings' disagreement with the odometry follows
+    ASSERT_EQ(runJson["warnings"].size(), 3u) << runJson["warnings"];
+    EXPECT_EQ(runJson["warnings"][0].get<std::string>().rfind("R1 CObservationBearingRange: ", 0),
+              0u);
+    const std::string warning = runJson["warnings"][1];
     EXPECT_EQ(warning.rfind(mrpt::format("the best particle started a landmark for %zu of the %zu "
                                          "measurements",
                                          started, measurements),
@@ -479,7 +483,63 @@ TEST_F(MultiRobotVSLAMApp, TeamOfTwoMeetsTheAccuracyBoundsOnEverySeed)
             EXPECT_LE(est, 0.20) << name << " seed " << seed;
             EXPECT_LE(est, 0.40 * odo) << name << " seed " << seed;
         }
+        // the cameras' poses are right: the readings find them within 2° (the odometry's
+        // heading drift turns them by about 1°)
+        const auto runJson = json(dir + "/run.json");
+        EXPECT_EQ(runJson["warnings"], nlohmann::json::array()) << "seed " << seed;
+        for (const char* sensor : {"R1 R1_LANDMARKS", "R2 R2_LANDMARKS"})
+            EXPECT_LT(
+                std::abs(runJson["results"]["sensor_pose_check"][sensor]["dyaw_deg"].get<double>()),
+                2)
+                << sensor << ", seed " << seed;
     }
+}
+
+// R1's camera turned by 5° from the pose its observations give: the readings of a landmark from
+// nearby steps find the turn (as on the right pose, less 5°), and the run warns.
+TEST_F(MultiRobotVSLAMApp, SaysWhenTheCameraIsTurned)
+{
+    const std::string name = out("team2-turned");
+    {
+        mrpt::io::CFileGZOutputStream file(name + ".rawlog");
+        auto ar = mrpt::serialization::archiveFrom(file);
+        mrpt_vslam::core::RawlogReader reader(kData + "team2.rawlog");
+        for (mrpt_vslam::core::TRawlogEntry e; reader.next(e);) {
+            if (const auto landmarks =
+                    std::dynamic_pointer_cast<mrpt::obs::CObservationVisualLandmarks>(
+                        e.observation);
+                landmarks && landmarks->sensorLabel == "R1_LANDMARKS")
+                landmarks->refCameraPose = mrpt::poses::CPose3D(0, 0, 0, mrpt::DEG2RAD(5.0), 0, 0) +
+                                           landmarks->refCameraPose;
+            ar << *e.observation;
+        }
+    }
+    for (const char* f : {".groundtruth_R1.tum", ".groundtruth_R2.tum", ".landmarks.txt"})
+        fs::copy_file(kData + "team2" + f, name + f, fs::copy_options::overwrite_existing);
+    double dyaw[2] = {0, 0};
+    std::string warning;
+    for (const bool turned : {false, true}) {
+        const std::string dir = name + (turned ? "-run" : "-right-run");
+        const TCommandResult r =
+            run(kConfigs + "office-team-2.ini " + (turned ? name : kData + "team2") +
+                ".rawlog -q --seed 1 --out " + dir);
+        ASSERT_EQ(r.exit_code, 0) << r.out;
+        const auto runJson = json(dir + "/run.json");
+        const auto& check = runJson["results"]["sensor_pose_check"]["R1 R1_LANDMARKS"];
+        dyaw[turned] = check["dyaw_deg"].get<double>();
+        if (turned) {
+            ASSERT_EQ(runJson["warnings"].size(), 1u) << runJson["warnings"];
+            warning = runJson["warnings"][0].get<std::string>();
+            EXPECT_NE(r.out.find("multirobot-vslam: warning: " + warning), std::string::npos);
+        }
+    }
+    std::printf("R1's camera right: %.2f deg; turned by 5 deg: %.2f deg\n", dyaw[0], dyaw[1]);
+    EXPECT_NEAR(dyaw[1] - dyaw[0], -5, 1);
+    EXPECT_EQ(warning.rfind("R1 R1_LANDMARKS: its readings of a landmark from nearby steps fit "
+                            "best with the sensor turned by ",
+                            0),
+              0u)
+        << warning;
 }
 
 TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)

@@ -39,6 +39,7 @@ using multirobot::StereoFrontEnd;
 using multirobot::TCorrespondence;
 using multirobot::TeamPathSmoother;
 using multirobot::TLandmarkIdentityTally;
+using multirobot::TTeamParticle;
 using multirobot::TVisualLandmark;
 
 namespace {
@@ -96,7 +97,8 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
     std::vector<std::unique_ptr<StereoFrontEnd>> frontEnds;  ///< one per robot, on demand
     struct TFilterRun {
         std::unique_ptr<CMultiRobotVisualSLAM> filter;
-        std::unique_ptr<TeamPathSmoother> smoother;  ///< with map_along_path
+        /// records the run: the map along the path, the smoothing, the sensor pose checks
+        std::unique_ptr<TeamPathSmoother> smoother;
     };
     /// filter_runs of them, from the seeds --seed, --seed + 1, ...; after endSteps() the kept one
     std::vector<TFilterRun> runs;
@@ -128,7 +130,13 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
     /// ("ROBOT SENSOR" → pose; SENSOR the label, or without one the class and, from the second
     /// unlabelled one of a frame on, its place): run.json.
     std::map<std::string, mrpt::poses::CPose3D> sensorPoses;
+    /// Per robot, its sensors' names of sensorPoses in the order of TLandmarkMeasurement::sensor
+    std::vector<std::vector<std::string>> sensorNames;
     void recordSensorPoses(const mrpt::obs::CSensoryFrame& sf);
+    /// TeamPathSmoother::sensorPoseChecks() of `best` in run.json and the log, and a warning
+    /// where a sensor's pose or the readings look wrong.
+    void reportSensorPoseChecks(const TTeamParticle& best, core::RunReport& report,
+                                bool quiet) const;
     /// With smooth_paths: the result of TeamPathSmoother::smoothPaths() and its time (all runs).
     std::optional<TeamPathSmoother::TSmoothedTeam> smoothed;
     double smoothingSeconds = 0;
@@ -287,14 +295,17 @@ void MultiRobotVSLAMApp::Impl::recordSensorPoses(const mrpt::obs::CSensoryFrame&
 {
     using core::ObservationSelector;
     const auto& o = filterOptions;
+    sensorNames.resize(o.robots.size());
     for (size_t k = 0; k < o.robots.size(); k++) {
         size_t unlabelled = 0;  // told apart by their order in the frame
+        const bool named = !sensorNames[k].empty();
         const auto record = [&](const mrpt::obs::CObservation& obs,
                                 const mrpt::poses::CPose3D& pose) {
             std::string sensor = o.robots[k] + " " + ObservationSelector::nameOf(obs);
             if (obs.sensorLabel.empty() && unlabelled++ > 0)
                 sensor += " " + std::to_string(unlabelled);
             sensorPoses.try_emplace(sensor, pose);
+            if (!named) sensorNames[k].push_back(sensor);
         };
         for (const auto& obs : ObservationSelector::allIn<mrpt::obs::CObservationVisualLandmarks>(
                  sf, o.inputLabel(k, o.landmarks_suffix)))
@@ -371,11 +382,9 @@ void MultiRobotVSLAMApp::Impl::prepare()
         TFilterRun r{makeFilter<CMultiRobotVisualSLAM>(mapTemplate, static_cast<uint32_t>(run)),
                      nullptr};
         r.filter->options = filterOptions;
-        if (smootherOptions.map_along_path) {
-            r.smoother = std::make_unique<TeamPathSmoother>(mapTemplate);
-            r.smoother->options = smootherOptions;
-            r.filter->setStepObserver(r.smoother.get());
-        }
+        r.smoother = std::make_unique<TeamPathSmoother>(mapTemplate);
+        r.smoother->options = smootherOptions;
+        r.filter->setStepObserver(r.smoother.get());
         runs.push_back(std::move(r));
     }
     for (const auto& p : startPoses) odometry.emplace_back(p);
@@ -658,6 +667,7 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
                          "{\"source\": \"observations\", "
                          "\"x_y_z_m_yaw_pitch_roll_deg\": {" +
                              poses + "}}");
+    reportSensorPoseChecks(best, report, args.quiet);
     // The shipped data start a landmark per 5 (office team) to 120 (MRCLAM) measurements; one
     // per two: the measurements are rarely associated again, the paths are the odometry's.
     if (measurements > 0 && 2 * best.map.size() >= measurements)
@@ -715,6 +725,53 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     if (const auto a = identityAssociationJson(TLandmarkIdentityTally::of(correspondences, map));
         !a.empty())
         report.setResultJson("association_by_identity", a);
+}
+
+void MultiRobotVSLAMApp::Impl::reportSensorPoseChecks(const TTeamParticle& best,
+                                                      core::RunReport& report, bool quiet) const
+{
+    // A turn of 3° or more, or a move of 0.15 m or more, 5 σ or more from 0 (a move: 5 times
+    // its largest σ), warns, where the path tells the two apart (turn confounding < 4; 33-58 on
+    // the circles of tests/multirobot_vslam_test.cpp). Correct sensors give turns of
+    // up to 1.4° on the simulated teams (their odometry's heading drift), moves of 0.4-0.7 m at
+    // 1-3 σ on MRCLAM (doc/results/sensor-pose-check.md).
+    constexpr double kTurnDeg = 3, kMove = 0.15, kSigmas = 5, kConfounding = 4;
+    std::string json;
+    for (const auto& c : smoother().sensorPoseChecks(best)) {
+        const auto& names = sensorNames.at(c.robot);
+        const std::string sensor = c.sensor < names.size() ? names[c.sensor]
+                                                           : app.robots[c.robot] + " sensor " +
+                                                                 std::to_string(c.sensor + 1);
+        const auto& d = c.correction;
+        const double turnDeg = mrpt::RAD2DEG(d.delta[2]),
+                     turnStdDeg = mrpt::RAD2DEG(std::sqrt(d.cov(2, 2)));
+        const Eigen::Vector2d t = d.delta.head<2>();
+        const double turnConfounding = d.turnConfounding();
+        json += mrpt::format(
+            "%s\"%s\": {\"pairs\": %zu, \"pairs_beyond_3_sigma\": %zu, \"dx_dy_m\": [%.4f, %.4f], "
+            "\"std_dx_dy_m\": [%.4f, %.4f], \"dyaw_deg\": %.3f, \"std_dyaw_deg\": %.3f, "
+            "\"dyaw_confounding\": %.2f}",
+            json.empty() ? "" : ", ", sensor.c_str(), d.pairs, d.outlier_pairs, t[0], t[1],
+            std::sqrt(d.cov(0, 0)), std::sqrt(d.cov(1, 1)), turnDeg, turnStdDeg, turnConfounding);
+        const std::string fit =
+            mrpt::format(
+                "its readings of a landmark from nearby steps fit best with the sensor turned by "
+                "%.1f deg (std %.1f) and moved by (%.2f, %.2f) m (std %.2f, %.2f), %zu of %zu "
+                "pairs beyond 3 sigma",
+                turnDeg, turnStdDeg, t[0], t[1], std::sqrt(d.cov(0, 0)), std::sqrt(d.cov(1, 1)),
+                d.outlier_pairs, d.pairs) +
+            (turnConfounding < kConfounding ? "" : " (this path does not tell a turn from a move)");
+        if (!quiet) std::printf("multirobot-vslam: %s: %s\n", sensor.c_str(), fit.c_str());
+        const bool turned =
+            std::abs(turnDeg) >= kTurnDeg && std::abs(turnDeg) >= kSigmas * turnStdDeg;
+        const bool moved = t.norm() >= kMove && t.norm() >= kSigmas * d.largestMoveStd();
+        // with the pose and noise right, about 1 pair in 90 lies beyond 3 σ
+        if (((turned || moved) && turnConfounding < kConfounding) || 10 * d.outlier_pairs > d.pairs)
+            report.addWarning(sensor + ": " + fit +
+                              ": check its pose on the robot and its noise (an odometry whose "
+                              "heading drifts also looks like a turned sensor; doc/multirobot.md)");
+    }
+    if (!json.empty()) report.setResultJson("sensor_pose_check", "{" + json + "}");
 }
 
 std::optional<std::string> MultiRobotVSLAMApp::Impl::groundTruthName() const

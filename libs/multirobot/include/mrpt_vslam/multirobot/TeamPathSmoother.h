@@ -5,6 +5,7 @@
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
 #include <mrpt_vslam/multirobot/CVisualLandmarksMap.h>
 #include <mrpt_vslam/multirobot/PlanarPoseLandmarkGraph.h>
+#include <mrpt_vslam/multirobot/SensorPoseCorrection.h>
 #include <mrpt_vslam/multirobot/TeamParticle.h>
 
 #include <Eigen/Core>
@@ -17,20 +18,21 @@
 namespace mrpt_vslam::multirobot {
 
 /** What is made after the filter, along the best particle's path (ours; doc/multirobot.md §3):
- *  the map of every measurement made again along the path (mapAlongPath()) and the most
- *  probable paths given every odometry increment and reading (smoothPaths()).
+ *  the map of every measurement made again along the path (mapAlongPath()), the most
+ *  probable paths given every odometry increment and reading (smoothPaths()) and the check of
+ *  the sensors' poses on the robots (sensorPoseChecks()).
  *
  *  It records the run as CMultiRobotVisualSLAM's step observer: each robot's odometry
  *  Gaussian, measurements and readings of other robots, step by step, and the start poses.
  *  Usage: `TeamPathSmoother smoother(map_template); smoother.options = ...;
  *  filter.setStepObserver(&smoother);` before `filter.reset()`, run the filter, then
- *  `smoother.smoothPaths(filter.bestParticle())` or `smoother.mapAlongPath(...)`. */
+ *  `smoother.smoothPaths(filter.bestParticle())`, `smoother.mapAlongPath(...)` or
+ *  `smoother.sensorPoseChecks(...)`. */
 class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
   public:
     /// Options (ini section `[TeamPathSmoother]` in multirobot-vslam).
     struct TOptions : public mrpt::config::CLoadableOptions {
-        /// The output map is the map along the best particle's path (mapAlongPath()); the
-        /// app then records the run for this smoother.
+        /// The output map is the map along the best particle's path (mapAlongPath()).
         bool map_along_path = false;
         /// Mapping along a path: D0 of its gate, and the fewest measurements a landmark of it
         /// needs as a fraction of the recorded frames with landmark measurements, in [0, 1]
@@ -139,6 +141,19 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
      *  reanchorAfterGaps() after each mapping; finally map along the result.
      *  \pre registered with the filter before its reset() */
     TSmoothedTeam smoothPaths(const TTeamParticle& p) const;
+
+    /// One sensor's TSensorPoseCorrection: `sensor` as TLandmarkMeasurement::sensor.
+    struct TSensorPoseCheck {
+        size_t robot = 0;
+        uint16_t sensor = 0;
+        TSensorPoseCorrection correction;
+    };
+    /** Per robot and sensor, the correction of the sensor's pose on the robot that best
+     *  explains the readings of the map along particle `p`'s path: each reading of a landmark
+     *  paired with the same sensor's previous reading of it, up to 3 steps before, through the
+     *  robot's odometry between the two. Robots and sensors without such pairs are left out.
+     *  \pre registered with the filter before its reset() */
+    std::vector<TSensorPoseCheck> sensorPoseChecks(const TTeamParticle& p) const;
 
   private:
     /// A robot's measurements of one step from one sensor: `step` indexes that step in the path
