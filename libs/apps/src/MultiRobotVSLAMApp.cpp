@@ -738,10 +738,10 @@ void MultiRobotVSLAMApp::Impl::reportSensorPoseChecks(const TTeamParticle& best,
     constexpr double kTurnDeg = 3, kMove = 0.15, kSigmas = 5, kConfounding = 4;
     std::string json;
     for (const auto& c : smoother().sensorPoseChecks(best)) {
-        const auto& names = sensorNames.at(c.robot);
-        const std::string sensor = c.sensor < names.size() ? names[c.sensor]
-                                                           : app.robots[c.robot] + " sensor " +
-                                                                 std::to_string(c.sensor + 1);
+        const bool named = c.robot < sensorNames.size() && c.sensor < sensorNames[c.robot].size();
+        const std::string sensor =
+            named ? sensorNames[c.robot][c.sensor]
+                  : app.robots[c.robot] + " sensor " + std::to_string(c.sensor + 1);
         const auto& d = c.correction;
         const double turnDeg = mrpt::RAD2DEG(d.delta[2]),
                      turnStdDeg = mrpt::RAD2DEG(std::sqrt(d.cov(2, 2)));
