@@ -1,28 +1,10 @@
+#include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt_vslam/multirobot/TeamPathSmoother.h>
 
-#include <cmath>
 #include <map>
 #include <tuple>
 
 namespace mrpt_vslam::multirobot {
-
-using mrpt::math::TPose2D;
-
-namespace {
-
-/// The odometry a ⊕ b and its covariance, a and b independent.
-std::pair<TPose2D, Eigen::Matrix3d> compose(const TPose2D& a, const Eigen::Matrix3d& Qa,
-                                            const TPose2D& b, const Eigen::Matrix3d& Qb)
-{
-    const double c = std::cos(a.phi), s = std::sin(a.phi);
-    Eigen::Matrix3d Ja = Eigen::Matrix3d::Identity(), Jb = Eigen::Matrix3d::Identity();
-    Ja(0, 2) = -s * b.x - c * b.y;
-    Ja(1, 2) = c * b.x - s * b.y;
-    Jb.topLeftCorner<2, 2>() << c, -s, s, c;
-    return {a + b, Ja * Qa * Ja.transpose() + Jb * Qb * Jb.transpose()};
-}
-
-}  // namespace
 
 std::vector<TeamPathSmoother::TSensorPoseCheck> TeamPathSmoother::sensorPoseChecks(
     const TTeamParticle& p) const
@@ -48,13 +30,14 @@ std::vector<TeamPathSmoother::TSensorPoseCheck> TeamPathSmoother::sensorPoseChec
             const TLast before = it->second;
             it->second = now;
             if (now.step <= before.step || now.step - before.step > kMaxGap) continue;
-            TPose2D u(0, 0, 0);
-            Eigen::Matrix3d Q = Eigen::Matrix3d::Zero();
+            mrpt::poses::CPosePDFGaussian u;  // the odometry between the two, composed
             for (size_t s = before.step + 1; s <= now.step; s++) {
                 const core::TOdometryGaussian& step = m_motions.at(s - 1).at(frame.robot);
-                std::tie(u, Q) = compose(u, Q, step.mean, step.cov);
+                u += mrpt::poses::CPosePDFGaussian(mrpt::poses::CPose2D(step.mean),
+                                                   mrpt::math::CMatrixDouble33(step.cov));
             }
-            pairs[{frame.robot, m.sensor}].push_back({before.z, now.z, before.R, now.R, u, Q});
+            pairs[{frame.robot, m.sensor}].push_back(
+                {before.z, now.z, before.R, now.R, u.mean.asTPose(), u.cov.asEigen()});
         }
     }
     std::vector<TSensorPoseCheck> checks;
