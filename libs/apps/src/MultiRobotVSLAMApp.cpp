@@ -737,7 +737,10 @@ void MultiRobotVSLAMApp::Impl::reportSensorPoseChecks(const TTeamParticle& best,
     // 1-3 σ on MRCLAM (doc/results/sensor-pose-check.md).
     constexpr double kTurnDeg = 3, kMove = 0.15, kSigmas = 5, kConfounding = 4;
     std::string json;
-    for (const auto& c : smoother().sensorPoseChecks(best)) {
+    const core::RunTimer timer;
+    const auto checks = smoother().sensorPoseChecks(best);
+    report.setResult("sensor_pose_check_s", timer.elapsedSeconds());
+    for (const auto& c : checks) {
         const bool named = c.robot < sensorNames.size() && c.sensor < sensorNames[c.robot].size();
         const std::string sensor =
             named ? sensorNames[c.robot][c.sensor]
