@@ -730,51 +730,15 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
 void MultiRobotVSLAMApp::Impl::reportSensorPoseChecks(const TTeamParticle& best,
                                                       core::RunReport& report, bool quiet) const
 {
-    // A turn of 3° or more, or a move of 0.15 m or more, 5 σ or more from 0 (a move: 5 times
-    // its largest σ), warns, where the path tells the two apart (turn confounding < 4; 33-58 on
-    // the circles of tests/multirobot_vslam_test.cpp). Correct sensors give turns of
-    // up to 1.4° on the simulated teams (their odometry's heading drift), moves of 0.4-0.7 m at
-    // 1-3 σ on MRCLAM (doc/results/sensor-pose-check.md).
-    constexpr double kTurnDeg = 3, kMove = 0.15, kSigmas = 5, kConfounding = 4;
-    std::string json;
     const core::RunTimer timer;
-    const auto checks = smoother().sensorPoseChecks(best);
-    report.setResult("sensor_pose_check_s", timer.elapsedSeconds());
-    for (const auto& c : checks) {
-        const bool named = c.robot < sensorNames.size() && c.sensor < sensorNames[c.robot].size();
-        const std::string sensor =
-            named ? sensorNames[c.robot][c.sensor]
-                  : app.robots[c.robot] + " sensor " + std::to_string(c.sensor + 1);
-        const auto& d = c.correction;
-        const double turnDeg = mrpt::RAD2DEG(d.delta[2]),
-                     turnStdDeg = mrpt::RAD2DEG(std::sqrt(d.cov(2, 2)));
-        const Eigen::Vector2d t = d.delta.head<2>();
-        const double turnConfounding = d.turnConfounding();
-        json += mrpt::format(
-            "%s\"%s\": {\"pairs\": %zu, \"pairs_beyond_3_sigma\": %zu, \"dx_dy_m\": [%.4f, %.4f], "
-            "\"std_dx_dy_m\": [%.4f, %.4f], \"dyaw_deg\": %.3f, \"std_dyaw_deg\": %.3f, "
-            "\"dyaw_confounding\": %.2f}",
-            json.empty() ? "" : ", ", sensor.c_str(), d.pairs, d.outlier_pairs, t[0], t[1],
-            std::sqrt(d.cov(0, 0)), std::sqrt(d.cov(1, 1)), turnDeg, turnStdDeg, turnConfounding);
-        const std::string fit =
-            mrpt::format(
-                "its readings of a landmark from nearby steps fit best with the sensor turned by "
-                "%.1f deg (std %.1f) and moved by (%.2f, %.2f) m (std %.2f, %.2f), %zu of %zu "
-                "pairs beyond 3 sigma",
-                turnDeg, turnStdDeg, t[0], t[1], std::sqrt(d.cov(0, 0)), std::sqrt(d.cov(1, 1)),
-                d.outlier_pairs, d.pairs) +
-            (turnConfounding < kConfounding ? "" : " (this path does not tell a turn from a move)");
-        if (!quiet) std::printf("multirobot-vslam: %s: %s\n", sensor.c_str(), fit.c_str());
-        const bool turned =
-            std::abs(turnDeg) >= kTurnDeg && std::abs(turnDeg) >= kSigmas * turnStdDeg;
-        const bool moved = t.norm() >= kMove && t.norm() >= kSigmas * d.largestMoveStd();
-        // with the pose and noise right, about 1 pair in 90 lies beyond 3 σ
-        if (((turned || moved) && turnConfounding < kConfounding) || 10 * d.outlier_pairs > d.pairs)
-            report.addWarning(sensor + ": " + fit +
-                              ": check its pose on the robot and its noise (an odometry whose "
-                              "heading drifts also looks like a turned sensor; doc/multirobot.md)");
+    std::vector<std::pair<std::string, core::TSensorPoseCorrection>> named;
+    for (auto& c : smoother().sensorPoseChecks(best)) {
+        const bool known = c.robot < sensorNames.size() && c.sensor < sensorNames[c.robot].size();
+        named.emplace_back(known ? sensorNames[c.robot][c.sensor]
+                                 : app.robots[c.robot] + " sensor " + std::to_string(c.sensor + 1),
+                           c.correction);
     }
-    if (!json.empty()) report.setResultJson("sensor_pose_check", "{" + json + "}");
+    apps::reportSensorPoseChecks("multirobot-vslam", named, timer.elapsedSeconds(), report, quiet);
 }
 
 std::optional<std::string> MultiRobotVSLAMApp::Impl::groundTruthName() const

@@ -11,6 +11,8 @@
 #include <mrpt_vslam/core/RunOutputs.h>
 #include <mrpt_vslam/core/SceneFraming.h>
 
+#include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <opencv2/core/version.hpp>
 #include <stdexcept>
@@ -29,6 +31,50 @@ std::string poseText(const mrpt::poses::CPose3D& pose)
     return mrpt::format("x %g, y %g, z %g m, yaw %g, pitch %g, roll %g deg", pose.x(), pose.y(),
                         pose.z(), mrpt::RAD2DEG(pose.yaw()), mrpt::RAD2DEG(pose.pitch()),
                         mrpt::RAD2DEG(pose.roll()));
+}
+
+void reportSensorPoseChecks(
+    const char* app, const std::vector<std::pair<std::string, core::TSensorPoseCorrection>>& checks,
+    double seconds, core::RunReport& report, bool quiet)
+{
+    // A turn of 3° or more, or a move of 0.15 m or more, 5 σ or more from 0 (a move: 5 times
+    // its largest σ), warns, where the path tells the two apart (turn confounding < 4; 33-58 on
+    // the circles of tests/multirobot_vslam_test.cpp). Correct sensors give turns of up to 1.4°
+    // on the simulated teams (their odometry's heading drift), moves of 0.4-0.7 m at 1-3 σ on
+    // MRCLAM (doc/results/sensor-pose-check.md).
+    constexpr double kTurnDeg = 3, kMove = 0.15, kSigmas = 5, kConfounding = 4;
+    report.setResult("sensor_pose_check_s", seconds);
+    std::string json;
+    for (const auto& [sensor, d] : checks) {
+        const double turnDeg = mrpt::RAD2DEG(d.delta[2]),
+                     turnStdDeg = mrpt::RAD2DEG(std::sqrt(d.cov(2, 2)));
+        const Eigen::Vector2d t = d.delta.head<2>();
+        const double turnConfounding = d.turnConfounding();
+        json += mrpt::format(
+            "%s\"%s\": {\"pairs\": %zu, \"pairs_beyond_3_sigma\": %zu, \"dx_dy_m\": [%.4f, %.4f], "
+            "\"std_dx_dy_m\": [%.4f, %.4f], \"dyaw_deg\": %.3f, \"std_dyaw_deg\": %.3f, "
+            "\"dyaw_confounding\": %.2f}",
+            json.empty() ? "" : ", ", sensor.c_str(), d.pairs, d.outlier_pairs, t[0], t[1],
+            std::sqrt(d.cov(0, 0)), std::sqrt(d.cov(1, 1)), turnDeg, turnStdDeg, turnConfounding);
+        const std::string fit =
+            mrpt::format(
+                "its readings of a landmark from nearby steps fit best with the sensor turned by "
+                "%.1f deg (std %.1f) and moved by (%.2f, %.2f) m (std %.2f, %.2f), %zu of %zu "
+                "pairs beyond 3 sigma",
+                turnDeg, turnStdDeg, t[0], t[1], std::sqrt(d.cov(0, 0)), std::sqrt(d.cov(1, 1)),
+                d.outlier_pairs, d.pairs) +
+            (turnConfounding < kConfounding ? "" : " (this path does not tell a turn from a move)");
+        if (!quiet) std::printf("%s: %s: %s\n", app, sensor.c_str(), fit.c_str());
+        const bool turned =
+            std::abs(turnDeg) >= kTurnDeg && std::abs(turnDeg) >= kSigmas * turnStdDeg;
+        const bool moved = t.norm() >= kMove && t.norm() >= kSigmas * d.largestMoveStd();
+        // with the pose and noise right, about 1 pair in 90 lies beyond 3 σ
+        if (((turned || moved) && turnConfounding < kConfounding) || 10 * d.outlier_pairs > d.pairs)
+            report.addWarning(sensor + ": " + fit +
+                              ": check its pose on the robot and its noise (an odometry whose "
+                              "heading drifts also looks like a turned sensor; doc/multirobot.md)");
+    }
+    if (!json.empty()) report.setResultJson("sensor_pose_check", "{" + json + "}");
 }
 
 SlamApp::SlamApp(core::AppArguments arguments, std::string appName, std::string section)

@@ -16,6 +16,7 @@
 #include <mrpt_vslam/core/RawlogReader.h>
 #include <mrpt_vslam/core/RunReport.h>
 #include <mrpt_vslam/core/RunTimer.h>
+#include <mrpt_vslam/core/SensorPoseCorrection.h>
 #include <mrpt_vslam/core/TumTrajectory.h>
 #include <mrpt_vslam/core/UsageError.h>
 
@@ -34,6 +35,14 @@ namespace mrpt_vslam::apps {
 std::string poseJsonArray(const mrpt::poses::CPose3D& pose);
 /// The same for a log line: "x X, y Y, z Z m, yaw A, pitch B, roll C deg".
 std::string poseText(const mrpt::poses::CPose3D& pose);
+
+/** The sensor pose checks of a run (sensor name → TSensorPoseCorrection; doc/multirobot.md,
+ *  "Checking the sensor poses"): `app`'s line per sensor unless `quiet`, run.json
+ *  `results.sensor_pose_check` and `results.sensor_pose_check_s` (`seconds`), and a warning per
+ *  sensor whose pose or readings look wrong. */
+void reportSensorPoseChecks(
+    const char* app, const std::vector<std::pair<std::string, core::TSensorPoseCorrection>>& checks,
+    double seconds, core::RunReport& report, bool quiet);
 
 /// A SLAM app: its name (messages, progress line, run.json) and the ini section of its own keys.
 struct TSlamAppId {

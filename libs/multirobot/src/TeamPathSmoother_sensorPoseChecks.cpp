@@ -18,7 +18,7 @@ std::vector<TeamPathSmoother::TSensorPoseCheck> TeamPathSmoother::sensorPoseChec
         Eigen::Matrix2d R;
     };
     std::map<std::tuple<size_t, uint16_t, uint32_t>, TLast> last;  // (robot, sensor, landmark)
-    std::map<std::pair<size_t, uint16_t>, std::vector<TReadingPair>> pairs;
+    std::map<std::pair<size_t, uint16_t>, std::vector<core::TReadingPair>> pairs;
     for (size_t f = 0; f < m_fusedFrames.size(); f++) {
         const TFusedFrame& frame = m_fusedFrames[f];
         for (size_t j = 0; j < frame.z.size(); j++) {
@@ -42,7 +42,7 @@ std::vector<TeamPathSmoother::TSensorPoseCheck> TeamPathSmoother::sensorPoseChec
     }
     std::vector<TSensorPoseCheck> checks;
     for (const auto& [key, of_sensor] : pairs)
-        checks.push_back({key.first, key.second, TSensorPoseCorrection::estimate(of_sensor)});
+        checks.push_back({key.first, key.second, core::TSensorPoseCorrection::estimate(of_sensor)});
     return checks;
 }
 

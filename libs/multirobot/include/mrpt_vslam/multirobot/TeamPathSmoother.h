@@ -2,10 +2,10 @@
 
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPose2D.h>
+#include <mrpt_vslam/core/SensorPoseCorrection.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
 #include <mrpt_vslam/multirobot/CVisualLandmarksMap.h>
 #include <mrpt_vslam/multirobot/PlanarPoseLandmarkGraph.h>
-#include <mrpt_vslam/multirobot/SensorPoseCorrection.h>
 #include <mrpt_vslam/multirobot/TeamParticle.h>
 
 #include <Eigen/Core>
@@ -146,7 +146,7 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
     struct TSensorPoseCheck {
         size_t robot = 0;
         uint16_t sensor = 0;
-        TSensorPoseCorrection correction;
+        core::TSensorPoseCorrection correction;
     };
     /** Per robot and sensor, the correction of the sensor's pose on the robot that best
      *  explains the readings of the map along particle `p`'s path: each reading of a landmark

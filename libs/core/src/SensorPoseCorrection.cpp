@@ -1,12 +1,12 @@
 #include <mrpt/math/wrap2pi.h>
-#include <mrpt_vslam/multirobot/SensorPoseCorrection.h>
+#include <mrpt_vslam/core/SensorPoseCorrection.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
 #include <cmath>
 #include <optional>
 
-namespace mrpt_vslam::multirobot {
+namespace mrpt_vslam::core {
 
 namespace {
 
@@ -112,4 +112,4 @@ TSensorPoseCorrection TSensorPoseCorrection::estimate(const std::vector<TReading
     return *best;
 }
 
-}  // namespace mrpt_vslam::multirobot
+}  // namespace mrpt_vslam::core

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 #include <mrpt/math/wrap2pi.h>
-#include <mrpt_vslam/multirobot/SensorPoseCorrection.h>
+#include <mrpt_vslam/core/SensorPoseCorrection.h>
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
@@ -9,8 +9,8 @@
 #include <vector>
 
 using mrpt::math::TPose2D;
-using mrpt_vslam::multirobot::TReadingPair;
-using mrpt_vslam::multirobot::TSensorPoseCorrection;
+using mrpt_vslam::core::TReadingPair;
+using mrpt_vslam::core::TSensorPoseCorrection;
 
 namespace {
 

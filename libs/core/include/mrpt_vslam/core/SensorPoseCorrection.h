@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-namespace mrpt_vslam::multirobot {
+namespace mrpt_vslam::core {
 
 /** Two readings of one point by one sensor, from robot poses x_i and x_j = x_i ⊕ u, in the
  *  robot frame as the sensor's pose on the robot puts them. */
@@ -17,11 +17,12 @@ struct TReadingPair {
 };
 
 /** The planar correction δ = (t, θ) of a sensor's pose on the robot that best explains pairs of
- *  readings of the same point (ours, doc/multirobot.md): with the sensor at δ ⊕ (its pose), a
- *  reading z lies at δ ⊕ z = R(θ) z + t in the robot frame, and the point read from x_i and
- *  from x_j = x_i ⊕ u is one: r = (δ ⊕ z_i) − u ⊕ (δ ⊕ z_j) = 0. A translation t shows only
- *  where the robot turns, θ where it moves. An odometry whose heading drifts by ε [rad/m] looks
- *  like a sensor turned by about ε times the readings' range: the two are not told apart. */
+ *  readings of the same point (ours; doc/multirobot.md, "Checking the sensor poses"): with the
+ * sensor at δ ⊕ (its pose), a reading z lies at δ ⊕ z = R(θ) z + t in the robot frame, and the
+ * point read from x_i and from x_j = x_i ⊕ u is one: r = (δ ⊕ z_i) − u ⊕ (δ ⊕ z_j) = 0. A
+ * translation t shows only where the robot turns, θ where it moves. An odometry whose heading
+ * drifts by ε [rad/m] looks like a sensor turned by about ε times the readings' range: the two are
+ * not told apart. */
 struct TSensorPoseCorrection {
     Eigen::Vector3d delta = Eigen::Vector3d::Zero();  ///< (t_x [m], t_y [m], θ [rad])
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();    ///< its covariance
@@ -42,4 +43,4 @@ struct TSensorPoseCorrection {
     double largestMoveStd() const;
 };
 
-}  // namespace mrpt_vslam::multirobot
+}  // namespace mrpt_vslam::core
