@@ -201,3 +201,41 @@ TEST(OmniFastSLAMUserRawlog, SaysWhenTheBearingsDoNotFitTheCamera)
     EXPECT_GT(10 * countsRight["associated_measurements"].get<int>(),
               8 * countsRight["measurements"].get<int>());
 }
+
+// The camera configured 5° turned or 0.3 m forward of where it was: the bearings of a light
+// from nearby steps find the correction, and the run warns; with the camera right it finds
+// none and does not.
+TEST(OmniFastSLAMUserRawlog, SaysWhenTheCameraPoseIsOff)
+{
+    const ScratchFolder scratch("omni-camera-pose-check");
+    const auto checkOf = [&](const std::string& name, const std::string& pose) {
+        const std::string out = scratch.file(name);
+        const auto r = runCommand(
+            std::string(MRPT_VSLAM_BIN_DIR "/omni-fastslam ") + kConfigs + "sports-hall.ini " +
+                kHall +
+                ".rawlog --seed 1 -q --set "
+                "MappingApplication_ceilingLightsMap_00_creationOpts.sensor_in_robot='[" +
+                pose + "]' --out '" + out + "'",
+            scratch.path() / "run.log");
+        EXPECT_EQ(r.exit_code, 0) << r.out;
+        const auto report = mrpt_vslam::test::readJson(out + "/run.json");
+        return std::make_pair(report["results"]["sensor_pose_check"]["camera"], report["warnings"]);
+    };
+    const auto [right, rightWarnings] = checkOf("right", "0 0 1.8 0 0 0");
+    EXPECT_EQ(rightWarnings, nlohmann::json::array());
+    EXPECT_LT(std::abs(right["dyaw_deg"].get<double>()), 1) << right;
+    EXPECT_LT(std::abs(right["dx_dy_m"][0].get<double>()), 0.05) << right;
+    const auto [turned, turnedWarnings] = checkOf("turned", "0 0 1.8 5 0 0");
+    EXPECT_NEAR(turned["dyaw_deg"].get<double>(), -5, 1) << turned;
+    const auto [moved, movedWarnings] = checkOf("moved", "0.3 0 1.8 0 0 0");
+    EXPECT_NEAR(moved["dx_dy_m"][0].get<double>(), -0.3, 0.05) << moved;
+    for (const auto& warnings : {turnedWarnings, movedWarnings}) {
+        ASSERT_EQ(warnings.size(), 1u) << warnings;
+        EXPECT_EQ(warnings[0].get<std::string>().rfind(
+                      "camera: its readings of a landmark from nearby steps fit best with the "
+                      "sensor turned by ",
+                      0),
+                  0u)
+            << warnings;
+    }
+}

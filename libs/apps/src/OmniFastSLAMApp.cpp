@@ -61,7 +61,8 @@ struct OmniFastSLAMApp::Impl : ParticleFilterApp {
     std::unique_ptr<CeilingLightDetector> detector;
     std::unique_ptr<COmniFastSLAM> filter;
     LightsPathSmoother::TOptions smootherOptions;
-    std::unique_ptr<LightsPathSmoother> smoother;  ///< with smooth_path
+    /// records the run: the smoothing (with smooth_path) and the camera pose check
+    std::unique_ptr<LightsPathSmoother> smoother;
     /// With smooth_path: the smoothed path and lights, the time they took, the filter's path.
     std::optional<LightsPathSmoother::TResult> smoothed;
     double smoothingSeconds = 0;
@@ -141,11 +142,9 @@ void OmniFastSLAMApp::Impl::prepare()
     filter = makeFilter<COmniFastSLAM>(mapTemplate);
     filter->options = filterOptions;
     filter->kld = kld;
-    if (smootherOptions.smooth_path) {
-        smoother = std::make_unique<LightsPathSmoother>();
-        smoother->options = smootherOptions;
-        filter->setStepObserver(smoother.get());
-    }
+    smoother = std::make_unique<LightsPathSmoother>();
+    smoother->options = smootherOptions;
+    filter->setStepObserver(smoother.get());
 }
 
 std::vector<core::ObservationSelector> OmniFastSLAMApp::Impl::stepObservations() const
@@ -253,7 +252,7 @@ void OmniFastSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
         throw std::runtime_error(rawlog + ": no ceiling-light measurement in any frame: " + why);
     }
     app.estimatedPath = asTrajectory(COmniFastSLAM::pathOf(filter->bestParticle()));
-    if (smoother) {
+    if (smootherOptions.smooth_path) {
         const core::RunTimer smoothing;
         smoothed = smoother->smooth(filter->bestParticle());
         smoothingSeconds = smoothing.elapsedSeconds();
@@ -302,6 +301,10 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
         core::saveFinalMap(best.map, out.path());
         drawBestParticle(scene);
     }
+    const core::RunTimer checking;
+    if (const auto check = smoother->cameraPoseCheck(best))
+        reportSensorPoseChecks("omni-fastslam", {{"camera", *check}}, checking.elapsedSeconds(),
+                               report, args.quiet);
     drawOdometryAndGroundTruth(scene, app.odometryPath, start.groundTruth);
     if (const auto landmarks = trueLandmarks(start.groundTruthPrefix))
         drawLandmarks(scene, *landmarks);

@@ -43,7 +43,7 @@ void reportSensorPoseChecks(
     // on the simulated teams (their odometry's heading drift), moves of 0.4-0.7 m at 1-3 σ on
     // MRCLAM (doc/results/sensor-pose-check.md).
     constexpr double kTurnDeg = 3, kMove = 0.15, kSigmas = 5, kConfounding = 4;
-    report.setResult("sensor_pose_check_s", seconds);
+    report.setPartTiming("sensor_pose_check", seconds);
     std::string json;
     for (const auto& [sensor, d] : checks) {
         const double turnDeg = mrpt::RAD2DEG(d.delta[2]),

@@ -38,7 +38,7 @@ std::string poseText(const mrpt::poses::CPose3D& pose);
 
 /** The sensor pose checks of a run (sensor name → TSensorPoseCorrection; doc/multirobot.md,
  *  "Checking the sensor poses"): `app`'s line per sensor unless `quiet`, run.json
- *  `results.sensor_pose_check` and `results.sensor_pose_check_s` (`seconds`), and a warning per
+ *  `results.sensor_pose_check` and `timing.sensor_pose_check_s` (`seconds`), and a warning per
  *  sensor whose pose or readings look wrong. */
 void reportSensorPoseChecks(
     const char* app, const std::vector<std::pair<std::string, core::TSensorPoseCorrection>>& checks,

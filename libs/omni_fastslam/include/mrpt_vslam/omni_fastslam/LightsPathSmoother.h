@@ -2,8 +2,10 @@
 
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPose2D.h>
+#include <mrpt_vslam/core/SensorPoseCorrection.h>
 #include <mrpt_vslam/omni_fastslam/COmniFastSLAM.h>
 
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -62,6 +64,15 @@ class LightsPathSmoother : public COmniFastSLAM::TStepObserver {
      *  \throw std::logic_error if `p`'s path does not hold the start and one step per recorded step
      */
     TResult smooth(const TOmniFastSLAMParticle& p) const;
+
+    /** The correction of the camera's pose on the robot that best explains the bearings
+     *  particle `p` associated with a light of its map (core::TSensorPoseCorrection): each
+     *  bearing read as the point where its ray meets the plane of its light's height, paired
+     *  with the bearing of the same light up to 3 steps before, through the odometry between
+     *  them. None with the planar model (an azimuth meets no plane) or without pairs.
+     *  \pre registered with the filter before its reset() */
+    std::optional<core::TSensorPoseCorrection> cameraPoseCheck(
+        const TOmniFastSLAMParticle& p) const;
 
   private:
     struct TStep {

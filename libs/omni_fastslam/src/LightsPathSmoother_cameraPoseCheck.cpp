@@ -1,0 +1,91 @@
+#include <mrpt/poses/CPosePDFGaussian.h>
+#include <mrpt_vslam/omni_fastslam/LightsPathSmoother.h>
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace mrpt_vslam::omni_fastslam {
+
+namespace {
+
+/// Bearing z read as the point where its ray, from the camera on the robot at the origin,
+/// meets the plane z = `height`, in the robot's plane: its (x, y) and covariance (the
+/// bearing's Q through the Jacobian, by central differences). None where the ray does not
+/// rise to that plane.
+std::optional<std::pair<Eigen::Vector2d, Eigen::Matrix2d>> pointOnPlane(
+    const BearingMeasurementModel& model, const TBearingMeasurement& z, double height)
+{
+    const mrpt::math::TPose2D origin(0, 0, 0);
+    const auto o = model.rayOriginInMap(origin);
+    const auto meet = [&](const Eigen::Vector2d& angles) -> std::optional<Eigen::Vector2d> {
+        const auto d = model.rayDirectionInMap(angles, origin);
+        if (d.z() < 1e-3) return std::nullopt;  // (nearly) horizontal or downwards
+        const double s = (height - o.z()) / d.z();
+        if (s <= 0) return std::nullopt;
+        return Eigen::Vector2d(o.x() + s * d.x(), o.y() + s * d.y());
+    };
+    const auto p = meet(z.z);
+    if (!p) return std::nullopt;
+    constexpr double h = 1e-6;
+    Eigen::Matrix2d J;
+    for (int i = 0; i < 2; i++) {
+        Eigen::Vector2d plus = z.z, minus = z.z;
+        plus[i] += h;
+        minus[i] -= h;
+        const auto a = meet(plus), b = meet(minus);
+        if (!a || !b) return std::nullopt;
+        J.col(i) = (*a - *b) / (2 * h);
+    }
+    return std::make_pair(*p, J * z.Q * J.transpose());
+}
+
+}  // namespace
+
+std::optional<core::TSensorPoseCorrection> LightsPathSmoother::cameraPoseCheck(
+    const TOmniFastSLAMParticle& p) const
+{
+    constexpr size_t kMaxGap = 3;  // steps between two bearings of a pair
+    const auto steps = p.path.stepsOldestFirst();
+    if (steps.size() != m_steps.size() + 1)
+        throw std::logic_error("LightsPathSmoother: the particle's path has " +
+                               std::to_string(steps.size()) + " steps for " +
+                               std::to_string(m_steps.size()) + " recorded steps");
+    const BearingMeasurementModel model = p.map.measurementModel();
+    if (model.isPlanar()) return std::nullopt;
+    std::map<int64_t, double> heightOf;
+    for (const auto& l : p.map.landmarks()) heightOf[l.id] = l.mean.z();
+    struct TLast {
+        size_t step;
+        Eigen::Vector2d z;
+        Eigen::Matrix2d R;
+    };
+    std::map<int64_t, TLast> last;  // per light
+    std::vector<core::TReadingPair> pairs;
+    for (size_t k = 1; k < steps.size(); k++)
+        for (const auto& c : steps[k]->state.correspondences) {
+            const auto height = heightOf.find(c.landmark_id);
+            if (height == heightOf.end()) continue;  // a light the map no longer has
+            const auto point =
+                pointOnPlane(model, m_steps[k - 1].z.at(c.measurement), height->second);
+            if (!point) continue;
+            const TLast now{k, point->first, point->second};
+            auto [it, first] = last.try_emplace(c.landmark_id, now);
+            if (first) continue;
+            const TLast before = it->second;
+            it->second = now;
+            if (now.step - before.step > kMaxGap) continue;
+            mrpt::poses::CPosePDFGaussian u;  // the odometry between the two, composed
+            for (size_t s = before.step + 1; s <= now.step; s++) {
+                const core::TOdometryGaussian& step = m_steps[s - 1].motion;
+                u += mrpt::poses::CPosePDFGaussian(mrpt::poses::CPose2D(step.mean),
+                                                   mrpt::math::CMatrixDouble33(step.cov));
+            }
+            pairs.push_back({before.z, now.z, before.R, now.R, u.mean.asTPose(), u.cov.asEigen()});
+        }
+    if (pairs.empty()) return std::nullopt;
+    return core::TSensorPoseCorrection::estimate(pairs);
+}
+
+}  // namespace mrpt_vslam::omni_fastslam
