@@ -1,16 +1,18 @@
 #!/usr/bin/env bash
-# multirobot-vslam's check of the sensor poses on the robots (doc/multirobot.md, "Checking the
-# sensor poses"; doc/results/sensor-pose-check.md):
+# The check of the sensor poses on the robots of multirobot-vslam and omni-fastslam
+# (doc/multirobot.md, "Checking the sensor poses"; doc/results/sensor-pose-check.md):
 #   1. the shipped data with their sensor poses as given: the office team of two and of three
-#      (office-team-2.ini, office-team-3.ini) and the MRCLAM cut (mrclam.ini), per sensor the
-#      correction found, its σ, the pairs beyond 3 σ and whether the run warned;
+#      (office-team-2.ini, office-team-3.ini) and the MRCLAM cut (mrclam.ini) for
+#      multirobot-vslam, the sports hall and the hard hall (sports-hall.ini) for omni-fastslam;
+#      per sensor the correction found, its σ, the pairs beyond 3 σ and whether the run warned;
 #   2. the office team of two with R1's camera pose in the rawlog changed by stock rawlog-edit
 #      (--sensors-pose), as a wrong calibration would state it: turned about the vertical,
 #      moved forward, raised, pitched, a quarter and a half turn, without its roll, at the
 #      robot's origin; per seed R1's position RMSE (and odometry's), the correction found for
 #      R1's camera, and whether the run warned;
-#   3. omni-fastslam (sports-hall.ini), which has no such check, on the sports hall with its
-#      camera pose turned or moved the same way: per seed the position RMSE and the warnings.
+#   3. omni-fastslam (sports-hall.ini) on the sports hall with its camera pose turned or moved
+#      the same way: per seed the position RMSE and whether the run warned, and the correction
+#      found for the camera.
 # Writes run folders under out/reproduce-sensor-pose-check/ (or $OUT) and the tables to
 # doc/results/sensor-pose-check.md (or $RESULTS). Builds first (scripts/setup.sh). Takes about
 # two minutes.
@@ -33,18 +35,23 @@ OUT="$(cd "$OUT" && pwd)"
 TABLE="$OUT/table.tsv"
 : >"$TABLE"
 
-# run NAME CONFIG RAWLOG SEED: multirobot-vslam into $OUT/NAME-sSEED
+# run NAME CONFIG RAWLOG SEED [APP]: APP (multirobot-vslam) into $OUT/NAME-sSEED
 run() {
   local dir="$OUT/$1-s$4"
   echo "reproduce-sensor-pose-check.sh: $1, seed $4" >&2
-  "$BIN/multirobot-vslam" "$2" "$3" --seed "$4" -q --out "$dir" </dev/null >"$dir.log" 2>&1 ||
+  "$BIN/${5:-multirobot-vslam}" "$2" "$3" --seed "$4" -q --out "$dir" </dev/null >"$dir.log" 2>&1 ||
     { echo "reproduce-sensor-pose-check.sh: $1 failed, see $dir.log" >&2; exit 1; }
 }
+HALL="$REPO_DIR/datasets/sports-hall"
+HALL_CONFIG="$REPO_DIR/share/mrpt-vslam/config/omni-fastslam/sports-hall.ini"
 
 # 1. the shipped data as given
 for s in $SEEDS; do
   run team2 "$CONFIGS/office-team-2.ini" "$TEAM/team2.rawlog" "$s"
   run team3 "$CONFIGS/office-team-3.ini" "$TEAM/team3.rawlog" "$s"
+  run hall "$HALL_CONFIG" "$HALL/hall.rawlog" "$s" omni-fastslam
+  run hall-hard "$HALL_CONFIG" "$REPO_DIR/datasets/sports-hall-hard/hall-hard.rawlog" "$s" \
+    omni-fastslam
 done
 first_seed="${SEEDS%% *}"
 run mrclam "$CONFIGS/mrclam.ini" "$REPO_DIR/datasets/utias-mrclam/mrclam7-r123-0-300.rawlog" \
@@ -83,7 +90,6 @@ EOF
 
 # 3. omni-fastslam's hall, its camera pose changed: NAME x y [m] yaw [deg] (made with 0 0, 0;
 # the camera 1.8 m up)
-HALL="$REPO_DIR/datasets/sports-hall"
 HALL_TABLE="$OUT/hall-table.tsv"
 : >"$HALL_TABLE"
 while read -r name x y yaw; do
@@ -97,13 +103,7 @@ while read -r name x y yaw; do
     { echo "reproduce-sensor-pose-check.sh: rawlog-edit failed, see $OUT/hall-$name.rawlog-edit.log" >&2; exit 1; }
   ln -sfn "$HALL/hall_Images" "${rawlog%.rawlog}_Images"
   for f in groundtruth.tum landmarks.txt; do cp "$HALL/hall.$f" "${rawlog%.rawlog}.$f"; done
-  for s in $SEEDS; do
-    dir="$OUT/hall-$name-s$s"
-    echo "reproduce-sensor-pose-check.sh: hall-$name, seed $s" >&2
-    "$BIN/omni-fastslam" "$REPO_DIR/share/mrpt-vslam/config/omni-fastslam/sports-hall.ini" \
-      "$rawlog" --seed "$s" -q --out "$dir" </dev/null >"$dir.log" 2>&1 ||
-      { echo "reproduce-sensor-pose-check.sh: hall-$name failed, see $dir.log" >&2; exit 1; }
-  done
+  for s in $SEEDS; do run "hall-$name" "$HALL_CONFIG" "$rawlog" "$s" omni-fastslam; done
   printf '%s\t%s %s\t%s\n' "$name" "$x" "$y" "$yaw" >>"$HALL_TABLE"
 done <<'EOF'
 as-made 0 0 0
@@ -137,7 +137,7 @@ print("Per sensor: the turn [deg] and move [m] of its pose that fit its readings
       "pairs of readings beyond 3 σ, and whether the run warned.\n")
 print("| data | seed | sensor | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | warned |")
 print("|---|---|---|---|---|---|---|---|")
-for name in ["team2", "team3", "mrclam"]:
+for name in ["team2", "team3", "mrclam", "hall", "hall-hard"]:
     for s in seeds if name != "mrclam" else seeds[:1]:
         r = load(f"{name}-s{s}")
         for sensor, c in r["results"]["sensor_pose_check"].items():
@@ -162,11 +162,12 @@ for line in open(table):
     print(f"| {name} | {angles} | {position} | {', '.join(rmse)} | {odometry:.2f} | "
           f"{correction(c)} | {', '.join(warnings)} |")
 
-print("\n## omni-fastslam on the sports hall, its camera pose stated wrong (no check)\n")
+print("\n## omni-fastslam on the sports hall, its camera pose stated wrong\n")
 print("The hall's camera pose as the rawlog states it (made with x = y = 0, yaw 0, 1.8 m up), "
-      "the position RMSE per seed against the odometry's, and the number of warnings of each run.\n")
-print("| variant | stated x y [m] | stated yaw [deg] | RMSE [m] | odometry RMSE [m] | warnings (seeds) |")
-print("|---|---|---|---|---|---|")
+      "the position RMSE per seed against the odometry's, and the correction found for the "
+      "camera (seed " + seeds[0] + ").\n")
+print("| variant | stated x y [m] | stated yaw [deg] | RMSE [m] | odometry RMSE [m] | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | warned (seeds) |")
+print("|---|---|---|---|---|---|---|---|---|---|")
 for line in open(hall_table):
     name, position, yaw = line.rstrip("\n").split("\t")
     rmse, warnings = [], []
@@ -175,12 +176,13 @@ for line in open(hall_table):
             m = json.load(f)
         rmse.append(f"{m['estimate']['ate_rmse_m']:.2f}")
         odometry = m["odometry"]["ate_rmse_m"]
-        warnings.append(str(len(load(f"hall-{name}-s{s}")["warnings"])))
+        warnings.append(warned(load(f"hall-{name}-s{s}"), "camera"))
+    c = load(f"hall-{name}-s{seeds[0]}")["results"]["sensor_pose_check"]["camera"]
     print(f"| {name} | {position} | {yaw} | {', '.join(rmse)} | {odometry:.2f} | "
-          f"{', '.join(warnings)} |")
+          f"{correction(c)} | {', '.join(warnings)} |")
 PY
 {
-  results_header "Checking the sensor poses: multirobot-vslam on the shipped data and on wrong camera poses (and omni-fastslam, which has no check)" "$COMMAND"
+  results_header "Checking the sensor poses: multirobot-vslam and omni-fastslam on the shipped data and on wrong camera poses" "$COMMAND"
   cat "$RESULTS.tmp"
 } >"$RESULTS.tmp2"
 rm -f "$RESULTS.tmp"
