@@ -1,4 +1,5 @@
 #include <mrpt/math/wrap2pi.h>
+#include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt_vslam/core/SensorPoseCorrection.h>
 
 #include <Eigen/Cholesky>
@@ -47,6 +48,18 @@ TLinearized linearize(const TReadingPair& p, const Eigen::Vector3d& x)
 }
 
 }  // namespace
+
+std::pair<mrpt::math::TPose2D, Eigen::Matrix3d> composedOdometry(
+    const std::function<const TOdometryGaussian&(size_t)>& motion, size_t from, size_t to)
+{
+    mrpt::poses::CPosePDFGaussian u;
+    for (size_t s = from + 1; s <= to; s++) {
+        const TOdometryGaussian& step = motion(s);
+        u += mrpt::poses::CPosePDFGaussian(mrpt::poses::CPose2D(step.mean),
+                                           mrpt::math::CMatrixDouble33(step.cov));
+    }
+    return {u.mean.asTPose(), u.cov.asEigen()};
+}
 
 Eigen::Vector2d TSensorPoseCorrection::whitenedResidual(const TReadingPair& p) const
 {

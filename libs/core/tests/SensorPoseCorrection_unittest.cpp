@@ -147,3 +147,44 @@ TEST(SensorPoseCorrection, TurnConfoundingTellsCirclesFromVariedPaths)
         EXPECT_NEAR(c.largestMoveStd(), std::sqrt(eig.eigenvalues().maxCoeff()), 1e-12);
     }
 }
+
+// A reading pairs with the same point's reading before it when that is at most max_gap steps
+// back, through the odometry of the steps between them composed: mean a ⊕ b, covariance
+// J_a Q_a J_aᵀ + J_b Q_b J_bᵀ.
+TEST(ReadingPairing, PairsReadingsOfOnePointThroughTheOdometryBetween)
+{
+    std::vector<mrpt_vslam::core::TOdometryGaussian> motions(6);
+    for (size_t s = 0; s < motions.size(); s++) {
+        motions[s].mean = TPose2D(0.2 + 0.01 * s, 0.01, 0.1 * (s % 3));
+        motions[s].cov = Eigen::Vector3d(1e-4 * (s + 1), 2e-4, 1e-5).asDiagonal();
+    }
+    mrpt_vslam::core::ReadingPairing<int> pairing(
+        [&](int, size_t step) -> const mrpt_vslam::core::TOdometryGaussian& {
+            return motions.at(step - 1);
+        },
+        2);
+    const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * 0.01;
+    EXPECT_FALSE(pairing.add(7, 1, {1, 2}, R));  // the point's first reading
+    EXPECT_FALSE(pairing.add(8, 1, {3, 4}, R));
+    const auto pair = pairing.add(7, 3, {1.5, 2.5}, R);
+    ASSERT_TRUE(pair);
+    EXPECT_EQ(pair->z_i, Eigen::Vector2d(1, 2));
+    EXPECT_EQ(pair->z_j, Eigen::Vector2d(1.5, 2.5));
+    // steps 2 and 3: motions[1] ⊕ motions[2]
+    const TPose2D a = motions[1].mean, b = motions[2].mean;
+    const TPose2D ab = a + b;
+    EXPECT_NEAR(pair->u.x, ab.x, 1e-12);
+    EXPECT_NEAR(pair->u.y, ab.y, 1e-12);
+    EXPECT_NEAR(pair->u.phi, ab.phi, 1e-12);
+    const double c = std::cos(a.phi), s = std::sin(a.phi);
+    Eigen::Matrix3d Ja = Eigen::Matrix3d::Identity(), Jb = Eigen::Matrix3d::Identity();
+    Ja(0, 2) = -s * b.x - c * b.y;
+    Ja(1, 2) = c * b.x - s * b.y;
+    Jb.topLeftCorner<2, 2>() << c, -s, s, c;
+    const Eigen::Matrix3d Q =
+        Ja * motions[1].cov * Ja.transpose() + Jb * motions[2].cov * Jb.transpose();
+    EXPECT_LT((pair->Q - Q).cwiseAbs().maxCoeff(), 1e-12) << pair->Q << "\n" << Q;
+    // three steps after the point's last reading: more than max_gap, no pair
+    EXPECT_FALSE(pairing.add(8, 4, {3, 4}, R));
+    EXPECT_TRUE(pairing.add(8, 5, {3, 4}, R));
+}

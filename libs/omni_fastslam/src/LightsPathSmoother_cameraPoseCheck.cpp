@@ -1,4 +1,3 @@
-#include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt_vslam/omni_fastslam/LightsPathSmoother.h>
 
 #include <cmath>
@@ -46,7 +45,6 @@ std::optional<std::pair<Eigen::Vector2d, Eigen::Matrix2d>> pointOnPlane(
 std::optional<core::TSensorPoseCorrection> LightsPathSmoother::cameraPoseCheck(
     const TOmniFastSLAMParticle& p) const
 {
-    constexpr size_t kMaxGap = 3;  // steps between two bearings of a pair
     const auto steps = p.path.stepsOldestFirst();
     if (steps.size() != m_steps.size() + 1)
         throw std::logic_error("LightsPathSmoother: the particle's path has " +
@@ -56,12 +54,10 @@ std::optional<core::TSensorPoseCorrection> LightsPathSmoother::cameraPoseCheck(
     if (model.isPlanar()) return std::nullopt;
     std::map<int64_t, double> heightOf;
     for (const auto& l : p.map.landmarks()) heightOf[l.id] = l.mean.z();
-    struct TLast {
-        size_t step;
-        Eigen::Vector2d z;
-        Eigen::Matrix2d R;
-    };
-    std::map<int64_t, TLast> last;  // per light
+    core::ReadingPairing<int64_t> pairing(  // per light
+        [&](int64_t, size_t step) -> const core::TOdometryGaussian& {
+            return m_steps.at(step - 1).motion;
+        });
     std::vector<core::TReadingPair> pairs;
     for (size_t k = 1; k < steps.size(); k++)
         for (const auto& c : steps[k]->state.correspondences) {
@@ -70,19 +66,8 @@ std::optional<core::TSensorPoseCorrection> LightsPathSmoother::cameraPoseCheck(
             const auto point =
                 pointOnPlane(model, m_steps[k - 1].z.at(c.measurement), height->second);
             if (!point) continue;
-            const TLast now{k, point->first, point->second};
-            auto [it, first] = last.try_emplace(c.landmark_id, now);
-            if (first) continue;
-            const TLast before = it->second;
-            it->second = now;
-            if (now.step - before.step > kMaxGap) continue;
-            mrpt::poses::CPosePDFGaussian u;  // the odometry between the two, composed
-            for (size_t s = before.step + 1; s <= now.step; s++) {
-                const core::TOdometryGaussian& step = m_steps[s - 1].motion;
-                u += mrpt::poses::CPosePDFGaussian(mrpt::poses::CPose2D(step.mean),
-                                                   mrpt::math::CMatrixDouble33(step.cov));
-            }
-            pairs.push_back({before.z, now.z, before.R, now.R, u.mean.asTPose(), u.cov.asEigen()});
+            if (auto pair = pairing.add(c.landmark_id, k, point->first, point->second))
+                pairs.push_back(*pair);
         }
     if (pairs.empty()) return std::nullopt;
     return core::TSensorPoseCorrection::estimate(pairs);

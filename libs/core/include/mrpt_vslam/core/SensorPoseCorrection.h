@@ -1,11 +1,21 @@
 #pragma once
 
 #include <mrpt/math/TPose2D.h>
+#include <mrpt_vslam/core/OdometryGaussian.h>
 
 #include <Eigen/Core>
+#include <functional>
+#include <map>
+#include <optional>
+#include <utility>
 #include <vector>
 
 namespace mrpt_vslam::core {
+
+/// The odometry from step `from` to step `to` > `from`, `motion(s)` that from s − 1 to s,
+/// composed (mean and covariance).
+std::pair<mrpt::math::TPose2D, Eigen::Matrix3d> composedOdometry(
+    const std::function<const TOdometryGaussian&(size_t)>& motion, size_t from, size_t to);
 
 /** Two readings of one point by one sensor, from robot poses x_i and x_j = x_i ⊕ u, in the
  *  robot frame as the sensor's pose on the robot puts them. */
@@ -14,6 +24,47 @@ struct TReadingPair {
     Eigen::Matrix2d R_i, R_j;  ///< their covariances
     mrpt::math::TPose2D u;     ///< the odometry from x_i to x_j, in x_i's frame
     Eigen::Matrix3d Q;         ///< its covariance
+};
+
+/** Pairs each reading of a point (`Key`) with the previous reading of the same point when that
+ *  is at most `max_gap` steps before, through the odometry between the two steps (the steps'
+ *  Gaussians composed). Readings are added in the order of their steps. */
+template <class Key>
+class ReadingPairing {
+  public:
+    /// `motion(key, s)`: the odometry Gaussian from step s − 1 to step s of the robot that
+    /// read point `key`.
+    explicit ReadingPairing(std::function<const TOdometryGaussian&(const Key&, size_t)> motion,
+                            size_t max_gap = 3)
+        : m_motion(std::move(motion)), m_maxGap(max_gap)
+    {
+    }
+    /// The reading `z` (covariance `R`, robot frame) of point `key` at step `step`, and the pair
+    /// it makes with the point's reading before, if any.
+    std::optional<TReadingPair> add(const Key& key, size_t step, const Eigen::Vector2d& z,
+                                    const Eigen::Matrix2d& R)
+    {
+        const TReading now{step, z, R};
+        auto [it, first] = m_last.try_emplace(key, now);
+        if (first) return std::nullopt;
+        const TReading before = it->second;
+        it->second = now;
+        if (now.step <= before.step || now.step - before.step > m_maxGap) return std::nullopt;
+        const auto [u, Q] =
+            composedOdometry([&](size_t s) -> const TOdometryGaussian& { return m_motion(key, s); },
+                             before.step, now.step);
+        return TReadingPair{before.z, now.z, before.R, now.R, u, Q};
+    }
+
+  private:
+    struct TReading {
+        size_t step;
+        Eigen::Vector2d z;
+        Eigen::Matrix2d R;
+    };
+    std::function<const TOdometryGaussian&(const Key&, size_t)> m_motion;
+    size_t m_maxGap;
+    std::map<Key, TReading> m_last;
 };
 
 /** The planar correction δ = (t, θ) of a sensor's pose on the robot that best explains pairs of
