@@ -143,6 +143,22 @@ for name in ["team2", "team3", "mrclam", "hall", "hall-hard"]:
         for sensor, c in r["results"]["sensor_pose_check"].items():
             print(f"| {name} | {s} | {sensor} | {correction(c)} | {warned(r, sensor)} |")
 
+def variant_row(run, labels, robot, sensor):
+    """A variant's row: the labels, the position RMSE per seed (metrics.json, `robot` or the
+    single robot's), the odometry's, the correction found for `sensor` (first seed) and
+    whether each run warned."""
+    rmse, warnings = [], []
+    for s in seeds:
+        with open(f"{out}/{run}-s{s}/metrics.json") as f:
+            m = json.load(f)
+        m = m["robots"][robot] if robot else m
+        rmse.append(f"{m['estimate']['ate_rmse_m']:.2f}")
+        odometry = m["odometry"]["ate_rmse_m"]
+        warnings.append(warned(load(f"{run}-s{s}"), sensor))
+    c = load(f"{run}-s{seeds[0]}")["results"]["sensor_pose_check"][sensor]
+    return (f"| {' | '.join(labels)} | {', '.join(rmse)} | {odometry:.2f} | {correction(c)} | "
+            f"{', '.join(warnings)} |")
+
 print("\n## The office team of two, R1's camera pose stated wrong\n")
 print("R1's camera pose as the rawlog states it (x y z [m], yaw pitch roll [deg]; the data were "
       "made with 0.1 0.06 0.5, −90 0 −90), R1's position RMSE per seed against its odometry's, "
@@ -151,16 +167,7 @@ print("| variant | stated yaw pitch roll [deg] | stated x y z [m] | R1 RMSE [m] 
 print("|---|---|---|---|---|---|---|---|---|---|")
 for line in open(table):
     name, position, angles = line.rstrip("\n").split("\t")
-    rmse, warnings = [], []
-    for s in seeds:
-        with open(f"{out}/{name}-s{s}/metrics.json") as f:
-            m = json.load(f)["robots"]["R1"]
-        rmse.append(f"{m['estimate']['ate_rmse_m']:.2f}")
-        odometry = m["odometry"]["ate_rmse_m"]
-        warnings.append(warned(load(f"{name}-s{s}"), "R1 R1_LANDMARKS"))
-    c = load(f"{name}-s{seeds[0]}")["results"]["sensor_pose_check"]["R1 R1_LANDMARKS"]
-    print(f"| {name} | {angles} | {position} | {', '.join(rmse)} | {odometry:.2f} | "
-          f"{correction(c)} | {', '.join(warnings)} |")
+    print(variant_row(name, [name, angles, position], "R1", "R1 R1_LANDMARKS"))
 
 print("\n## omni-fastslam on the sports hall, its camera pose stated wrong\n")
 print("The hall's camera pose as the rawlog states it (made with x = y = 0, yaw 0, 1.8 m up), "
@@ -170,16 +177,7 @@ print("| variant | stated x y [m] | stated yaw [deg] | RMSE [m] | odometry RMSE 
 print("|---|---|---|---|---|---|---|---|---|---|")
 for line in open(hall_table):
     name, position, yaw = line.rstrip("\n").split("\t")
-    rmse, warnings = [], []
-    for s in seeds:
-        with open(f"{out}/hall-{name}-s{s}/metrics.json") as f:
-            m = json.load(f)
-        rmse.append(f"{m['estimate']['ate_rmse_m']:.2f}")
-        odometry = m["odometry"]["ate_rmse_m"]
-        warnings.append(warned(load(f"hall-{name}-s{s}"), "camera"))
-    c = load(f"hall-{name}-s{seeds[0]}")["results"]["sensor_pose_check"]["camera"]
-    print(f"| {name} | {position} | {yaw} | {', '.join(rmse)} | {odometry:.2f} | "
-          f"{correction(c)} | {', '.join(warnings)} |")
+    print(variant_row(f"hall-{name}", [name, position, yaw], None, "camera"))
 PY
 {
   results_header "Checking the sensor poses: multirobot-vslam and omni-fastslam on the shipped data and on wrong camera poses" "$COMMAND"
