@@ -319,14 +319,21 @@ std::optional<std::pair<size_t, size_t>> mergeablePair(const Problem& problem, d
 
 }  // namespace
 
-LightsPathSmoother::TResult LightsPathSmoother::smooth(const TOmniFastSLAMParticle& p) const
+std::vector<const TOmniFastSLAMPath::TStep*> LightsPathSmoother::recordedStepsOf(
+    const TOmniFastSLAMParticle& p) const
 {
-    const auto steps = p.path.stepsOldestFirst();
+    auto steps = p.path.stepsOldestFirst();
     if (steps.size() != m_steps.size() + 1)
         throw std::logic_error("LightsPathSmoother: the particle's path has " +
                                std::to_string(steps.size()) + " steps for " +
                                std::to_string(m_steps.size()) +
                                " recorded steps (register it before the filter's reset())");
+    return steps;
+}
+
+LightsPathSmoother::TResult LightsPathSmoother::smooth(const TOmniFastSLAMParticle& p) const
+{
+    const auto steps = recordedStepsOf(p);
     const BearingMeasurementModel model = p.map.measurementModel();
     Problem problem(model, options.huber);
     for (const auto* s : steps) problem.poses.push_back(s->state.robot_in_map);

@@ -2,8 +2,6 @@
 
 #include <cmath>
 #include <map>
-#include <stdexcept>
-#include <string>
 
 namespace mrpt_vslam::omni_fastslam {
 
@@ -45,11 +43,7 @@ std::optional<std::pair<Eigen::Vector2d, Eigen::Matrix2d>> pointOnPlane(
 std::optional<core::TSensorPoseCorrection> LightsPathSmoother::cameraPoseCheck(
     const TOmniFastSLAMParticle& p) const
 {
-    const auto steps = p.path.stepsOldestFirst();
-    if (steps.size() != m_steps.size() + 1)
-        throw std::logic_error("LightsPathSmoother: the particle's path has " +
-                               std::to_string(steps.size()) + " steps for " +
-                               std::to_string(m_steps.size()) + " recorded steps");
+    const auto steps = recordedStepsOf(p);
     const BearingMeasurementModel model = p.map.measurementModel();
     if (model.isPlanar()) return std::nullopt;
     std::map<int64_t, double> heightOf;

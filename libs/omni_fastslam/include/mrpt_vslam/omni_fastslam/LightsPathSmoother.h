@@ -80,6 +80,10 @@ class LightsPathSmoother : public COmniFastSLAM::TStepObserver {
         std::vector<TBearingMeasurement> z;
     };
     std::vector<TStep> m_steps;
+    /// `p`'s steps, oldest first: the start and one per recorded step.
+    /// \throw std::logic_error if they are not
+    std::vector<const TOmniFastSLAMPath::TStep*> recordedStepsOf(
+        const TOmniFastSLAMParticle& p) const;
 };
 
 }  // namespace mrpt_vslam::omni_fastslam
