@@ -18,21 +18,31 @@ Eigen::Matrix2d rotation(double a)
     return R;
 }
 
-/// r(x), its Jacobian ∂r/∂x and its covariance, of one pair.
+/// r(x), its Jacobian ∂r/∂x and its covariance, of one pair (N = 2) or bearing (N = 1).
+template <int N>
 struct TLinearized {
-    Eigen::Vector2d r;
-    Eigen::Matrix<double, 2, 3> J;
-    Eigen::Matrix2d C;
+    Eigen::Matrix<double, N, 1> r;
+    Eigen::Matrix<double, N, 3> J;
+    Eigen::Matrix<double, N, N> C;
+
+    /// The whitened residual e and Jacobian: L e = r, L Je = J with C = L Lᵀ.
+    std::pair<Eigen::Matrix<double, N, 1>, Eigen::Matrix<double, N, 3>> whitened() const
+    {
+        const Eigen::Matrix<double, N, N> L = C.llt().matrixL();
+        return {L.template triangularView<Eigen::Lower>().solve(r),
+                L.template triangularView<Eigen::Lower>().solve(J)};
+    }
 };
 
-TLinearized linearize(const TReadingPair& p, const Eigen::Vector3d& x)
+// d R(a)/da = R(a) S = S R(a)
+const Eigen::Matrix2d S = (Eigen::Matrix2d() << 0, -1, 1, 0).finished();
+
+TLinearized<2> linearize(const TReadingPair& p, const Eigen::Vector3d& x)
 {
-    Eigen::Matrix2d S;
-    S << 0, -1, 1, 0;  // d R(a)/da = R(a) S = S R(a)
     const Eigen::Vector2d t = x.head<2>(), tu(p.u.x, p.u.y);
     const Eigen::Matrix2d Rd = rotation(x[2]), Ru = rotation(p.u.phi);
     const Eigen::Vector2d pj = Rd * p.z_j + t;  // the point in x_j's frame
-    TLinearized l;
+    TLinearized<2> l;
     l.r = Rd * p.z_i + t - (Ru * pj + tu);
     l.J.leftCols<2>() = Eigen::Matrix2d::Identity() - Ru;
     // ∂r/∂θ = S (R(θ) z_i − Ru R(θ) z_j) is S (tu − (I − Ru) t) plus S r: the readings' noise,
@@ -44,6 +54,29 @@ TLinearized linearize(const TReadingPair& p, const Eigen::Vector3d& x)
     Ju.col(2) = S * Ru * pj;
     l.C = Rd * p.R_i * Rd.transpose() + Ru * Rd * p.R_j * Rd.transpose() * Ru.transpose() +
           Ju * p.Q * Ju.transpose();
+    return l;
+}
+
+TLinearized<1> linearize(const TEarlierPoseBearing& b, const Eigen::Vector3d& x)
+{
+    const Eigen::Vector2d tu(b.u.x, b.u.y);
+    const Eigen::Matrix2d Rd = rotation(x[2]), RuT = rotation(-b.u.phi);
+    const Eigen::Vector2d c = Rd * b.sensor + x.head<2>();  // the sensor in the robot frame
+    const Eigen::Vector2d p = RuT * (c - tu);               // c at x_i, in x_j's frame
+    const Eigen::Vector2d v = p - c;
+    // ∂atan2(v)/∂v
+    const Eigen::RowVector2d a = Eigen::RowVector2d(-v.y(), v.x()) / v.squaredNorm();
+    TLinearized<1> l;
+    l.r[0] = mrpt::math::wrapToPi(std::atan2(v.y(), v.x()) - x[2] - b.bearing);
+    // ∂v/∂t = Ruᵀ − I, ∂v/∂θ = (Ruᵀ − I) S R(θ) s
+    const Eigen::Matrix2d dv = RuT - Eigen::Matrix2d::Identity();
+    l.J.leftCols<2>() = a * dv;
+    l.J(0, 2) = a * dv * S * Rd * b.sensor - 1;
+    // ∂p/∂u = [−Ruᵀ, −S p]
+    Eigen::Matrix<double, 2, 3> Ju;
+    Ju.leftCols<2>() = -RuT;
+    Ju.col(2) = -S * p;
+    l.C(0, 0) = b.var + (a * Ju * b.Q * Ju.transpose() * a.transpose())(0, 0);
     return l;
 }
 
@@ -63,8 +96,12 @@ std::pair<mrpt::math::TPose2D, Eigen::Matrix3d> composedOdometry(
 
 Eigen::Vector2d TSensorPoseCorrection::whitenedResidual(const TReadingPair& p) const
 {
-    const TLinearized l = linearize(p, delta);
-    return l.C.llt().matrixL().solve(l.r);
+    return linearize(p, delta).whitened().first;
+}
+
+double TSensorPoseCorrection::whitenedResidual(const TEarlierPoseBearing& b) const
+{
+    return linearize(b, delta).whitened().first[0];
 }
 
 double TSensorPoseCorrection::turnConfounding() const { return cov(2, 2) * cov.inverse()(2, 2); }
@@ -75,17 +112,19 @@ double TSensorPoseCorrection::largestMoveStd() const
     return std::sqrt((a + c) / 2 + std::hypot((a - c) / 2, b));
 }
 
-TSensorPoseCorrection TSensorPoseCorrection::estimate(const std::vector<TReadingPair>& pairs,
-                                                      double huber)
+TSensorPoseCorrection TSensorPoseCorrection::estimate(
+    const std::vector<TReadingPair>& pairs, const std::vector<TEarlierPoseBearing>& bearings,
+    double huber)
 {
     const Eigen::Vector3d priorInfo(1.0, 1.0, 1.0 / (M_PI * M_PI));
+    const auto rho = [&](double n) {
+        return huber > 0 && n > huber ? 2 * huber * n - huber * huber : n * n;
+    };
     // Σ ρ(‖e‖²) plus the prior's, at `c`
     const auto cost = [&](const TSensorPoseCorrection& c) {
         double sum = c.delta.dot(priorInfo.cwiseProduct(c.delta));
-        for (const auto& p : pairs) {
-            const double n = c.whitenedResidual(p).norm();
-            sum += huber > 0 && n > huber ? 2 * huber * n - huber * huber : n * n;
-        }
+        for (const auto& p : pairs) sum += rho(c.whitenedResidual(p).norm());
+        for (const auto& b : bearings) sum += rho(std::abs(c.whitenedResidual(b)));
         return sum;
     };
     // from four turns: a sensor mounted a quarter or half turn off is found too
@@ -93,22 +132,21 @@ TSensorPoseCorrection TSensorPoseCorrection::estimate(const std::vector<TReading
     double bestCost = 0;
     for (const double start : {0.0, M_PI / 2, M_PI, -M_PI / 2}) {
         TSensorPoseCorrection c;
-        c.pairs = pairs.size();
+        c.pairs = pairs.size() + bearings.size();
         c.delta[2] = start;
         Eigen::Matrix3d H;
         for (int iteration = 0; iteration < 20; iteration++) {
             H = priorInfo.asDiagonal();
             Eigen::Vector3d g = priorInfo.cwiseProduct(c.delta);
-            for (const auto& p : pairs) {
-                const TLinearized l = linearize(p, c.delta);
-                const Eigen::Matrix2d L = l.C.llt().matrixL();
-                const Eigen::Vector2d e = L.triangularView<Eigen::Lower>().solve(l.r);
-                const Eigen::Matrix<double, 2, 3> Je = L.triangularView<Eigen::Lower>().solve(l.J);
+            const auto add = [&](const auto& l) {
+                const auto [e, Je] = l.whitened();
                 const double norm = e.norm();
                 const double w = huber > 0 && norm > huber ? huber / norm : 1.0;  // IRLS
                 H += w * Je.transpose() * Je;
                 g += w * Je.transpose() * e;
-            }
+            };
+            for (const auto& p : pairs) add(linearize(p, c.delta));
+            for (const auto& b : bearings) add(linearize(b, c.delta));
             const Eigen::Vector3d step = -H.ldlt().solve(g);
             c.delta += step;
             if (step.cwiseAbs().maxCoeff() < 1e-9) break;
@@ -120,8 +158,11 @@ TSensorPoseCorrection TSensorPoseCorrection::estimate(const std::vector<TReading
         best = c;
         bestCost = f;
     }
-    for (const auto& p : pairs)
-        if (huber > 0 && best->whitenedResidual(p).norm() > huber) best->outlier_pairs++;
+    if (huber > 0) {
+        for (const auto& p : pairs) best->outlier_pairs += best->whitenedResidual(p).norm() > huber;
+        for (const auto& b : bearings)
+            best->outlier_pairs += std::abs(best->whitenedResidual(b)) > huber;
+    }
     return *best;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 using mrpt::math::TPose2D;
+using mrpt_vslam::core::TEarlierPoseBearing;
 using mrpt_vslam::core::TReadingPair;
 using mrpt_vslam::core::TSensorPoseCorrection;
 
@@ -60,6 +61,38 @@ std::vector<TReadingPair> readingPairs(const Eigen::Vector3d& error, double sigm
     return pairs;
 }
 
+/** The robot of readingPairs() (not on a circle) with a camera stated at (0.2, 0.05) on it, turned
+ *  by nothing, and off by `error` (at δ ⊕ its stated pose): a view started every 6 steps, and
+ *  its bearing read from 1 to 5 steps later in turn. Bearings get N(0, σ_b²), the odometry from
+ *  the view N(0, Q) with Q growing with the steps between. */
+std::vector<TEarlierPoseBearing> earlierPoseBearings(const Eigen::Vector3d& error, double sigma_b,
+                                                     double sigma_u, std::mt19937& rng)
+{
+    std::normal_distribution<double> n(0, 1);
+    const Eigen::Vector2d stated(0.2, 0.05);
+    const double c = std::cos(error[2]), s = std::sin(error[2]);
+    const Eigen::Vector2d camera(c * stated.x() - s * stated.y() + error[0],
+                                 s * stated.x() + c * stated.y() + error[1]);
+    std::vector<TPose2D> path{TPose2D(-8, 0, 0)};
+    for (int k = 0; k < 400; k++)
+        path.push_back(path.back() + TPose2D(0.2, 0, 0.15 * std::sin(0.3 * k)));
+    std::vector<TEarlierPoseBearing> bearings;
+    for (size_t i = 0, gap = 1; i + 6 < path.size(); i += 6, gap = gap % 5 + 1) {
+        const TPose2D u = path[i + gap] - path[i];
+        // the camera at x_i, seen from the camera at x_j, in x_j's frame
+        const Eigen::Vector2d v = inverseCompose({u.x, u.y, u.phi}, camera) - camera;
+        TEarlierPoseBearing b;
+        b.sensor = stated;
+        b.var = sigma_b * sigma_b;
+        b.bearing = mrpt::math::wrapToPi(std::atan2(v.y(), v.x()) - error[2] + sigma_b * n(rng));
+        const double su = sigma_u * std::sqrt(double(gap));
+        b.Q = Eigen::Vector3d(su * su, su * su, std::pow(su / 5, 2)).asDiagonal();
+        b.u = TPose2D(u.x + su * n(rng), u.y + su * n(rng), u.phi + su / 5 * n(rng));
+        bearings.push_back(b);
+    }
+    return bearings;
+}
+
 }  // namespace
 
 // Exact readings and odometry: the correction is the pose error, a half turn included (the
@@ -85,6 +118,52 @@ TEST(SensorPoseCorrection, RecoversThePoseErrorOfExactReadings)
         EXPECT_EQ(c.outlier_pairs, 0u);
         EXPECT_EQ(c.pairs, weighed.size());
     }
+}
+
+// Exact bearings of the camera's earlier positions (a view-based map's observations) and
+// exact odometry: the correction is the camera's pose error, a half turn included.
+TEST(SensorPoseCorrection, RecoversTheCameraPoseErrorOfExactBearings)
+{
+    std::mt19937 rng(2);
+    for (const Eigen::Vector3d& error :
+         {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.2, -0.1, 0.1),
+          Eigen::Vector3d(-0.3, 0.05, -0.4), Eigen::Vector3d(0.1, 0.1, M_PI - 0.05)}) {
+        auto bearings = earlierPoseBearings(error, 0, 0, rng);
+        for (auto& b : bearings) {
+            b.var = 1e-6;
+            b.Q = Eigen::Matrix3d::Identity() * 1e-8;
+        }
+        ASSERT_GT(bearings.size(), 60u);
+        const auto c = TSensorPoseCorrection::estimate({}, bearings);
+        EXPECT_NEAR(c.delta[0], error[0], 1e-4) << error.transpose();
+        EXPECT_NEAR(c.delta[1], error[1], 1e-4) << error.transpose();
+        EXPECT_NEAR(mrpt::math::wrapToPi(c.delta[2] - error[2]), 0, 1e-5) << error.transpose();
+        EXPECT_EQ(c.outlier_pairs, 0u);
+        EXPECT_EQ(c.pairs, bearings.size());
+    }
+}
+
+// Noisy bearings (1.5°) and odometry: over 30 worlds the normalised errors of the estimates
+// have about unit variance.
+TEST(SensorPoseCorrection, CovarianceMatchesTheSpreadOfTheEstimatesFromBearings)
+{
+    std::mt19937 rng(9);
+    const Eigen::Vector3d error(0.1, -0.05, 0.05);
+    double sumSquares = 0;
+    const int worlds = 30;
+    for (int w = 0; w < worlds; w++) {
+        const auto c = TSensorPoseCorrection::estimate(
+            {}, earlierPoseBearings(error, 1.5 * M_PI / 180, 0.01, rng));
+        for (int i = 0; i < 3; i++) {
+            const double z = (c.delta[i] - error[i]) / std::sqrt(c.cov(i, i));
+            EXPECT_LT(std::abs(z), 4) << "world " << w << ", component " << i;
+            sumSquares += z * z;
+        }
+    }
+    const double variance = sumSquares / (3 * worlds);
+    std::printf("bearings: normalised variance %.2f\n", variance);
+    EXPECT_GT(variance, 0.4);
+    EXPECT_LT(variance, 2.5);
 }
 
 // Noisy readings: over 30 worlds, each estimate lies within its own 4 σ of the error, and the

@@ -26,6 +26,17 @@ struct TReadingPair {
     Eigen::Matrix3d Q;         ///< its covariance
 };
 
+/** A bearing read by the sensor from x_j = x_i ⊕ u of the sensor's own position at x_i (a
+ * view-based map's observation of a view started at x_i; Valiente et al. 2015), in the robot frame
+ * as the sensor's stated pose on the robot puts it. */
+struct TEarlierPoseBearing {
+    Eigen::Vector2d sensor = Eigen::Vector2d::Zero();  ///< [m] the sensor's stated position
+    double bearing = 0;                                ///< [rad]
+    double var = 0;                                    ///< [rad²] its variance
+    mrpt::math::TPose2D u;                             ///< the odometry from x_i to x_j
+    Eigen::Matrix3d Q = Eigen::Matrix3d::Zero();       ///< its covariance
+};
+
 /** Pairs each reading of a point (`Key`) with the previous reading of the same point when that
  *  is at most `max_gap` steps before, through the odometry between the two steps (the steps'
  *  Gaussians composed). Readings are added in the order of their steps. */
@@ -69,23 +80,28 @@ class ReadingPairing {
 
 /** The planar correction δ = (t, θ) of a sensor's pose on the robot that best explains pairs of
  *  readings of the same point (ours; doc/multirobot.md, "Checking the sensor poses"): with the
- * sensor at δ ⊕ (its pose), a reading z lies at δ ⊕ z = R(θ) z + t in the robot frame, and the
- * point read from x_i and from x_j = x_i ⊕ u is one: r = (δ ⊕ z_i) − u ⊕ (δ ⊕ z_j) = 0. A
- * translation t shows only where the robot turns, θ where it moves. An odometry whose heading
- * drifts by ε [rad/m] looks like a sensor turned by about ε times the readings' range: the two are
- * not told apart. */
+ *  sensor at δ ⊕ (its pose), a reading z lies at δ ⊕ z = R(θ) z + t in the robot frame, and the
+ *  point read from x_i and from x_j = x_i ⊕ u is one: r = (δ ⊕ z_i) − u ⊕ (δ ⊕ z_j) = 0. A
+ *  bearing b of the sensor's position c = δ ⊕ s at x_i (TEarlierPoseBearing) is that of
+ *  v = u⁻¹ ⊕ c − c turned by θ: r = atan2(v) − θ − b. A translation t shows only where the robot
+ *  turns, θ where it moves. An odometry whose heading drifts by ε [rad/m] looks like a sensor
+ *  turned by about ε times the readings' range: the two are not told apart. */
 struct TSensorPoseCorrection {
     Eigen::Vector3d delta = Eigen::Vector3d::Zero();  ///< (t_x [m], t_y [m], θ [rad])
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();    ///< its covariance
-    size_t pairs = 0;
+    size_t pairs = 0;                                 ///< reading pairs and bearings
     size_t outlier_pairs = 0;  ///< whitened residual beyond the Huber threshold
 
-    /** Weighted least squares over `pairs` (Gauss-Newton; Huber on each pair's whitened
-     *  residual norm at `huber` σ; a weak prior N(0, diag(1 m², 1 m², π²)) keeps t solvable
-     *  when the robot never turns), from θ = 0, ±π/2 and π: the least cost is kept. */
-    static TSensorPoseCorrection estimate(const std::vector<TReadingPair>& pairs, double huber = 3);
+    /** Weighted least squares over `pairs` and `bearings` (Gauss-Newton; Huber on each one's
+     *  whitened residual norm at `huber` σ; a weak prior N(0, diag(1 m², 1 m², π²)) keeps t
+     *  solvable when the robot never turns), from θ = 0, ±π/2 and π: the least cost is kept. */
+    static TSensorPoseCorrection estimate(const std::vector<TReadingPair>& pairs,
+                                          const std::vector<TEarlierPoseBearing>& bearings = {},
+                                          double huber = 3);
     /// The whitened residual of `p` with this correction.
     Eigen::Vector2d whitenedResidual(const TReadingPair& p) const;
+    /// The whitened residual of `b` with this correction.
+    double whitenedResidual(const TEarlierPoseBearing& b) const;
     /// Σ_θθ (Σ⁻¹)_θθ, θ's variance over its variance were t known: about 1 where the robot's
     /// path tells a turn from a move, large on paths of one curvature (circles), where a turn
     /// passes for a move.
