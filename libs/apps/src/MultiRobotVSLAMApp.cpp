@@ -738,7 +738,8 @@ void MultiRobotVSLAMApp::Impl::reportSensorPoseChecks(const TTeamParticle& best,
                                  : app.robots[c.robot] + " sensor " + std::to_string(c.sensor + 1),
                            c.correction);
     }
-    apps::reportSensorPoseChecks("multirobot-vslam", named, timer.elapsedSeconds(), report, quiet);
+    apps::reportSensorPoseChecks("multirobot-vslam", "a landmark", "doc/multirobot.md", named,
+                                 timer.elapsedSeconds(), report, quiet);
 }
 
 std::optional<std::string> MultiRobotVSLAMApp::Impl::groundTruthName() const

@@ -303,8 +303,8 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     }
     const core::RunTimer checking;
     if (const auto check = smoother->cameraPoseCheck(best))
-        reportSensorPoseChecks("omni-fastslam", {{"camera", *check}}, checking.elapsedSeconds(),
-                               report, args.quiet);
+        reportSensorPoseChecks("omni-fastslam", "a landmark", "doc/multirobot.md",
+                               {{"camera", *check}}, checking.elapsedSeconds(), report, args.quiet);
     drawOdometryAndGroundTruth(scene, app.odometryPath, start.groundTruth);
     if (const auto landmarks = trueLandmarks(start.groundTruthPrefix))
         drawLandmarks(scene, *landmarks);

@@ -34,8 +34,9 @@ std::string poseText(const mrpt::poses::CPose3D& pose)
 }
 
 void reportSensorPoseChecks(
-    const char* app, const std::vector<std::pair<std::string, core::TSensorPoseCorrection>>& checks,
-    double seconds, core::RunReport& report, bool quiet)
+    const char* app, const char* read, const char* doc,
+    const std::vector<std::pair<std::string, core::TSensorPoseCorrection>>& checks, double seconds,
+    core::RunReport& report, bool quiet)
 {
     // A turn of 3° or more, or a move of 0.15 m or more, 5 σ or more from 0 (a move: 5 times
     // its largest σ), warns, where the path tells the two apart (turn confounding < 4; 33-58 on
@@ -58,11 +59,11 @@ void reportSensorPoseChecks(
             std::sqrt(d.cov(0, 0)), std::sqrt(d.cov(1, 1)), turnDeg, turnStdDeg, turnConfounding);
         const std::string fit =
             mrpt::format(
-                "its readings of a landmark from nearby steps fit best with the sensor turned by "
-                "%.1f deg (std %.1f) and moved by (%.2f, %.2f) m (std %.2f, %.2f), %zu of %zu "
-                "pairs beyond 3 sigma",
-                turnDeg, turnStdDeg, t[0], t[1], std::sqrt(d.cov(0, 0)), std::sqrt(d.cov(1, 1)),
-                d.outlier_pairs, d.pairs) +
+                "its readings of %s from nearby steps fit best with the sensor turned by %.1f deg "
+                "(std %.1f) and moved by (%.2f, %.2f) m (std %.2f, %.2f), %zu of %zu pairs beyond "
+                "3 sigma",
+                read, turnDeg, turnStdDeg, t[0], t[1], std::sqrt(d.cov(0, 0)),
+                std::sqrt(d.cov(1, 1)), d.outlier_pairs, d.pairs) +
             (turnConfounding < kConfounding ? "" : " (this path does not tell a turn from a move)");
         if (!quiet) std::printf("%s: %s: %s\n", app, sensor.c_str(), fit.c_str());
         const bool turned =
@@ -72,7 +73,8 @@ void reportSensorPoseChecks(
         if (((turned || moved) && turnConfounding < kConfounding) || 10 * d.outlier_pairs > d.pairs)
             report.addWarning(sensor + ": " + fit +
                               ": check its pose on the robot and its noise (an odometry whose "
-                              "heading drifts also looks like a turned sensor; doc/multirobot.md)");
+                              "heading drifts also looks like a turned sensor; " +
+                              doc + ")");
     }
     if (!json.empty()) report.setResultJson("sensor_pose_check", "{" + json + "}");
 }

@@ -39,10 +39,12 @@ std::string poseText(const mrpt::poses::CPose3D& pose);
 /** The sensor pose checks of a run (sensor name → TSensorPoseCorrection; doc/multirobot.md,
  *  "Checking the sensor poses"): `app`'s line per sensor unless `quiet`, run.json
  *  `results.sensor_pose_check` and `timing.sensor_pose_check_s` (`seconds`), and a warning per
- *  sensor whose pose or readings look wrong. */
+ *  sensor whose pose or readings look wrong. `read`: what the sensors read ("a landmark");
+ *  `doc`: the page the warning points to. */
 void reportSensorPoseChecks(
-    const char* app, const std::vector<std::pair<std::string, core::TSensorPoseCorrection>>& checks,
-    double seconds, core::RunReport& report, bool quiet);
+    const char* app, const char* read, const char* doc,
+    const std::vector<std::pair<std::string, core::TSensorPoseCorrection>>& checks, double seconds,
+    core::RunReport& report, bool quiet);
 
 /// A SLAM app: its name (messages, progress line, run.json) and the ini section of its own keys.
 struct TSlamAppId {

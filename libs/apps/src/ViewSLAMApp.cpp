@@ -16,6 +16,7 @@
 #include <mrpt_vslam/core/RunOutputs.h>
 #include <mrpt_vslam/core/SingleRobotStart.h>
 #include <mrpt_vslam/viewmap/COmniViewSLAM.h>
+#include <mrpt_vslam/viewmap/ViewBearingPairing.h>
 
 #include <cmath>
 #include <cstdio>
@@ -68,6 +69,7 @@ struct ViewSLAMApp::Impl : SlamApp {
     size_t framesWithImages = 0, attempted = 0, estimated = 0, accepted = 0;
     TSeriesStats sqrtTrace, nees, viewError;
     size_t neesInBounds = 0;
+    viewmap::ViewBearingPairing viewBearings;  ///< for the camera pose check
 
     void draw(mrpt::opengl::COpenGLScene& scene, const core::TumTrajectory& path) const;
 
@@ -180,6 +182,7 @@ void ViewSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
         });
     if (image) image->image.unload();
 
+    viewBearings.add(u.asTPose(), Q.asEigen(), r, slam->cameraPosition());
     const auto& ekf = slam->ekf();
     const auto x = ekf.robotPose();
     app.estimatedPath.push_back(t, mrpt::math::TPose3D(x));
@@ -286,6 +289,12 @@ void ViewSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
             slam->cameraOnRobotConfigured() ? "config ([CameraOnRobot])" : source, position.x,
             position.y, mrpt::RAD2DEG(rotation.yaw()), mrpt::RAD2DEG(rotation.pitch()),
             mrpt::RAD2DEG(rotation.roll()));
+    if (const auto bearings = viewBearings.bearings(); !bearings.empty()) {
+        const core::RunTimer checking;
+        const auto c = core::TSensorPoseCorrection::estimate({}, bearings);
+        reportSensorPoseChecks("view-slam", "a view", "doc/view-slam.md", {{"camera", c}},
+                               checking.elapsedSeconds(), report, args.quiet);
+    }
     report.setResult("mean_sqrt_trace_Pvv", sqrtTrace.mean());
     report.setResult("final_sqrt_trace_Pvv", std::sqrt(slam->ekf().robotCovariance().trace()));
     if (start.groundTruth) {
