@@ -3,7 +3,8 @@
 # (doc/multirobot.md, "Checking the sensor poses"; doc/results/sensor-pose-check.md):
 #   1. the shipped data with their sensor poses as given: the office team of two and of three
 #      (office-team-2.ini, office-team-3.ini) and the MRCLAM cut (mrclam.ini) for
-#      multirobot-vslam, the sports hall and the hard hall (sports-hall.ini) for omni-fastslam;
+#      multirobot-vslam, the sports hall and the hard hall (sports-hall.ini) for omni-fastslam,
+#      the 40 frames of omni-views (omni-views.ini) for view-slam;
 #      per sensor the correction found, its σ, the pairs beyond 3 σ and whether the run warned;
 #   2. the office team of two with R1's camera pose in the rawlog changed by stock rawlog-edit
 #      (--sensors-pose), as a wrong calibration would state it: turned about the vertical,
@@ -12,10 +13,12 @@
 #      R1's camera, and whether the run warned;
 #   3. omni-fastslam (sports-hall.ini) on the sports hall with its camera pose turned or moved
 #      the same way: per seed the position RMSE and whether the run warned, and the correction
-#      found for the camera.
+#      found for the camera;
+#   4. view-slam (omni-views.ini) on the 500 frames of `vslam-sim omni-views --seed S`, its
+#      camera pose turned or moved the same way: the same figures.
 # Writes run folders under out/reproduce-sensor-pose-check/ (or $OUT) and the tables to
 # doc/results/sensor-pose-check.md (or $RESULTS). Builds first (scripts/setup.sh). Takes about
-# two minutes.
+# four minutes.
 # Environment: SEEDS (default 1 2), OUT, RESULTS.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -52,6 +55,8 @@ for s in $SEEDS; do
   run hall "$HALL_CONFIG" "$HALL/hall.rawlog" "$s" omni-fastslam
   run hall-hard "$HALL_CONFIG" "$REPO_DIR/datasets/sports-hall-hard/hall-hard.rawlog" "$s" \
     omni-fastslam
+  run omni-views "$REPO_DIR/share/mrpt-vslam/config/view-slam/omni-views.ini" \
+    "$REPO_DIR/datasets/omni-views/rooms.rawlog" "$s" view-slam
 done
 first_seed="${SEEDS%% *}"
 run mrclam "$CONFIGS/mrclam.ini" "$REPO_DIR/datasets/utias-mrclam/mrclam7-r123-0-300.rawlog" \
@@ -114,9 +119,42 @@ forward-0.2 0.2 0 0
 forward-0.5 0.5 0 0
 EOF
 
-python3 - "$OUT" "$TABLE" "$SEEDS" "$HALL_TABLE" >"$RESULTS.tmp" <<'PY'
+# 4. view-slam on each seed's simulated rooms, its camera pose changed: NAME x y [m] yaw [deg]
+# (made with 0 0, 0; the camera 0.4 m up)
+VIEWS_TABLE="$OUT/views-table.tsv"
+: >"$VIEWS_TABLE"
+VIEWS_CONFIG="$REPO_DIR/share/mrpt-vslam/config/view-slam/omni-views.ini"
+for s in $SEEDS; do
+  data="$OUT/views-data-s$s/rooms"
+  [ -f "$data.rawlog" ] || "$BIN/vslam-sim" omni-views --seed "$s" --quiet --out "$data"
+done
+while read -r name x y yaw; do
+  for s in $SEEDS; do
+    data="$OUT/views-data-s$s/rooms" rawlog="$OUT/views-data-s$s/$name.rawlog"
+    printf '[OMNICAM]\nsensorLabel = OMNICAM\npose_x = %s\npose_y = %s\npose_z = 0.4\npose_yaw = %s\npose_pitch = 0\npose_roll = 0\n' \
+      "$x" "$y" "$yaw" >"$OUT/views-$name.ini"
+    rawlog-edit -q -w -i "$data.rawlog" -o "$rawlog" --sensors-pose "$OUT/views-$name.ini" \
+      </dev/null >"$OUT/views-$name.rawlog-edit.log" 2>&1 ||
+      { echo "reproduce-sensor-pose-check.sh: rawlog-edit failed, see $OUT/views-$name.rawlog-edit.log" >&2; exit 1; }
+    ln -sfn rooms_Images "${rawlog%.rawlog}_Images"
+    cp "$data.groundtruth.tum" "${rawlog%.rawlog}.groundtruth.tum"
+    run "views-$name" "$VIEWS_CONFIG" "$rawlog" "$s" view-slam
+  done
+  printf '%s\t%s %s\t%s\n' "$name" "$x" "$y" "$yaw" >>"$VIEWS_TABLE"
+done <<'EOF'
+as-made 0 0 0
+turned-2 0 0 2
+turned-5 0 0 5
+turned-10 0 0 10
+forward-0.1 0.1 0 0
+forward-0.2 0.2 0 0
+forward-0.5 0.5 0 0
+EOF
+
+python3 - "$OUT" "$TABLE" "$SEEDS" "$HALL_TABLE" "$VIEWS_TABLE" >"$RESULTS.tmp" <<'PY'
 import json, sys
-out, table, seeds, hall_table = sys.argv[1], sys.argv[2], sys.argv[3].split(), sys.argv[4]
+out, table, seeds, hall_table, views_table = (sys.argv[1], sys.argv[2], sys.argv[3].split(),
+                                              sys.argv[4], sys.argv[5])
 
 def load(d):
     with open(f"{out}/{d}/run.json") as f:
@@ -137,7 +175,7 @@ print("Per sensor: the turn [deg] and move [m] of its pose that fit its readings
       "pairs of readings beyond 3 σ, and whether the run warned.\n")
 print("| data | seed | sensor | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | warned |")
 print("|---|---|---|---|---|---|---|---|")
-for name in ["team2", "team3", "mrclam", "hall", "hall-hard"]:
+for name in ["team2", "team3", "mrclam", "hall", "hall-hard", "omni-views"]:
     for s in seeds if name != "mrclam" else seeds[:1]:
         r = load(f"{name}-s{s}")
         for sensor, c in r["results"]["sensor_pose_check"].items():
@@ -147,17 +185,18 @@ def variant_row(run, labels, robot, sensor):
     """A variant's row: the labels, the position RMSE per seed (metrics.json, `robot` or the
     single robot's), the odometry's, the correction found for `sensor` (first seed) and
     whether each run warned."""
-    rmse, warnings = [], []
+    rmse, odometry, warnings = [], [], []
     for s in seeds:
         with open(f"{out}/{run}-s{s}/metrics.json") as f:
             m = json.load(f)
         m = m["robots"][robot] if robot else m
         rmse.append(f"{m['estimate']['ate_rmse_m']:.2f}")
-        odometry = m["odometry"]["ate_rmse_m"]
+        odometry.append(f"{m['odometry']['ate_rmse_m']:.2f}")
         warnings.append(warned(load(f"{run}-s{s}"), sensor))
     c = load(f"{run}-s{seeds[0]}")["results"]["sensor_pose_check"][sensor]
-    return (f"| {' | '.join(labels)} | {', '.join(rmse)} | {odometry:.2f} | {correction(c)} | "
-            f"{', '.join(warnings)} |")
+    # one odometry figure where every seed ran on the same rawlog
+    return (f"| {' | '.join(labels)} | {', '.join(rmse)} | {', '.join(dict.fromkeys(odometry))} | "
+            f"{correction(c)} | {', '.join(warnings)} |")
 
 print("\n## The office team of two, R1's camera pose stated wrong\n")
 print("R1's camera pose as the rawlog states it (x y z [m], yaw pitch roll [deg]; the data were "
@@ -178,9 +217,20 @@ print("|---|---|---|---|---|---|---|---|---|---|")
 for line in open(hall_table):
     name, position, yaw = line.rstrip("\n").split("\t")
     print(variant_row(f"hall-{name}", [name, position, yaw], None, "camera"))
+
+print("\n## view-slam on the simulated rooms, its camera pose stated wrong\n")
+print("`vslam-sim omni-views --seed S` (500 frames, 56 m) for each seed S; the camera pose as "
+      "the rawlog states it (made with x = y = 0, yaw 0, 0.4 m up), the position RMSE per seed "
+      "against the odometry's, and the correction found for the camera (seed " +
+      seeds[0] + "; one bearing per view).\n")
+print("| variant | stated x y [m] | stated yaw [deg] | RMSE [m] | odometry RMSE [m] | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | warned (seeds) |")
+print("|---|---|---|---|---|---|---|---|---|---|")
+for line in open(views_table):
+    name, position, yaw = line.rstrip("\n").split("\t")
+    print(variant_row(f"views-{name}", [name, position, yaw], None, "camera"))
 PY
 {
-  results_header "Checking the sensor poses: multirobot-vslam and omni-fastslam on the shipped data and on wrong camera poses" "$COMMAND"
+  results_header "Checking the sensor poses: multirobot-vslam, omni-fastslam and view-slam on the shipped data and on wrong camera poses" "$COMMAND"
   cat "$RESULTS.tmp"
 } >"$RESULTS.tmp2"
 rm -f "$RESULTS.tmp"
