@@ -232,26 +232,28 @@ for line in open(table):
     name, position, angles = line.rstrip("\n").split("\t")
     print(variant_row(name, [name, angles, position], "R1", "R1 R1_LANDMARKS"))
 
-print("\n## omni-fastslam on the sports hall, its camera pose stated wrong\n")
-print("The hall's camera pose as the rawlog states it (made with x = y = 0, yaw 0, 1.8 m up), "
-      "the position RMSE per seed against the odometry's, and the correction found for the "
-      "camera (seed " + seeds[0] + ").\n")
-print("| variant | stated x y [m] | stated yaw [deg] | RMSE [m] | odometry RMSE [m] | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | warned (seeds) |")
-print("|---|---|---|---|---|---|---|---|---|---|")
-for line in open(hall_table):
-    name, position, yaw = line.rstrip("\n").split("\t")
-    print(variant_row(f"hall-{name}", [name, position, yaw], None, "camera"))
+def camera_variants(title, intro, variants, prefix):
+    """A section of one camera stated wrong: a row per line "NAME\tX Y\tYAW" of `variants`,
+    its runs in PREFIX-NAME-sSEED."""
+    print(f"\n## {title}\n")
+    print(intro + "\n")
+    print("| variant | stated x y [m] | stated yaw [deg] | RMSE [m] | odometry RMSE [m] | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | warned (seeds) |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for line in open(variants):
+        name, position, yaw = line.rstrip("\n").split("\t")
+        print(variant_row(f"{prefix}-{name}", [name, position, yaw], None, "camera"))
 
-print("\n## view-slam on the simulated rooms, its camera pose stated wrong\n")
-print("`vslam-sim omni-views --seed S` (500 frames, 56 m) for each seed S; the camera pose as "
-      "the rawlog states it (made with x = y = 0, yaw 0, 0.4 m up), the position RMSE per seed "
-      "against the odometry's, and the correction found for the camera (seed " +
-      seeds[0] + "; one bearing per view).\n")
-print("| variant | stated x y [m] | stated yaw [deg] | RMSE [m] | odometry RMSE [m] | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | warned (seeds) |")
-print("|---|---|---|---|---|---|---|---|---|---|")
-for line in open(views_table):
-    name, position, yaw = line.rstrip("\n").split("\t")
-    print(variant_row(f"views-{name}", [name, position, yaw], None, "camera"))
+camera_variants(
+    "omni-fastslam on the sports hall, its camera pose stated wrong",
+    "The hall's camera pose as the rawlog states it (made with x = y = 0, yaw 0, 1.8 m up), "
+    "the position RMSE per seed against the odometry's, and the correction found for the "
+    "camera (seed " + seeds[0] + ").", hall_table, "hall")
+camera_variants(
+    "view-slam on the simulated rooms, its camera pose stated wrong",
+    "`vslam-sim omni-views --seed S` (500 frames, 56 m) for each seed S; the camera pose as "
+    "the rawlog states it (made with x = y = 0, yaw 0, 0.4 m up), the position RMSE per seed "
+    "against the odometry's, and the correction found for the camera (seed " + seeds[0] +
+    "; one bearing per view).", views_table, "views")
 
 print("\n## view-slam on the simulated rooms, its camera model a little off\n")
 print("The same data with the camera pose right and `[Camera]` changed (the rooms are rendered "
