@@ -21,6 +21,8 @@ namespace mrpt_vslam::viewmap {
  *  taken all as independent, they gave σ 2.5 times too small. */
 class ViewBearingPairing {
   public:
+    /// `max_path` [m]: 1, 2 and 3.5 m gave the same σ of the turn within 10 % and normalised
+    /// errors of unit spread on 12 simulated rooms.
     explicit ViewBearingPairing(double max_path = 2.0) : m_maxPath(max_path) {}
 
     /** One step of the filter: the odometry increment `u` into it (covariance `Q`), what the
