@@ -61,9 +61,9 @@ std::vector<TReadingPair> readingPairs(const Eigen::Vector3d& error, double sigm
     return pairs;
 }
 
-/** The robot of readingPairs() (not on a circle) with a camera stated at (0.2, 0.05) on it, turned
- *  by nothing, and off by `error` (at δ ⊕ its stated pose): a view started every 6 steps, and
- *  its bearing read from 1 to 5 steps later in turn. Bearings get N(0, σ_b²), the odometry from
+/** The robot of readingPairs() (not on a circle) with a camera stated at (0.2, 0.05) on it,
+ *  facing forward, and off by `error` (at δ ⊕ its stated pose): a view started every 6 steps,
+ *  and its bearing read from 1 to 5 steps later in turn. Bearings get N(0, σ_b²), the odometry from
  *  the view N(0, Q) with Q growing with the steps between. */
 std::vector<TEarlierPoseBearing> earlierPoseBearings(const Eigen::Vector3d& error, double sigma_b,
                                                      double sigma_u, std::mt19937& rng)

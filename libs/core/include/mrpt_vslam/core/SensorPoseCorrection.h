@@ -27,8 +27,8 @@ struct TReadingPair {
 };
 
 /** A bearing read by the sensor from x_j = x_i ⊕ u of the sensor's own position at x_i (a
- * view-based map's observation of a view started at x_i; Valiente et al. 2015), in the robot frame
- * as the sensor's stated pose on the robot puts it. */
+ *  view-based map's observation of a view started at x_i; Valiente et al. 2015), in the robot
+ *  frame as the sensor's stated pose on the robot puts it. */
 struct TEarlierPoseBearing {
     Eigen::Vector2d sensor = Eigen::Vector2d::Zero();  ///< [m] the sensor's stated position
     double bearing = 0;                                ///< [rad]
