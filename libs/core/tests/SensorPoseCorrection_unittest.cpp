@@ -93,6 +93,29 @@ std::vector<TEarlierPoseBearing> earlierPoseBearings(const Eigen::Vector3d& erro
     return bearings;
 }
 
+/// Expects `c`, from `n` exact pairs or bearings, to be the pose error `error` with none beyond
+/// 3 σ (the weak prior moves it by less than 1e-5).
+void expectExact(const TSensorPoseCorrection& c, const Eigen::Vector3d& error, size_t n)
+{
+    EXPECT_NEAR(c.delta[0], error[0], 1e-4) << error.transpose();
+    EXPECT_NEAR(c.delta[1], error[1], 1e-4) << error.transpose();
+    EXPECT_NEAR(mrpt::math::wrapToPi(c.delta[2] - error[2]), 0, 1e-5) << error.transpose();
+    EXPECT_EQ(c.outlier_pairs, 0u);
+    EXPECT_EQ(c.pairs, n);
+}
+
+/// The sum of the squared normalised errors of `c` against `error`, each expected within 4 σ.
+double normalisedSquares(const TSensorPoseCorrection& c, const Eigen::Vector3d& error, int world)
+{
+    double sum = 0;
+    for (int i = 0; i < 3; i++) {
+        const double z = (c.delta[i] - error[i]) / std::sqrt(c.cov(i, i));
+        EXPECT_LT(std::abs(z), 4) << "world " << world << ", component " << i;
+        sum += z * z;
+    }
+    return sum;
+}
+
 }  // namespace
 
 // Exact readings and odometry: the correction is the pose error, a half turn included (the
@@ -112,11 +135,7 @@ TEST(SensorPoseCorrection, RecoversThePoseErrorOfExactReadings)
         }
         ASSERT_GT(weighed.size(), 500u);
         const auto c = TSensorPoseCorrection::estimate(weighed);
-        EXPECT_NEAR(c.delta[0], error[0], 1e-4) << error.transpose();
-        EXPECT_NEAR(c.delta[1], error[1], 1e-4) << error.transpose();
-        EXPECT_NEAR(mrpt::math::wrapToPi(c.delta[2] - error[2]), 0, 1e-5) << error.transpose();
-        EXPECT_EQ(c.outlier_pairs, 0u);
-        EXPECT_EQ(c.pairs, weighed.size());
+        expectExact(c, error, weighed.size());
     }
 }
 
@@ -135,11 +154,7 @@ TEST(SensorPoseCorrection, RecoversTheCameraPoseErrorOfExactBearings)
         }
         ASSERT_GT(bearings.size(), 60u);
         const auto c = TSensorPoseCorrection::estimate({}, bearings);
-        EXPECT_NEAR(c.delta[0], error[0], 1e-4) << error.transpose();
-        EXPECT_NEAR(c.delta[1], error[1], 1e-4) << error.transpose();
-        EXPECT_NEAR(mrpt::math::wrapToPi(c.delta[2] - error[2]), 0, 1e-5) << error.transpose();
-        EXPECT_EQ(c.outlier_pairs, 0u);
-        EXPECT_EQ(c.pairs, bearings.size());
+        expectExact(c, error, bearings.size());
     }
 }
 
@@ -154,11 +169,7 @@ TEST(SensorPoseCorrection, CovarianceMatchesTheSpreadOfTheEstimatesFromBearings)
     for (int w = 0; w < worlds; w++) {
         const auto c = TSensorPoseCorrection::estimate(
             {}, earlierPoseBearings(error, 1.5 * M_PI / 180, 0.01, rng));
-        for (int i = 0; i < 3; i++) {
-            const double z = (c.delta[i] - error[i]) / std::sqrt(c.cov(i, i));
-            EXPECT_LT(std::abs(z), 4) << "world " << w << ", component " << i;
-            sumSquares += z * z;
-        }
+        sumSquares += normalisedSquares(c, error, w);
     }
     const double variance = sumSquares / (3 * worlds);
     std::printf("bearings: normalised variance %.2f\n", variance);
@@ -178,11 +189,7 @@ TEST(SensorPoseCorrection, CovarianceMatchesTheSpreadOfTheEstimates)
     const int worlds = 30;
     for (int w = 0; w < worlds; w++) {
         const auto c = TSensorPoseCorrection::estimate(readingPairs(error, 0.05, 0.01, rng));
-        for (int i = 0; i < 3; i++) {
-            const double z = (c.delta[i] - error[i]) / std::sqrt(c.cov(i, i));
-            EXPECT_LT(std::abs(z), 4) << "world " << w << ", component " << i;
-            sumSquares += z * z;
-        }
+        sumSquares += normalisedSquares(c, error, w);
         pairs += c.pairs;
         outliers += c.outlier_pairs;
     }
