@@ -731,12 +731,12 @@ void MultiRobotVSLAMApp::Impl::reportSensorPoseChecks(const TTeamParticle& best,
                                                       core::RunReport& report, bool quiet) const
 {
     const core::RunTimer timer;
-    std::vector<std::pair<std::string, core::TSensorPoseCorrection>> named;
+    std::vector<TSensorCheck> named;
     for (auto& c : smoother().sensorPoseChecks(best)) {
         const bool known = c.robot < sensorNames.size() && c.sensor < sensorNames[c.robot].size();
-        named.emplace_back(known ? sensorNames[c.robot][c.sensor]
-                                 : app.robots[c.robot] + " sensor " + std::to_string(c.sensor + 1),
-                           c.correction);
+        named.push_back({known ? sensorNames[c.robot][c.sensor]
+                               : app.robots[c.robot] + " sensor " + std::to_string(c.sensor + 1),
+                         c.correction, c.tilt});
     }
     apps::reportSensorPoseChecks("multirobot-vslam", "a landmark", "doc/multirobot.md", named,
                                  timer.elapsedSeconds(), report, quiet);

@@ -33,20 +33,21 @@ std::string poseText(const mrpt::poses::CPose3D& pose)
                         mrpt::RAD2DEG(pose.roll()));
 }
 
-void reportSensorPoseChecks(
-    const char* app, const char* read, const char* doc,
-    const std::vector<std::pair<std::string, core::TSensorPoseCorrection>>& checks, double seconds,
-    core::RunReport& report, bool quiet)
+void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
+                            const std::vector<TSensorCheck>& checks, double seconds,
+                            core::RunReport& report, bool quiet)
 {
     // A turn of 3° or more, or a move of 0.15 m or more, 5 σ or more from 0 (a move: 5 times
     // its largest σ), warns, where the path tells the two apart (turn confounding < 4; 33-58 on
     // the circles of tests/multirobot_vslam_test.cpp). Correct sensors give turns of up to 1.4°
     // on the simulated teams (their odometry's heading drift), moves of 0.4-0.7 m at 1-3 σ on
-    // MRCLAM (doc/results/sensor-pose-check.md).
-    constexpr double kTurnDeg = 3, kMove = 0.15, kSigmas = 5, kConfounding = 4;
+    // MRCLAM (doc/results/sensor-pose-check.md). A pitch or roll of 1° or more at 5 σ warns
+    // too: correct cameras give up to 0.4° on the simulated teams, and a forward camera pitched
+    // by 2° more than stated can put a path several times as far from the truth.
+    constexpr double kTurnDeg = 3, kMove = 0.15, kSigmas = 5, kConfounding = 4, kTiltDeg = 1;
     report.setPartTiming("sensor_pose_check", seconds);
     std::string json;
-    for (const auto& [sensor, d] : checks) {
+    for (const auto& [sensor, d, tilt] : checks) {
         const double turnDeg = mrpt::RAD2DEG(d.delta[2]),
                      turnStdDeg = mrpt::RAD2DEG(std::sqrt(d.cov(2, 2)));
         const Eigen::Vector2d t = d.delta.head<2>();
@@ -54,10 +55,10 @@ void reportSensorPoseChecks(
         json += mrpt::format(
             "%s\"%s\": {\"pairs\": %zu, \"pairs_beyond_3_sigma\": %zu, \"dx_dy_m\": [%.4f, %.4f], "
             "\"std_dx_dy_m\": [%.4f, %.4f], \"dyaw_deg\": %.3f, \"std_dyaw_deg\": %.3f, "
-            "\"dyaw_confounding\": %.2f}",
+            "\"dyaw_confounding\": %.2f",
             json.empty() ? "" : ", ", sensor.c_str(), d.pairs, d.outlier_pairs, t[0], t[1],
             std::sqrt(d.cov(0, 0)), std::sqrt(d.cov(1, 1)), turnDeg, turnStdDeg, turnConfounding);
-        const std::string fit =
+        std::string fit =
             mrpt::format(
                 "its readings of %s from nearby steps fit best with the sensor turned by %.1f deg "
                 "(std %.1f) and moved by (%.2f, %.2f) m (std %.2f, %.2f), %zu of %zu pairs beyond "
@@ -65,12 +66,33 @@ void reportSensorPoseChecks(
                 read, turnDeg, turnStdDeg, t[0], t[1], std::sqrt(d.cov(0, 0)),
                 std::sqrt(d.cov(1, 1)), d.outlier_pairs, d.pairs) +
             (turnConfounding < kConfounding ? "" : " (this path does not tell a turn from a move)");
-        if (!quiet) std::printf("%s: %s: %s\n", app, sensor.c_str(), fit.c_str());
         const bool turned =
             std::abs(turnDeg) >= kTurnDeg && std::abs(turnDeg) >= kSigmas * turnStdDeg;
         const bool moved = t.norm() >= kMove && t.norm() >= kSigmas * d.largestMoveStd();
+        bool tilted = false;
+        if (tilt) {
+            const Eigen::Vector2d deg = tilt->delta * (180 / M_PI),
+                                  stdDeg = tilt->cov.diagonal().cwiseSqrt() * (180 / M_PI);
+            json += mrpt::format(
+                ", \"tilt_landmarks\": %zu, \"tilt_readings\": %zu, "
+                "\"tilt_readings_beyond_3_sigma\": %zu, \"dpitch_droll_deg\": [%.3f, %.3f], "
+                "\"std_dpitch_droll_deg\": [%.3f, %.3f]",
+                tilt->points, tilt->readings, tilt->outlier_readings, deg[0], deg[1], stdDeg[0],
+                stdDeg[1]);
+            fit += mrpt::format(
+                "; the heights of its readings of %zu landmarks fit best with it pitched by %.1f "
+                "deg (std %.1f) and rolled by %.1f deg (std %.1f), %zu of %zu readings beyond 3 "
+                "sigma",
+                tilt->points, deg[0], stdDeg[0], deg[1], stdDeg[1], tilt->outlier_readings,
+                tilt->readings);
+            for (int i = 0; i < 2; i++)
+                tilted |= std::abs(deg[i]) >= kTiltDeg && std::abs(deg[i]) >= kSigmas * stdDeg[i];
+        }
+        json += "}";
+        if (!quiet) std::printf("%s: %s: %s\n", app, sensor.c_str(), fit.c_str());
         // with the pose and noise right, about 1 pair in 90 lies beyond 3 σ
-        if (((turned || moved) && turnConfounding < kConfounding) || 10 * d.outlier_pairs > d.pairs)
+        if (((turned || moved) && turnConfounding < kConfounding) || tilted ||
+            10 * d.outlier_pairs > d.pairs)
             report.addWarning(sensor + ": " + fit +
                               ": check its pose on the robot and its noise (an odometry whose "
                               "heading drifts also looks like a turned sensor; " +

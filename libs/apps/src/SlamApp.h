@@ -17,6 +17,7 @@
 #include <mrpt_vslam/core/RunReport.h>
 #include <mrpt_vslam/core/RunTimer.h>
 #include <mrpt_vslam/core/SensorPoseCorrection.h>
+#include <mrpt_vslam/core/SensorTiltCorrection.h>
 #include <mrpt_vslam/core/TumTrajectory.h>
 #include <mrpt_vslam/core/UsageError.h>
 
@@ -36,15 +37,21 @@ std::string poseJsonArray(const mrpt::poses::CPose3D& pose);
 /// The same for a log line: "x X, y Y, z Z m, yaw A, pitch B, roll C deg".
 std::string poseText(const mrpt::poses::CPose3D& pose);
 
-/** The sensor pose checks of a run (sensor name → TSensorPoseCorrection; doc/multirobot.md,
- *  "Checking the sensor poses"): `app`'s line per sensor unless `quiet`, run.json
+/// One sensor's checks (doc/multirobot.md, "Checking the sensor poses"): its name, the
+/// correction of its pose and, where it reads points in 3D, its tilt.
+struct TSensorCheck {
+    std::string sensor;
+    core::TSensorPoseCorrection pose;
+    std::optional<core::TSensorTiltCorrection> tilt;
+};
+
+/** The sensor checks of a run: `app`'s line per sensor unless `quiet`, run.json
  *  `results.sensor_pose_check` and `timing.sensor_pose_check_s` (`seconds`), and a warning per
  *  sensor whose pose or readings look wrong. `read`: what the sensors read ("a landmark");
  *  `doc`: the page the warning points to. */
-void reportSensorPoseChecks(
-    const char* app, const char* read, const char* doc,
-    const std::vector<std::pair<std::string, core::TSensorPoseCorrection>>& checks, double seconds,
-    core::RunReport& report, bool quiet);
+void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
+                            const std::vector<TSensorCheck>& checks, double seconds,
+                            core::RunReport& report, bool quiet);
 
 /// A SLAM app: its name (messages, progress line, run.json) and the ini section of its own keys.
 struct TSlamAppId {

@@ -293,8 +293,9 @@ void ViewSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     if (const auto bearings = viewBearings.bearings(); !bearings.empty()) {
         const core::RunTimer checking;
         const auto c = core::TSensorPoseCorrection::estimate({}, bearings);
-        reportSensorPoseChecks("view-slam", "a view", "doc/view-slam.md", {{"camera", c}},
-                               checking.elapsedSeconds(), report, args.quiet);
+        reportSensorPoseChecks("view-slam", "a view", "doc/view-slam.md",
+                               {{"camera", c, std::nullopt}}, checking.elapsedSeconds(), report,
+                               args.quiet);
     }
     report.setResult("mean_sqrt_trace_Pvv", sqrtTrace.mean());
     report.setResult("final_sqrt_trace_Pvv", std::sqrt(slam->ekf().robotCovariance().trace()));

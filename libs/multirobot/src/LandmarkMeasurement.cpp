@@ -148,6 +148,7 @@ std::vector<TLandmarkMeasurement> measurementsFromBearingRange(
         m.depth = r;
         m.track_id = s.landmarkID;
         m.identity = s.landmarkID >= 0 ? s.landmarkID : -1;
+        m.planar = !spatial;
         out.push_back(m);
     }
     return out;

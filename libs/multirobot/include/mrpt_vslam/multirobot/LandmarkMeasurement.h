@@ -33,6 +33,8 @@ struct TLandmarkMeasurement {
     /// A frame's measurements are associated one-to-one per sensor, sensor after sensor, so
     /// that one sensor's may take the landmarks another started in the same frame.
     uint16_t sensor = 0;
+    /// A range-bearing reading of the planar model: its height is the sensor plane's, not read.
+    bool planar = false;
 };
 
 /** The same measurement in the map frame for one particle's robot pose x:

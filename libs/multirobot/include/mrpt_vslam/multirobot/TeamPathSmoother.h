@@ -3,6 +3,7 @@
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPose2D.h>
 #include <mrpt_vslam/core/SensorPoseCorrection.h>
+#include <mrpt_vslam/core/SensorTiltCorrection.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
 #include <mrpt_vslam/multirobot/CVisualLandmarksMap.h>
 #include <mrpt_vslam/multirobot/PlanarPoseLandmarkGraph.h>
@@ -142,16 +143,20 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
      *  \pre registered with the filter before its reset() */
     TSmoothedTeam smoothPaths(const TTeamParticle& p) const;
 
-    /// One sensor's TSensorPoseCorrection: `sensor` as TLandmarkMeasurement::sensor.
+    /// One sensor's TSensorPoseCorrection and TSensorTiltCorrection: `sensor` as
+    /// TLandmarkMeasurement::sensor.
     struct TSensorPoseCheck {
         size_t robot = 0;
         uint16_t sensor = 0;
         core::TSensorPoseCorrection correction;
+        /// of its 3D readings (none for the planar model's) of landmarks read more than once
+        std::optional<core::TSensorTiltCorrection> tilt;
     };
     /** Per robot and sensor, the correction of the sensor's pose on the robot that best
      *  explains the readings of the map along particle `p`'s path: each reading of a landmark
      *  paired with the same sensor's previous reading of it, up to 3 steps before, through the
-     *  robot's odometry between the two. Robots and sensors without such pairs are left out.
+     *  robot's odometry between the two; and the sensor's tilt from the heights of all its
+     *  readings of each landmark. Robots and sensors without such pairs are left out.
      *  \pre registered with the filter before its reset() */
     std::vector<TSensorPoseCheck> sensorPoseChecks(const TTeamParticle& p) const;
 
