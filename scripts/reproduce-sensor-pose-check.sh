@@ -1,16 +1,17 @@
 #!/usr/bin/env bash
-# The check of the sensor poses on the robots of multirobot-vslam and omni-fastslam
+# The check of the sensor poses on the robots of multirobot-vslam, omni-fastslam and view-slam
 # (doc/multirobot.md, "Checking the sensor poses"; doc/results/sensor-pose-check.md):
 #   1. the shipped data with their sensor poses as given: the office team of two and of three
 #      (office-team-2.ini, office-team-3.ini) and the MRCLAM cut (mrclam.ini) for
 #      multirobot-vslam, the sports hall and the hard hall (sports-hall.ini) for omni-fastslam,
 #      the 40 frames of omni-views (omni-views.ini) for view-slam;
-#      per sensor the correction found, its σ, the pairs beyond 3 σ and whether the run warned;
+#      per sensor the correction and the tilt found, their σ, the pairs beyond 3 σ and whether
+#      the run warned;
 #   2. the office team of two with R1's camera pose in the rawlog changed by stock rawlog-edit
 #      (--sensors-pose), as a wrong calibration would state it: turned about the vertical,
-#      moved forward, raised, pitched, a quarter and a half turn, without its roll, at the
-#      robot's origin; per seed R1's position RMSE (and odometry's), the correction found for
-#      R1's camera, and whether the run warned;
+#      moved forward, raised, pitched down, rolled, a quarter and a half turn, without its
+#      roll, at the robot's origin; per seed R1's position RMSE (and odometry's), the
+#      correction and the tilt found for R1's camera, and whether the run warned;
 #   3. omni-fastslam (sports-hall.ini) on the sports hall with its camera pose turned or moved
 #      the same way: per seed the position RMSE and whether the run warned, and the correction
 #      found for the camera;
@@ -66,7 +67,8 @@ run mrclam "$CONFIGS/mrclam.ini" "$REPO_DIR/datasets/utias-mrclam/mrclam7-r123-0
   "$first_seed"
 
 # 2. R1's camera pose changed: NAME x y z [m] yaw pitch roll [deg] (the pose the data were
-# made with: 0.1 0.06 0.5 -90 0 -90)
+# made with: 0.1 0.06 0.5 -90 0 -90; the camera's own roll turns it about the robot's y axis,
+# its pitch about the robot's x axis)
 while read -r name x y z yaw pitch roll; do
   printf '[R1_CAMERA]\nsensorLabel = R1_LANDMARKS\npose_x = %s\npose_y = %s\npose_z = %s\npose_yaw = %s\npose_pitch = %s\npose_roll = %s\n' \
     "$x" "$y" "$z" "$yaw" "$pitch" "$roll" >"$OUT/$name.ini"
@@ -89,7 +91,11 @@ forward-0.1 0.2 0.06 0.5 -90 0 -90
 forward-0.2 0.3 0.06 0.5 -90 0 -90
 forward-0.5 0.6 0.06 0.5 -90 0 -90
 raised-0.5 0.1 0.06 1.0 -90 0 -90
-pitched-10 0.1 0.06 0.5 -90 10 -90
+pitched-2 0.1 0.06 0.5 -90 0 -92
+pitched-5 0.1 0.06 0.5 -90 0 -95
+pitched-10 0.1 0.06 0.5 -90 0 -100
+rolled-2 0.1 0.06 0.5 -90 2 -90
+rolled-10 0.1 0.06 0.5 -90 10 -90
 quarter-turn 0.1 0.06 0.5 0 0 -90
 half-turn 0.1 0.06 0.5 90 0 -90
 without-roll 0.1 0.06 0.5 -90 0 0
@@ -190,25 +196,35 @@ def correction(c):
             f"({c['std_dx_dy_m'][0]:.2f}, {c['std_dx_dy_m'][1]:.2f}) | "
             f"{c['dyaw_confounding']:.1f} | {c['pairs_beyond_3_sigma']} of {c['pairs']}")
 
+def tilt(c):
+    if "dpitch_droll_deg" not in c:
+        return "— | —"
+    d, sd = c["dpitch_droll_deg"], c["std_dpitch_droll_deg"]
+    return (f"{d[0]:+.1f}, {d[1]:+.1f} ({sd[0]:.1f}, {sd[1]:.1f}) | "
+            f"{c['tilt_readings_beyond_3_sigma']} of {c['tilt_readings']}")
+
 def warned(r, sensor):
     return "yes" if any(w.startswith(sensor + ":") for w in r["warnings"]) else "no"
 
 print("## The shipped data, sensor poses as given\n")
 print("Per sensor: the turn [deg] and move [m] of its pose that fit its readings best (σ in "
       "brackets), dyaw_confounding (≥ 4: the path does not tell a turn from a move), the "
-      "pairs of readings beyond 3 σ, and whether the run warned.\n")
-print("| data | seed | sensor | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | warned |")
-print("|---|---|---|---|---|---|---|---|")
+      "pairs of readings beyond 3 σ; for 3D readings the pitch and roll [deg] that fit the "
+      "heights of its readings of each landmark best and the readings beyond 3 σ there; "
+      "whether the run warned.\n")
+print("| data | seed | sensor | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | pitch, roll [deg] | readings beyond 3 σ | warned |")
+print("|---|---|---|---|---|---|---|---|---|---|")
 for name in ["team2", "team3", "mrclam", "hall", "hall-hard", "omni-views"]:
     for s in seeds if name != "mrclam" else seeds[:1]:
         r = load(f"{name}-s{s}")
         for sensor, c in r["results"]["sensor_pose_check"].items():
-            print(f"| {name} | {s} | {sensor} | {correction(c)} | {warned(r, sensor)} |")
+            print(f"| {name} | {s} | {sensor} | {correction(c)} | {tilt(c)} | "
+                  f"{warned(r, sensor)} |")
 
-def variant_row(run, labels, robot, sensor):
+def variant_row(run, labels, robot, sensor, with_tilt=False):
     """A variant's row: the labels, the position RMSE per seed (metrics.json, `robot` or the
-    single robot's), the odometry's, the correction found for `sensor` (first seed) and
-    whether each run warned."""
+    single robot's), the odometry's, the correction (and `with_tilt`, the tilt) found for
+    `sensor` (first seed) and whether each run warned."""
     rmse, odometry, warnings = [], [], []
     for s in seeds:
         with open(f"{out}/{run}-s{s}/metrics.json") as f:
@@ -220,17 +236,19 @@ def variant_row(run, labels, robot, sensor):
     c = load(f"{run}-s{seeds[0]}")["results"]["sensor_pose_check"][sensor]
     # one odometry figure where every seed ran on the same rawlog
     return (f"| {' | '.join(labels)} | {', '.join(rmse)} | {', '.join(dict.fromkeys(odometry))} | "
-            f"{correction(c)} | {', '.join(warnings)} |")
+            f"{correction(c)} | {tilt(c) + ' | ' if with_tilt else ''}{', '.join(warnings)} |")
 
 print("\n## The office team of two, R1's camera pose stated wrong\n")
 print("R1's camera pose as the rawlog states it (x y z [m], yaw pitch roll [deg]; the data were "
-      "made with 0.1 0.06 0.5, −90 0 −90), R1's position RMSE per seed against its odometry's, "
-      "and the correction found for R1's camera (seed " + seeds[0] + ").\n")
-print("| variant | stated yaw pitch roll [deg] | stated x y z [m] | R1 RMSE [m] | odometry RMSE [m] | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | warned (seeds) |")
-print("|---|---|---|---|---|---|---|---|---|---|")
+      "made with 0.1 0.06 0.5, −90 0 −90: the camera's own roll turns it about the robot's y "
+      "axis, pitched-N states it turned down by N degrees more than it is; its pitch about the "
+      "robot's x axis, rolled-N), R1's position RMSE per seed against its odometry's, and the "
+      "correction and the tilt found for R1's camera (seed " + seeds[0] + ").\n")
+print("| variant | stated yaw pitch roll [deg] | stated x y z [m] | R1 RMSE [m] | odometry RMSE [m] | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | pitch, roll [deg] | readings beyond 3 σ | warned (seeds) |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|")
 for line in open(table):
     name, position, angles = line.rstrip("\n").split("\t")
-    print(variant_row(name, [name, angles, position], "R1", "R1 R1_LANDMARKS"))
+    print(variant_row(name, [name, angles, position], "R1", "R1 R1_LANDMARKS", True))
 
 def camera_variants(title, intro, variants, prefix):
     """A section of one camera stated wrong: a row per line "NAME\tX Y\tYAW" of `variants`,
