@@ -31,8 +31,11 @@ struct SingleRobotRangeBearingLog {
     enum class Format { ActionsAndFrames, FrameFirst, ObservationsOnly };
     Format format = Format::ActionsAndFrames;
     size_t steps = 160;
-    double std_range = 0.05;                            ///< [m], true noise and sensor_std_range
-    double std_bearing = 0.01;                          ///< [rad], true noise and sensor_std_yaw
+    double std_range = 0.05;    ///< [m], true noise and sensor_std_range
+    double std_bearing = 0.01;  ///< [rad], true noise and sensor_std_yaw
+    /// [rad], true noise and sensor_std_pitch; > 0: the landmarks stand 0.6 m below, at and
+    /// above the sensor's height in turn, and the readings carry their pitch (3D landmarks)
+    double std_pitch = 0;
     double max_range = 4.5;                             ///< [m]
     double odometry_std_xy = 0.02;                      ///< [m] per step
     double odometry_std_phi = 0.01;                     ///< [rad] per step
@@ -45,17 +48,20 @@ struct SingleRobotRangeBearingLog {
     std::optional<mrpt::poses::CPose3D> second_sensor;
     uint32_t seed = 1;
 
-    /// The true landmarks, at the sensor's height: a ring around the path, a few inside it.
+    /// The true landmarks, at the sensor's height (std_pitch = 0): a ring around the path, a
+    /// few inside it.
     std::vector<mrpt::math::TPoint3D> landmarks() const
     {
         std::vector<mrpt::math::TPoint3D> pts;
-        const double z = sensor.z();
+        const auto z = [&] {
+            return sensor.z() + (std_pitch > 0 ? 0.6 * (pts.size() % 3 - 1.0) : 0);
+        };
         for (int i = 0; i < 16; i++) {
             const double a = 2 * M_PI * i / 16;
-            pts.push_back({5.5 * std::cos(a), 3 + 5.5 * std::sin(a), z});
+            pts.push_back({5.5 * std::cos(a), 3 + 5.5 * std::sin(a), z()});
         }
         for (const auto& [x, y] : {std::pair{1.0, 3.5}, {-1.5, 4.0}, {0.5, 1.5}})
-            pts.push_back({x, y, z});
+            pts.push_back({x, y, z()});
         return pts;
     }
 
@@ -91,6 +97,7 @@ struct SingleRobotRangeBearingLog {
                 obs->maxSensorDistance = static_cast<float>(max_range);
                 obs->sensor_std_range = static_cast<float>(std_range);
                 obs->sensor_std_yaw = static_cast<float>(std_bearing);
+                obs->sensor_std_pitch = static_cast<float>(std_pitch);
                 const mrpt::poses::CPose3D sensorInMap = mrpt::poses::CPose3D(pose) + on_robot;
                 for (const auto& p : pts) {
                     double r = 0, yaw = 0, pitch = 0;
@@ -99,7 +106,9 @@ struct SingleRobotRangeBearingLog {
                     mrpt::obs::CObservationBearingRange::TMeasurement m;
                     m.range = static_cast<float>(r + rng.drawGaussian1D(0, std_range));
                     m.yaw = static_cast<float>(yaw + rng.drawGaussian1D(0, std_bearing));
-                    m.pitch = 0;  // the landmarks are at the sensor's height
+                    m.pitch = std_pitch > 0
+                                  ? static_cast<float>(pitch + rng.drawGaussian1D(0, std_pitch))
+                                  : 0;  // the landmarks are at the sensor's height
                     m.landmarkID = -1;
                     obs->sensedData.push_back(m);
                 }
