@@ -110,6 +110,11 @@ TEST_F(MultiRobotVSLAMApp, SingleRobotRangeBearingRawlogsRunFromTheTemplate)
         const auto runJson = json(dir + "run.json");
         EXPECT_EQ(runJson["counts"]["steps"].get<int>(), 160) << name;
         EXPECT_EQ(runJson["warnings"], nlohmann::json::array()) << name;
+        // planar readings: no heights, no tilt checked
+        EXPECT_FALSE(
+            runJson["results"]["sensor_pose_check"]["R1 CObservationBearingRange"].contains(
+                "dpitch_droll_deg"))
+            << name;
         // the template's filter_runs = 4: the kept run is the one of least smoothed cost
         const auto& runs = runJson["results"]["filter_runs"];
         ASSERT_EQ(runs.size(), 4u) << name << ": " << runs.dump();
@@ -199,6 +204,42 @@ TEST_F(MultiRobotVSLAMApp, SaysWhenReadingsAndOdometryDisagree)
     EXPECT_NE(r.out.find("multirobot-vslam: warning: " + found->template get<std::string>() + "\n"),
               std::string::npos)
         << r.out;
+}
+
+// 3D range-bearing readings (landmarks 0.6 m below, at and above the sensor) of a sensor stated
+// level: its tilt is checked from their heights, about 0 with the sensor level and the pitch
+// undone when it is pitched down by 3°, with a warning.
+TEST_F(MultiRobotVSLAMApp, SaysWhenARangeBearingSensorIsTilted)
+{
+    for (const double pitchDeg : {0.0, 3.0}) {
+        mrpt_vslam::test::SingleRobotRangeBearingLog log;
+        log.std_pitch = 0.01;
+        log.sensor = mrpt::poses::CPose3D(0.2, 0, 0.3, 0, mrpt::DEG2RAD(pitchDeg), 0);
+        log.stated_sensor = mrpt::poses::CPose3D(0.2, 0, 0.3, 0, 0, 0);
+        const std::string name = out(mrpt::format("rb-3d-pitched-%g", pitchDeg));
+        log.write(name);
+        const TCommandResult r = run(kConfigs + "range-bearing.ini " + name +
+                                     ".rawlog --seed 1 -q --out " + name + "-run");
+        ASSERT_EQ(r.exit_code, 0) << r.out;
+        const auto runJson = json(name + "-run/run.json");
+        const auto& check = runJson["results"]["sensor_pose_check"]["R1 CObservationBearingRange"];
+        ASSERT_TRUE(check.contains("dpitch_droll_deg")) << check;
+        const double pitch = check["dpitch_droll_deg"][0], roll = check["dpitch_droll_deg"][1];
+        std::printf(
+            "sensor pitched down by %g deg, stated level: pitch %.2f, roll %.2f deg found "
+            "(std %.2f, %.2f)\n",
+            pitchDeg, pitch, roll, check["std_dpitch_droll_deg"][0].get<double>(),
+            check["std_dpitch_droll_deg"][1].get<double>());
+        EXPECT_NEAR(pitch, pitchDeg, 0.5);
+        EXPECT_LT(std::abs(roll), 0.5);
+        const auto& warnings = runJson["warnings"];
+        const bool tiltWarned =
+            std::any_of(warnings.begin(), warnings.end(), [](const nlohmann::json& w) {
+                return w.get<std::string>().find("check its pitch and roll on the robot") !=
+                       std::string::npos;
+            });
+        EXPECT_EQ(tiltWarned, pitchDeg > 0) << warnings;
+    }
 }
 
 // A rawlog cut from a longer one, beside the longer one's ground truth: the run starts from the
@@ -582,8 +623,10 @@ TEST_F(MultiRobotVSLAMApp, SaysWhenTheCameraIsTilted)
         EXPECT_NEAR(axis ? roll : pitch, -2, 0.4);
         EXPECT_LT(std::abs(axis ? pitch : roll), 0.5);
         ASSERT_EQ(warnings.size(), 1u) << warnings;
-        EXPECT_NE(warnings[0].get<std::string>().find("the heights of its readings of "),
-                  std::string::npos);
+        const std::string warning = warnings[0].get<std::string>();
+        EXPECT_NE(warning.find("the heights of its readings of "), std::string::npos);
+        EXPECT_NE(warning.find("check its pitch and roll on the robot"), std::string::npos)
+            << warning;
     }
 }
 

@@ -91,11 +91,13 @@ void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
         json += "}";
         if (!quiet) std::printf("%s: %s: %s\n", app, sensor.c_str(), fit.c_str());
         // with the pose and noise right, about 1 pair in 90 lies beyond 3 σ
-        if (((turned || moved) && turnConfounding < kConfounding) || tilted ||
-            10 * d.outlier_pairs > d.pairs)
+        if (((turned || moved) && turnConfounding < kConfounding) || 10 * d.outlier_pairs > d.pairs)
             report.addWarning(sensor + ": " + fit +
                               ": check its pose on the robot and its noise (an odometry whose "
                               "heading drifts also looks like a turned sensor; " +
+                              doc + ")");
+        else if (tilted)  // the odometry plays no part in the tilt
+            report.addWarning(sensor + ": " + fit + ": check its pitch and roll on the robot (" +
                               doc + ")");
     }
     if (!json.empty()) report.setResultJson("sensor_pose_check", "{" + json + "}");
