@@ -1,6 +1,7 @@
 #include <mrpt_vslam/core/SensorTiltCorrection.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 
 namespace mrpt_vslam::core {
