@@ -49,6 +49,13 @@ run() {
     >"$dir.log" 2>&1 ||
     { echo "reproduce-sensor-pose-check.sh: $1 failed, see $dir.log" >&2; exit 1; }
 }
+# restate_poses SOURCE TARGET INI: SOURCE rewritten by stock rawlog-edit with the sensor poses
+# of INI (--sensors-pose) into TARGET, its log beside INI
+restate_poses() {
+  local log="${3%.ini}.rawlog-edit.log"
+  rawlog-edit -q -w -i "$1" -o "$2" --sensors-pose "$3" </dev/null >"$log" 2>&1 ||
+    { echo "reproduce-sensor-pose-check.sh: rawlog-edit failed, see $log" >&2; exit 1; }
+}
 HALL="$REPO_DIR/datasets/sports-hall"
 HALL_CONFIG="$REPO_DIR/share/mrpt-vslam/config/omni-fastslam/sports-hall.ini"
 
@@ -72,9 +79,7 @@ run mrclam "$CONFIGS/mrclam.ini" "$REPO_DIR/datasets/utias-mrclam/mrclam7-r123-0
 while read -r name x y z yaw pitch roll; do
   printf '[R1_CAMERA]\nsensorLabel = R1_LANDMARKS\npose_x = %s\npose_y = %s\npose_z = %s\npose_yaw = %s\npose_pitch = %s\npose_roll = %s\n' \
     "$x" "$y" "$z" "$yaw" "$pitch" "$roll" >"$OUT/$name.ini"
-  rawlog-edit -q -w -i "$TEAM/team2.rawlog" -o "$OUT/$name.rawlog" \
-    --sensors-pose "$OUT/$name.ini" </dev/null >"$OUT/$name.rawlog-edit.log" 2>&1 ||
-    { echo "reproduce-sensor-pose-check.sh: rawlog-edit failed, see $OUT/$name.rawlog-edit.log" >&2; exit 1; }
+  restate_poses "$TEAM/team2.rawlog" "$OUT/$name.rawlog" "$OUT/$name.ini"
   for f in groundtruth_R1.tum groundtruth_R2.tum landmarks.txt; do
     cp "$TEAM/team2.$f" "$OUT/$name.$f"
   done
@@ -112,9 +117,7 @@ while read -r name x y yaw; do
     printf '[%s]\nsensorLabel = %s\npose_x = %s\npose_y = %s\npose_z = 1.8\npose_yaw = %s\npose_pitch = 0\npose_roll = 0\n' \
       "$label" "$label" "$x" "$y" "$yaw"
   done >"$OUT/hall-$name.ini"
-  rawlog-edit -q -w -i "$HALL/hall.rawlog" -o "$rawlog" --sensors-pose "$OUT/hall-$name.ini" \
-    </dev/null >"$OUT/hall-$name.rawlog-edit.log" 2>&1 ||
-    { echo "reproduce-sensor-pose-check.sh: rawlog-edit failed, see $OUT/hall-$name.rawlog-edit.log" >&2; exit 1; }
+  restate_poses "$HALL/hall.rawlog" "$rawlog" "$OUT/hall-$name.ini"
   ln -sfn "$HALL/hall_Images" "${rawlog%.rawlog}_Images"
   for f in groundtruth.tum landmarks.txt; do cp "$HALL/hall.$f" "${rawlog%.rawlog}.$f"; done
   for s in $SEEDS; do run "hall-$name" "$HALL_CONFIG" "$rawlog" "$s" omni-fastslam; done
@@ -142,9 +145,7 @@ while read -r name x y yaw; do
     data="$OUT/views-data-s$s/rooms" rawlog="$OUT/views-data-s$s/$name.rawlog"
     printf '[OMNICAM]\nsensorLabel = OMNICAM\npose_x = %s\npose_y = %s\npose_z = 0.4\npose_yaw = %s\npose_pitch = 0\npose_roll = 0\n' \
       "$x" "$y" "$yaw" >"$OUT/views-$name.ini"
-    rawlog-edit -q -w -i "$data.rawlog" -o "$rawlog" --sensors-pose "$OUT/views-$name.ini" \
-      </dev/null >"$OUT/views-$name.rawlog-edit.log" 2>&1 ||
-      { echo "reproduce-sensor-pose-check.sh: rawlog-edit failed, see $OUT/views-$name.rawlog-edit.log" >&2; exit 1; }
+    restate_poses "$data.rawlog" "$rawlog" "$OUT/views-$name.ini"
     ln -sfn rooms_Images "${rawlog%.rawlog}_Images"
     cp "$data.groundtruth.tum" "${rawlog%.rawlog}.groundtruth.tum"
     run "views-$name" "$VIEWS_CONFIG" "$rawlog" "$s" view-slam

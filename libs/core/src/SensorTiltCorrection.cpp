@@ -64,31 +64,32 @@ TSensorTiltCorrection TSensorTiltCorrection::estimate(
 {
     const double priorInfo = 1 / (M_PI * M_PI);
     TSensorTiltCorrection c;
+    std::vector<const std::vector<TPointReading>*> used;  // the points read more than once
     for (const auto& p : points)
         if (p.size() > 1) {
+            used.push_back(&p);
             c.readings += p.size();
-            c.points++;
         }
+    c.points = used.size();
     Eigen::Matrix2d H = priorInfo * Eigen::Matrix2d::Identity();
     for (int iteration = 0; iteration < 30; iteration++) {
         const TUp u = up(c.delta);
         H = priorInfo * Eigen::Matrix2d::Identity();
         Eigen::Vector2d g = priorInfo * c.delta;
-        for (const auto& p : points) {
-            if (p.size() < 2) continue;
-            const TPointResiduals r(p, u);
+        for (const auto* p : used) {
+            const TPointResiduals r(*p, u);
             // Huber (IRLS); the point's height eliminated: e and J less their projections on a
-            std::vector<double> w(p.size(), 1.0);
+            std::vector<double> w(p->size(), 1.0);
             double aa = 0, ae = 0;
             Eigen::RowVector2d aJ = Eigen::RowVector2d::Zero();
-            for (size_t k = 0; k < p.size(); k++) {
+            for (size_t k = 0; k < p->size(); k++) {
                 const double n = std::abs(r.whitened(k));
                 if (huber > 0 && n > huber) w[k] = huber / n;
                 aa += w[k] * r.a[k] * r.a[k];
                 ae += w[k] * r.a[k] * r.e[k];
                 aJ += w[k] * r.a[k] * r.J[k];
             }
-            for (size_t k = 0; k < p.size(); k++) {
+            for (size_t k = 0; k < p->size(); k++) {
                 const Eigen::RowVector2d J = r.J[k] - r.a[k] * aJ / aa;
                 H += w[k] * J.transpose() * J;
                 g += w[k] * J.transpose() * (r.e[k] - r.a[k] * ae / aa);
@@ -101,10 +102,9 @@ TSensorTiltCorrection TSensorTiltCorrection::estimate(
     c.cov = H.inverse();
     if (huber > 0) {
         const TUp u = up(c.delta);
-        for (const auto& p : points) {
-            if (p.size() < 2) continue;
-            const TPointResiduals r(p, u);
-            for (size_t k = 0; k < p.size(); k++)
+        for (const auto* p : used) {
+            const TPointResiduals r(*p, u);
+            for (size_t k = 0; k < p->size(); k++)
                 c.outlier_readings += std::abs(r.whitened(k)) > huber;
         }
     }
