@@ -5,7 +5,9 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
 #include <cmath>
+#include <map>
 #include <optional>
+#include <utility>
 
 namespace mrpt_vslam::core {
 
@@ -37,23 +39,29 @@ struct TLinearized {
 // d R(a)/da = R(a) S = S R(a)
 const Eigen::Matrix2d S = (Eigen::Matrix2d() << 0, -1, 1, 0).finished();
 
-TLinearized<2> linearize(const TReadingPair& p, const Eigen::Vector3d& x)
+/// A pair's linearization, with its covariance C = A + B Q Bᵀ in two parts: that of its
+/// readings (A) and the odometry's Jacobian (B).
+struct TPairLinearized : TLinearized<2> {
+    Eigen::Matrix2d A;
+    Eigen::Matrix<double, 2, 3> B;
+};
+
+TPairLinearized linearize(const TReadingPair& p, const Eigen::Vector3d& x)
 {
     const Eigen::Vector2d t = x.head<2>(), tu(p.u.x, p.u.y);
     const Eigen::Matrix2d Rd = rotation(x[2]), Ru = rotation(p.u.phi);
     const Eigen::Vector2d pj = Rd * p.z_j + t;  // the point in x_j's frame
-    TLinearized<2> l;
+    TPairLinearized l;
     l.r = Rd * p.z_i + t - (Ru * pj + tu);
     l.J.leftCols<2>() = Eigen::Matrix2d::Identity() - Ru;
     // ∂r/∂θ = S (R(θ) z_i − Ru R(θ) z_j) is S (tu − (I − Ru) t) plus S r: the readings' noise,
     // which would count as information on θ; the expected Jacobian leaves it out
     l.J.col(2) = S * (tu - l.J.leftCols<2>() * t);
     // ∂(u ⊕ pj)/∂u = [I, S Ru pj]
-    Eigen::Matrix<double, 2, 3> Ju;
-    Ju.leftCols<2>().setIdentity();
-    Ju.col(2) = S * Ru * pj;
-    l.C = Rd * p.R_i * Rd.transpose() + Ru * Rd * p.R_j * Rd.transpose() * Ru.transpose() +
-          Ju * p.Q * Ju.transpose();
+    l.B.leftCols<2>().setIdentity();
+    l.B.col(2) = S * Ru * pj;
+    l.A = Rd * p.R_i * Rd.transpose() + Ru * Rd * p.R_j * Rd.transpose() * Ru.transpose();
+    l.C = l.A + l.B * p.Q * l.B.transpose();
     return l;
 }
 
@@ -127,6 +135,19 @@ TSensorPoseCorrection TSensorPoseCorrection::estimate(
         for (const auto& b : bearings) sum += rho(std::abs(c.whitenedResidual(b)));
         return sum;
     };
+    const auto weight = [&](double norm) {  // IRLS
+        return huber > 0 && norm > huber ? huber / norm : 1.0;
+    };
+    // the pairs by their two steps (a pair without them, step_j <= step_i, alone)
+    std::map<std::pair<size_t, size_t>, std::vector<size_t>> bySteps;
+    std::vector<std::vector<size_t>> groups;
+    for (size_t i = 0; i < pairs.size(); i++) {
+        if (pairs[i].step_j > pairs[i].step_i)
+            bySteps[{pairs[i].step_i, pairs[i].step_j}].push_back(i);
+        else
+            groups.push_back({i});
+    }
+    for (auto& [steps, members] : bySteps) groups.push_back(std::move(members));
     // from four turns: a sensor mounted a quarter or half turn off is found too
     std::optional<TSensorPoseCorrection> best;
     double bestCost = 0;
@@ -140,12 +161,32 @@ TSensorPoseCorrection TSensorPoseCorrection::estimate(
             Eigen::Vector3d g = priorInfo.cwiseProduct(c.delta);
             const auto add = [&](const auto& l) {
                 const auto [e, Je] = l.whitened();
-                const double norm = e.norm();
-                const double w = huber > 0 && norm > huber ? huber / norm : 1.0;  // IRLS
+                const double w = weight(e.norm());
                 H += w * Je.transpose() * Je;
                 g += w * Je.transpose() * e;
             };
-            for (const auto& p : pairs) add(linearize(p, c.delta));
+            // A group's residuals r_p = (readings' part, covariance A_p) − B_p η share one
+            // odometry error η ~ N(0, Q): its information is Σ J_pᵀ W_p J_p less
+            // Gᵀ Q (I + K Q)⁻¹ G (Woodbury), W_p = w_p A_p⁻¹, K = Σ B_pᵀ W_p B_p,
+            // G = Σ B_pᵀ W_p J_p; likewise its gradient. A pair alone (w = 1): (A + B Q Bᵀ)⁻¹.
+            for (const auto& group : groups) {
+                Eigen::Matrix3d K = Eigen::Matrix3d::Zero(), G = Eigen::Matrix3d::Zero();
+                Eigen::Vector3d Gr = Eigen::Vector3d::Zero();
+                for (const size_t i : group) {
+                    const TPairLinearized l = linearize(pairs[i], c.delta);
+                    const Eigen::Matrix2d W = weight(l.whitened().first.norm()) * l.A.inverse();
+                    H += l.J.transpose() * W * l.J;
+                    g += l.J.transpose() * W * l.r;
+                    K += l.B.transpose() * W * l.B;
+                    G += l.B.transpose() * W * l.J;
+                    Gr += l.B.transpose() * W * l.r;
+                }
+                const Eigen::Matrix3d& Q = pairs[group.front()].Q;
+                const Eigen::Matrix3d N =
+                    Q * (Eigen::Matrix3d::Identity() + K * Q).partialPivLu().inverse();
+                H -= G.transpose() * N * G;
+                g -= G.transpose() * N * Gr;
+            }
             for (const auto& b : bearings) add(linearize(b, c.delta));
             const Eigen::Vector3d step = -H.ldlt().solve(g);
             c.delta += step;

@@ -24,6 +24,9 @@ struct TReadingPair {
     Eigen::Matrix2d R_i, R_j;  ///< their covariances
     mrpt::math::TPose2D u;     ///< the odometry from x_i to x_j, in x_i's frame
     Eigen::Matrix3d Q;         ///< its covariance
+    /// the steps of x_i and x_j: the pairs of the same two steps share u and its error (a
+    /// pair with step_j <= step_i shares it with none)
+    size_t step_i = 0, step_j = 0;
 };
 
 /** A bearing read by the sensor from x_j = x_i ⊕ u of the sensor's own position at x_i (a
@@ -64,7 +67,7 @@ class ReadingPairing {
         const auto [u, Q] =
             composedOdometry([&](size_t s) -> const TOdometryGaussian& { return m_motion(key, s); },
                              before.step, now.step);
-        return TReadingPair{before.z, now.z, before.R, now.R, u, Q};
+        return TReadingPair{before.z, now.z, before.R, now.R, u, Q, before.step, now.step};
     }
 
   private:
@@ -94,7 +97,10 @@ struct TSensorPoseCorrection {
 
     /** Weighted least squares over `pairs` and `bearings` (Gauss-Newton; Huber on each one's
      *  whitened residual norm at `huber` σ; a weak prior N(0, diag(1 m², 1 m², π²)) keeps t
-     *  solvable when the robot never turns), from θ = 0, ±π/2 and π: the least cost is kept. */
+     *  solvable when the robot never turns), from θ = 0, ±π/2 and π: the least cost is kept.
+     *  The pairs of the same two steps share one odometry error: each such group is weighed
+     *  with the joint covariance of its residuals, not as independent pairs, which would count
+     *  the odometry's information once per point read. */
     static TSensorPoseCorrection estimate(const std::vector<TReadingPair>& pairs,
                                           const std::vector<TEarlierPoseBearing>& bearings = {},
                                           double huber = 3);
