@@ -182,7 +182,7 @@ TEST(SensorPoseCorrection, CovarianceMatchesTheSpreadOfTheEstimatesFromBearings)
 }
 
 // Noisy readings and odometry, the readings' noise or the odometry's the larger (each step's
-// shared by the 6-9 pairs of that step): over 30 worlds each, each estimate lies within its own
+// shared by the 9-21 pairs of that step): over 30 worlds each, each estimate lies within its own
 // 4 σ of the error, and the normalised errors have about unit variance (the covariance is
 // neither far too small nor too large; were the pairs of a step taken as independent, 8 with
 // the odometry's noise the larger); about 1 pair in 90 lies beyond 3 σ.
