@@ -536,8 +536,6 @@ TEST_F(MultiRobotVSLAMApp, TeamOfTwoMeetsTheAccuracyBoundsOnEverySeed)
     }
 }
 
-// R1's camera turned by 5° from the pose its observations give: the readings of a landmark from
-// nearby steps find the turn (as on the right pose, less 5°), and the run warns.
 // team2 with R1's camera stated turned by `error` (about the robot's origin; the data were made
 // without it) as `name`.rawlog, beside its ground truth.
 void writeTeam2WithR1CameraStated(const std::string& name, const mrpt::poses::CPose3D& error)
@@ -559,6 +557,8 @@ void writeTeam2WithR1CameraStated(const std::string& name, const mrpt::poses::CP
         fs::copy_file(kData + "team2" + f, name + f, fs::copy_options::overwrite_existing);
 }
 
+// R1's camera turned by 5° from the pose its observations give: the readings of a landmark from
+// nearby steps find the turn (as on the right pose, less 5°), and the run warns.
 TEST_F(MultiRobotVSLAMApp, SaysWhenTheCameraIsTurned)
 {
     const std::string name = out("team2-turned");

@@ -71,7 +71,7 @@ TSensorTiltCorrection TSensorTiltCorrection::estimate(
             c.readings += p.size();
         }
     c.points = used.size();
-    Eigen::Matrix2d H = priorInfo * Eigen::Matrix2d::Identity();
+    Eigen::Matrix2d H;
     for (int iteration = 0; iteration < 30; iteration++) {
         const TUp u = up(c.delta);
         H = priorInfo * Eigen::Matrix2d::Identity();
