@@ -296,8 +296,12 @@ core::TumTrajectory SlamApp::asTrajectory(
     const std::vector<std::pair<double, mrpt::math::TPose2D>>& path)
 {
     core::TumTrajectory t;
-    for (const auto& [time, p] : path)
-        if (t.empty() || time > t.timestamps.back()) t.push_back(time, mrpt::math::TPose3D(p));
+    for (const auto& [time, p] : path) {
+        if (t.empty() || time > t.timestamps.back())
+            t.push_back(time, mrpt::math::TPose3D(p));
+        else if (time == t.timestamps.back())
+            t.poses.back() = mrpt::math::TPose3D(p);
+    }
     return t;
 }
 

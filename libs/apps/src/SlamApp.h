@@ -131,7 +131,8 @@ class SlamApp {
      *  or not after the step before it, is a std::runtime_error naming the rawlog and the step. */
     double stepTime(mrpt::Clock::time_point stamp);
 
-    /// A path of (timestamp, pose) as a trajectory, one pose per timestamp (the first kept).
+    /// A path of (timestamp, pose) as a trajectory, one pose per timestamp: the last (a filter's
+    /// path holds its start pose at the first step's time, then the first step's pose).
     static core::TumTrajectory asTrajectory(
         const std::vector<std::pair<double, mrpt::math::TPose2D>>& path);
 

@@ -45,10 +45,6 @@ mrpt::math::TPose2D groundTruthPoseAtStart(const TumTrajectory& truth, double t,
                                            const mrpt::math::TPose2D& u, const std::string& file,
                                            const std::string& key, double tolerance)
 {
-    const auto planar = [](const mrpt::math::TPose3D& p) {
-        return mrpt::math::TPose2D(p.x, p.y, p.yaw);
-    };
-    if (std::abs(truth.timestamps.front() - t) <= tolerance) return planar(truth.poses.front());
     const int i = truth.nearestIndex(t, tolerance);
     if (i < 0)
         throw std::runtime_error(mrpt::format(
@@ -58,9 +54,8 @@ mrpt::math::TPose2D groundTruthPoseAtStart(const TumTrajectory& truth, double t,
             file.c_str(), tolerance, t, truth.timestamps.front(), truth.timestamps.back(),
             key.c_str()));
     // start ⊕ u = the true pose at the first step
-    return (mrpt::poses::CPose2D(planar(truth.poses[static_cast<size_t>(i)])) +
-            -mrpt::poses::CPose2D(u))
-        .asTPose();
+    const mrpt::math::TPose3D& first = truth.poses[static_cast<size_t>(i)];
+    return (mrpt::poses::CPose2D(first.x, first.y, first.yaw) + -mrpt::poses::CPose2D(u)).asTPose();
 }
 
 }  // namespace mrpt_vslam::core

@@ -1,6 +1,7 @@
-// The start pose of a run from its ground truth: its first pose where it begins with the rawlog,
-// else (a rawlog cut from a longer one, beside the longer one's ground truth) the true pose at
-// the first step less that step's odometry; or from the config.
+// The start pose of a run from its ground truth: the true pose nearest the first step less that
+// step's odometry, so that the first step lands on it (the ground truth's first pose where it
+// begins with the rawlog, a later one where the rawlog is cut from a longer one); or from the
+// config.
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/poses/CPose2D.h>
@@ -31,32 +32,43 @@ std::string errorOf(const TumTrajectory& truth, double t)
     }
     return {};
 }
+
+// The first step's pose, start ⊕ u, against the true pose `index` of `truth`
+void expectFirstStepOn(const TumTrajectory& truth, double t, int index)
+{
+    const mrpt::math::TPose2D u(0.3, -0.1, 0.2);
+    const auto start = groundTruthPoseAtStart(truth, t, u, "NAME.groundtruth.tum", "[App] key");
+    const auto first = mrpt::poses::CPose2D(start) + mrpt::poses::CPose2D(u);
+    const mrpt::math::TPose3D& expected = truth.poses[static_cast<size_t>(index)];
+    EXPECT_NEAR(first.x(), expected.x, 1e-12) << t;
+    EXPECT_NEAR(first.y(), expected.y, 1e-12) << t;
+    EXPECT_NEAR(first.phi(), expected.yaw, 1e-12) << t;
+}
 }  // namespace
 
-// A ground truth that begins with the rawlog: its first pose is the pose before the first step
-TEST(SingleRobotStart, TheFirstTruePoseWhereTheGroundTruthBeginsAtTheFirstStep)
+// A ground truth that begins with the rawlog: the first step lands on its first pose, also where
+// the robot already moves at the first step (its odometry increment u is not zero)
+TEST(SingleRobotStart, TheFirstStepOnTheFirstTruePoseWhereTheGroundTruthBeginsWithIt)
 {
-    const TumTrajectory truth = tenPoses();
-    for (const double t : {100.0, 100.04, 99.96}) {
-        const auto p =
-            groundTruthPoseAtStart(truth, t, {0.3, 0.1, 0.2}, "NAME.groundtruth.tum", "[App] key");
-        EXPECT_EQ(p, mrpt::math::TPose2D(0, 0, 0)) << t;
-    }
+    for (const double t : {100.0, 100.04, 99.96}) expectFirstStepOn(tenPoses(), t, 0);
 }
 
-// A longer ground truth, begun before the rawlog: the start is such that the first step's
-// odometry increment u ends on the true pose nearest the first step
-TEST(SingleRobotStart, TheTruePoseAtTheFirstStepLessItsIncrement)
+// A longer ground truth, begun before the rawlog: the first step lands on the true pose nearest
+// to it
+TEST(SingleRobotStart, TheFirstStepOnTheTruePoseNearestToIt)
 {
-    const TumTrajectory truth = tenPoses();
-    const mrpt::math::TPose2D u(0.3, -0.1, 0.2);
-    for (const auto& [t, index] : {std::pair{100.52, 5}, {100.48, 5}, {100.94, 9}}) {
-        const auto start = groundTruthPoseAtStart(truth, t, u, "NAME.groundtruth.tum", "[App] key");
-        const auto first = (mrpt::poses::CPose2D(start) + mrpt::poses::CPose2D(u)).asTPose();
-        EXPECT_NEAR(first.x, index, 1e-12) << t;
-        EXPECT_NEAR(first.y, 2 * index, 1e-12) << t;
-        EXPECT_NEAR(first.phi, 0.1 * index, 1e-12) << t;
-    }
+    for (const auto& [t, index] : {std::pair{100.52, 5}, {100.48, 5}, {100.94, 9}})
+        expectFirstStepOn(tenPoses(), t, index);
+}
+
+// MRPT's simul-landmarks stamps its steps microseconds apart: a rawlog cut from one starts from
+// the true pose nearest its first step, not from the first one within the tolerance
+TEST(SingleRobotStart, TheNearestTruePoseWhereStepsAreMicrosecondsApart)
+{
+    TumTrajectory truth;
+    for (int i = 0; i < 10; i++)
+        truth.push_back(100 + 15e-6 * i, mrpt::math::TPose3D(i, 2 * i, 0, 0.1 * i, 0, 0));
+    for (const int index : {0, 1, 6}) expectFirstStepOn(truth, truth.timestamps[index], index);
 }
 
 TEST(SingleRobotStart, NoTruePoseNearTheFirstStepIsAnError)

@@ -10,11 +10,12 @@
 
 namespace mrpt_vslam::core {
 
-/** The start pose of a run from its ground truth `truth`, the pose before the first step (at
- *  time `t` [s], odometry increment `u`): where the ground truth begins within `tolerance` [s]
- *  of `t`, its first pose; where it begins earlier (a rawlog cut from a longer one beside the
- *  longer one's ground truth), its pose nearest to `t` (within `tolerance`, the evaluation's
- *  pairing) less `u`, so that the first step's pose is the true one.
+/** The start pose of a run from its ground truth `truth`: the pose before the first step (at
+ *  time `t` [s], odometry increment `u`) from which `u` ends on the true pose nearest to `t`
+ *  (within `tolerance`, the evaluation's pairing). That is the ground truth's first pose where
+ *  it begins with the rawlog, a later one where the rawlog is cut from a longer one beside the
+ *  longer one's ground truth; the nearest, not the first within `tolerance`: MRPT's
+ *  simul-landmarks stamps its steps microseconds apart.
  *  \throw std::runtime_error naming `file`, its time span and `key` (the config key that takes
  *  the start pose from the ground truth) when no pose is that near. */
 mrpt::math::TPose2D groundTruthPoseAtStart(const TumTrajectory& truth, double t,
