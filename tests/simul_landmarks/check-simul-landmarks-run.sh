@@ -26,12 +26,19 @@ landmarks=$(grep -vc '^#' "$scratch/user.landmarks.txt")
 [ "$landmarks" = 40 ] || fail "user.landmarks.txt has $landmarks landmarks, expected 40"
 
 # check_run NAME POSES: multirobot-vslam on NAME.rawlog from the template, scored against the
-# ground truth beside it over POSES poses
+# ground truth beside it over POSES poses; its first pose within 0.05 m of the nearest true one
 check_run() {
   "$build/bin/multirobot-vslam" "$src/share/mrpt-vslam/config/multirobot-vslam/range-bearing.ini" \
     "$scratch/$1.rawlog" --out "$scratch/run-$1" --seed 1 --quiet
-  python3 - "$scratch/run-$1/metrics.json" "$2" <<'PY' || fail "multirobot-vslam's metrics.json of $1 out of bounds"
-import json, sys
+  python3 - "$scratch/run-$1/metrics.json" "$2" "$scratch/run-$1/estimated_path_R1.tum" \
+    "$scratch/$1.groundtruth.tum" <<'PY' || fail "multirobot-vslam's metrics.json of $1 out of bounds"
+import json, math, sys
+rows = lambda f: [l.split() for l in open(f) if not l.startswith("#")]
+first = rows(sys.argv[3])[0]
+true = min(rows(sys.argv[4]), key=lambda r: abs(float(r[0]) - float(first[0])))
+off = math.hypot(float(first[1]) - float(true[1]), float(first[2]) - float(true[2]))
+print("first pose %.3f m from the true one" % off)
+if off > 0.05: sys.exit(1)
 m = json.load(open(sys.argv[1]))
 e = m["robots"]["R1"]["estimate"] if "robots" in m else m["estimate"]
 lm = m["landmarks"]
