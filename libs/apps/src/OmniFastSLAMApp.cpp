@@ -282,10 +282,11 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
         report.setResultJson(
             "smoothing",
             mrpt::format("{\"iterations\": %zu, \"bearings\": %zu, \"outliers\": %zu, "
-                         "\"merged_lights\": %zu, \"initial_cost\": %.6g, \"final_cost\": "
-                         "%.6g}",
+                         "\"merged_lights\": %zu, \"lights_with_filter_covariance\": %zu, "
+                         "\"initial_cost\": %.6g, \"final_cost\": %.6g}",
                          smoothed->iterations, smoothed->bearings, smoothed->outliers,
-                         smoothed->merged, smoothed->initial_cost, smoothed->final_cost));
+                         smoothed->merged, smoothed->lights_with_filter_covariance,
+                         smoothed->initial_cost, smoothed->final_cost));
         report.setPartTiming("smoothing", smoothingSeconds);
         // the shipped halls leave 1 in 200 beyond 3 σ, MRCLAM's bearings 1 in 25; a camera
         // yaw 90° off or images of no ceiling lights, three quarters and more
@@ -297,6 +298,12 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
                 "(doc/omni-fastslam.md)",
                 smoothed->outliers, smoothed->bearings, smootherOptions.huber,
                 1 / smoothed->outlier_probability, suffix.c_str()));
+        if (smoothed->lights_with_filter_covariance > 0)
+            report.addWarning(mrpt::format(
+                "after smoothing, %zu lights lie almost on a pose that reads them, where their "
+                "least-squares covariance is not positive definite: map.txt keeps the filter's "
+                "covariance of those (doc/omni-fastslam.md)",
+                smoothed->lights_with_filter_covariance));
     } else {
         core::saveFinalMap(best.map, out.path());
         drawBestParticle(scene);

@@ -76,6 +76,7 @@ class Problem {
 
     std::vector<TPose2D> poses;
     std::vector<Eigen::Vector3d> lights, prior;
+    std::vector<Eigen::Matrix3d> prior_cov;        ///< the filter's covariance of each light
     std::vector<core::TOdometryGaussian> motions;  ///< [k − 1]: from pose k − 1 to pose k
     std::vector<TBearingTerm> terms;
 
@@ -141,8 +142,11 @@ class Problem {
         return it;
     }
 
-    /// The marginal covariance of each light at the current values.
-    std::vector<Eigen::Matrix3d> lightCovariances() const
+    /** The marginal covariance of each light at the current values; the filter's where that
+     *  is not positive definite (a light smoothed onto a pose that reads it: its bearings'
+     *  Jacobians grow as 1/range, beyond what the factors of H resolve), counted in
+     *  `*kept_from_filter`. */
+    std::vector<Eigen::Matrix3d> lightCovariances(size_t* kept_from_filter = nullptr) const
     {
         Eigen::SparseMatrix<double> H;
         Eigen::VectorXd g;
@@ -157,6 +161,9 @@ class Problem {
             const Eigen::MatrixXd X = ldlt.solve(E);
             covs[j] = X.middleRows(static_cast<Eigen::Index>(col), 3);
             covs[j] = 0.5 * (covs[j] + covs[j].transpose()).eval();
+            if (covs[j].llt().info() == Eigen::Success) continue;
+            covs[j] = prior_cov[j];
+            if (kept_from_filter) ++*kept_from_filter;
         }
         return covs;
     }
@@ -344,6 +351,7 @@ LightsPathSmoother::TResult LightsPathSmoother::smooth(const TOmniFastSLAMPartic
     for (size_t j = 0; j < landmarks.size(); j++) {
         index_of_id[landmarks[j].id] = j;
         problem.lights.push_back(landmarks[j].mean);
+        problem.prior_cov.push_back(landmarks[j].cov);
     }
     problem.prior = problem.lights;
     for (size_t k = 1; k < steps.size(); k++)
@@ -416,7 +424,7 @@ LightsPathSmoother::TResult LightsPathSmoother::smooth(const TOmniFastSLAMPartic
         result.path.emplace_back(steps[k]->timestamp, problem.poses[k]);
     result.map = p.map;
     result.map.clear();
-    const auto covs = problem.lightCovariances();
+    const auto covs = problem.lightCovariances(&result.lights_with_filter_covariance);
     for (size_t j = 0; j < landmarks.size(); j++)
         if (!removed[j])
             result.map.addLandmark(problem.lights[j], covs[j], landmarks[j].type,

@@ -56,7 +56,10 @@ class LightsPathSmoother : public COmniFastSLAM::TStepObserver {
         /// The probability of a bearing beyond the Huber threshold with the noise and camera
         /// right: the χ² tail of its dimension (1 planar, 2 spatial); 0 without Huber.
         double outlier_probability = 0;
-        size_t merged = 0;                        ///< lights merged into another
+        size_t merged = 0;  ///< lights merged into another
+        /// lights whose least-squares covariance is not positive definite: the map keeps the
+        /// filter's
+        size_t lights_with_filter_covariance = 0;
         double initial_cost = 0, final_cost = 0;  ///< Σ of the squared whitened residuals
     };
     /** Smooths particle `p`'s path and the lights of its map it associated measurements with.
