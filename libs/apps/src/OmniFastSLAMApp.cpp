@@ -288,7 +288,7 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
                          smoothed->merged, smoothed->lights_with_filter_covariance,
                          smoothed->initial_cost, smoothed->final_cost));
         report.setPartTiming("smoothing", smoothingSeconds);
-        // the shipped halls leave 1 in 200 beyond 3 σ, MRCLAM's bearings 1 in 22-56; a camera
+        // the shipped halls leave 1 in 200 beyond 3 σ, MRCLAM's bearings 1 in 48-107; a camera
         // yaw 90° off or images of no ceiling lights, three quarters and more
         if (10 * smoothed->outliers > smoothed->bearings)
             report.addWarning(mrpt::format(
@@ -300,9 +300,10 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
                 1 / smoothed->outlier_probability, suffix.c_str()));
         if (smoothed->lights_with_filter_covariance > 0)
             report.addWarning(mrpt::format(
-                "after smoothing, %zu lights lie almost on a pose that reads them, where their "
-                "least-squares covariance is not positive definite: map.txt keeps the filter's "
-                "covariance of those (doc/omni-fastslam.md)",
+                "after smoothing, the least-squares covariance of %zu lights is not positive "
+                "definite: map.txt keeps the filter's covariance of those; set "
+                "min_cross_point_range to the camera's nearest reading range "
+                "(doc/omni-fastslam.md)",
                 smoothed->lights_with_filter_covariance));
     } else {
         core::saveFinalMap(best.map, out.path());
@@ -327,7 +328,7 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     for (const auto* s : best.path.stepsOldestFirst())
         associated += s->state.correspondences.size();
     report.setCount("associated_measurements", associated);
-    // the shipped halls associate 90 %, MRCLAM (bearings only) 78-86 %
+    // the shipped halls associate 90 %, MRCLAM (bearings only) 77-83 %
     if (2 * associated < measurements)
         report.addWarning(mrpt::format(
             "the best particle associated %zu of the %zu bearings with a light: the path is "

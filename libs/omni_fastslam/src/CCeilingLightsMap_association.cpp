@@ -145,6 +145,13 @@ bool CCeilingLightsMap::couldBeObserved(const Eigen::Vector2d& z_predicted, doub
            z_predicted[1] <= sensorOptions.max_theta + margin;
 }
 
+bool CCeilingLightsMap::isWithinReadingRange(const Eigen::Vector3d& point_in_camera) const
+{
+    const double r = point_in_camera.norm();
+    const double r_max = insertionOptions.max_cross_point_range;
+    return r >= insertionOptions.min_cross_point_range && (r_max <= 0 || r <= r_max);
+}
+
 Eigen::MatrixXd CCeilingLightsMap::landmarkLogLikelihoods(
     const std::vector<TBearingMeasurement>& z, const mrpt::math::TPose2D& robot_in_map) const
 {
@@ -154,12 +161,12 @@ Eigen::MatrixXd CCeilingLightsMap::landmarkLogLikelihoods(
     for (size_t j = 0; j < m_landmarks.size(); j++) {
         const auto& lm = m_landmarks[j];
         const auto pred = at.predictWithJacobians(lm.mean);  // Alg. 2 lines 2-4
+        if (!pred.valid || !isWithinReadingRange(pred.point_in_camera)) {
+            out.col(static_cast<Eigen::Index>(j)).setConstant(-kInf);
+            continue;
+        }
         const Eigen::Matrix2d HSH = pred.H_m * lm.cov * pred.H_m.transpose();
         for (size_t l = 0; l < z.size(); l++) {
-            if (!pred.valid) {
-                out(l, j) = -kInf;
-                continue;
-            }
             // Alg. 2 line 6: Q_{j,l} = Q_l + H_m Σ_j H_mᵀ
             const Eigen::Matrix2d S = z[l].Q + HSH;
             out(l, j) =

@@ -169,7 +169,9 @@ TPose2D COmniFastSLAM::sampleFastSLAM2Proposal(const TOmniFastSLAMParticle& p,
     Eigen::MatrixXd log_phi = Eigen::MatrixXd::Constant(z.size(), lms.size(), -kInf);
     for (size_t j = 0; j < lms.size(); j++) {
         const auto pred = at_x_hat.predictWithJacobians(lms[j].mean);  // lines 2-4
-        if (!pred.valid || !map.couldBeObserved(pred.z, options.prediction_margin)) continue;
+        if (!pred.valid || !map.couldBeObserved(pred.z, options.prediction_margin) ||
+            !map.isWithinReadingRange(pred.point_in_camera))
+            continue;
         const Eigen::Matrix2d HmSHm = pred.H_m * lms[j].cov * pred.H_m.transpose();
         const Eigen::Matrix2d HxRHx = pred.H_x * R * pred.H_x.transpose();
         for (size_t l = 0; l < z.size(); l++) {

@@ -59,6 +59,9 @@ namespace {
 /// σ of the weak prior that keeps each light at its filter estimate along directions no
 /// bearing constrains (the height of a planar model's lights) [m]
 constexpr double kLightPriorStd = 100;
+/// σ of the wall that keeps a light from coming nearer than the map's min_cross_point_range to
+/// a camera that reads it [m]
+constexpr double kNearRangeStd = 0.01;
 
 /// One bearing of a light from a pose, whitened by its Q (planar model: φ alone).
 struct TBearingTerm {
@@ -68,11 +71,16 @@ struct TBearingTerm {
     Eigen::Matrix2d W;  ///< W r is the whitened residual, Wᵀ W = Q⁻¹
 };
 
-/// The least-squares problem: poses 1..T (pose 0 fixed) and the lights, the odometry between
-/// consecutive poses and the bearings.
+/** The least-squares problem: poses 1..T (pose 0 fixed) and the lights, the odometry between
+ *  consecutive poses and the bearings. A bearing also pays for its light nearer than
+ *  `min_range` to the camera: its direction from there says little (Jacobians grow as
+ *  1/range), and a light smoothed onto a pose would escape its bearings' costs. */
 class Problem {
   public:
-    Problem(const BearingMeasurementModel& model, double huber) : m_model(model), m_huber(huber) {}
+    Problem(const BearingMeasurementModel& model, double huber, double min_range)
+        : m_model(model), m_huber(huber), m_min_range(min_range)
+    {
+    }
 
     std::vector<TPose2D> poses;
     std::vector<Eigen::Vector3d> lights, prior;
@@ -85,7 +93,10 @@ class Problem {
     {
         double c = 0;
         for (size_t k = 1; k < poses.size(); k++) c += odometryResidual(k).squaredNorm();
-        for (const auto& t : terms) c += robust(bearingResidual(t).squaredNorm());
+        for (const auto& t : terms) {
+            const double near = nearRangeResidual(t);
+            c += robust(bearingResidual(t).squaredNorm()) + near * near;
+        }
         for (size_t j = 0; j < lights.size(); j++)
             c += (lights[j] - prior[j]).squaredNorm() / (kLightPriorStd * kLightPriorStd);
         return c;
@@ -143,17 +154,18 @@ class Problem {
     }
 
     /** The marginal covariance of each light at the current values; the filter's where that
-     *  is not positive definite (a light smoothed onto a pose that reads it: its bearings'
-     *  Jacobians grow as 1/range, beyond what the factors of H resolve), counted in
-     *  `*kept_from_filter`. */
+     *  is not positive definite or H cannot be factored, counted in `*kept_from_filter`. */
     std::vector<Eigen::Matrix3d> lightCovariances(size_t* kept_from_filter = nullptr) const
     {
         Eigen::SparseMatrix<double> H;
         Eigen::VectorXd g;
         normalEquations(H, g);
         const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(H);
-        std::vector<Eigen::Matrix3d> covs(lights.size(), Eigen::Matrix3d::Zero());
-        if (ldlt.info() != Eigen::Success) return covs;
+        if (ldlt.info() != Eigen::Success) {
+            if (kept_from_filter) *kept_from_filter += lights.size();
+            return prior_cov;
+        }
+        std::vector<Eigen::Matrix3d> covs(lights.size());
         for (size_t j = 0; j < lights.size(); j++) {
             const size_t col = lightIndex(j);
             Eigen::MatrixXd E = Eigen::MatrixXd::Zero(H.rows(), 3);
@@ -170,7 +182,7 @@ class Problem {
 
   private:
     const BearingMeasurementModel& m_model;
-    double m_huber;
+    double m_huber, m_min_range;
 
     size_t poseIndex(size_t k) const { return 3 * (k - 1); }  // k ≥ 1
     size_t lightIndex(size_t j) const { return 3 * (poses.size() - 1) + 3 * j; }
@@ -219,6 +231,30 @@ class Problem {
             *J_m = -t.W * pred.H_m;
         }
         return t.W * BearingMeasurementModel::innovation(t.z, pred.z);
+    }
+
+    /** Whitened min_range − r where the light is nearer than min_range to the camera that
+     *  reads it (r from the camera's origin; planar: in the plane), else 0; its Jacobians
+     *  where asked for. */
+    double nearRangeResidual(const TBearingTerm& t, Eigen::RowVector3d* J_x = nullptr,
+                             Eigen::RowVector3d* J_m = nullptr) const
+    {
+        if (J_x) J_x->setZero(), J_m->setZero();
+        if (m_min_range <= 0) return 0;
+        const TPose2D& x = poses[t.pose];
+        const Eigen::Vector3d c = m_model.rayOriginInMap(x);
+        Eigen::Vector3d d = lights[t.light] - c;
+        if (m_model.isPlanar()) d.z() = 0;
+        const double r = d.norm();
+        if (r >= m_min_range) return 0;
+        if (J_x && r > 0) {
+            const Eigen::RowVector3d u = d.transpose() / (r * kNearRangeStd);
+            // the camera's origin moves with (x, y) and turns about the robot's origin with yaw
+            const Eigen::Vector3d dc_dyaw(x.y - c.y(), c.x() - x.x, 0);
+            *J_m = -u;
+            *J_x << u.x(), u.y(), u.dot(dc_dyaw);
+        }
+        return (m_min_range - r) / kNearRangeStd;
     }
 
     void normalEquations(Eigen::SparseMatrix<double>& H, Eigen::VectorXd& g) const
@@ -270,6 +306,9 @@ class Problem {
                 J_m *= w;
             }
             addTerm(t.pose, J_x, t.light, J_m, r);
+            Eigen::RowVector3d N_x, N_m;
+            const double near = nearRangeResidual(t, &N_x, &N_m);
+            if (near != 0) addTerm(t.pose, N_x, t.light, N_m, Eigen::VectorXd::Constant(1, near));
         }
         for (size_t j = 0; j < lights.size(); j++) {
             const double w = 1 / (kLightPriorStd * kLightPriorStd);
@@ -342,7 +381,7 @@ LightsPathSmoother::TResult LightsPathSmoother::smooth(const TOmniFastSLAMPartic
 {
     const auto steps = recordedStepsOf(p);
     const BearingMeasurementModel model = p.map.measurementModel();
-    Problem problem(model, options.huber);
+    Problem problem(model, options.huber, p.map.insertionOptions.min_cross_point_range);
     for (const auto* s : steps) problem.poses.push_back(s->state.robot_in_map);
     for (const auto& s : m_steps) problem.motions.push_back(s.motion);
 

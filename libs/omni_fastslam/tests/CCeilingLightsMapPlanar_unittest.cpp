@@ -101,6 +101,28 @@ TEST(CCeilingLightsMapPlanar, PerceptualRangeIsTheFieldOfView)
     EXPECT_FALSE(map.couldBeObserved({36 * kDeg, M_PI / 2}, 5 * kDeg));
 }
 
+// A landmark nearer than min_cross_point_range or farther than max_cross_point_range is not one
+// the camera reads: it is never associated, however well its azimuth agrees.
+TEST(CCeilingLightsMapPlanar, LandmarksOutsideTheReadingRangeAreNotAssociated)
+{
+    auto map = planarMap();
+    const TPose2D robot(1, 2, 0.5);
+    const Eigen::Vector2d ahead(std::cos(0.6), std::sin(0.6));  // 0.1 rad left of the heading
+    for (const double range : {0.5, 3.0, 7.0}) {
+        const Eigen::Vector2d xy = Eigen::Vector2d(robot.x, robot.y) + range * ahead;
+        map.addLandmark({xy.x(), xy.y(), 0}, 0.01 * Eigen::Matrix3d::Identity());
+    }
+    const auto z = azimuthOf(map, map.landmarks()[1].mean, robot);
+    const Eigen::MatrixXd log_l = map.landmarkLogLikelihoods({z}, robot);
+    EXPECT_TRUE(std::isinf(log_l(0, 0)) && log_l(0, 0) < 0);
+    EXPECT_GT(log_l(0, 1), map.logPNew(z));
+    EXPECT_TRUE(std::isinf(log_l(0, 2)) && log_l(0, 2) < 0);
+    map.insertionOptions.min_cross_point_range = 0;  // no limits: all three agree
+    map.insertionOptions.max_cross_point_range = 0;
+    const Eigen::MatrixXd unlimited = map.landmarkLogLikelihoods({z}, robot);
+    for (int j = 0; j < 3; j++) EXPECT_GT(unlimited(0, j), map.logPNew(z)) << j;
+}
+
 TEST(CCeilingLightsMapPlanar, CandidatePredictsTheSegmentThatAgreesWithItsMeasurements)
 {
     auto map = planarMap();

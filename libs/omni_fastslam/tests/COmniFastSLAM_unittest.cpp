@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <mrpt/bayes/CParticleFilter.h>
 #include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
@@ -117,4 +118,39 @@ TEST(COmniFastSLAM, AdaptiveSampleSizeFollowsTheSpread)
     const auto two = runFrames(120, mrpt::bayes::CParticleFilter::pfOptimalProposal, 3, true, 2);
     EXPECT_EQ(one.final_position_error, two.final_position_error);
     EXPECT_EQ(one.max_particles, two.max_particles);
+}
+
+// A landmark nearer than the camera reads one (min_cross_point_range) is not associated with a
+// bearing that points at it, in the FastSLAM 2.0 proposal and the update alike.
+TEST(COmniFastSLAM, LandmarksNearerThanTheCameraReadsAreNotAssociated)
+{
+    const auto associated = [](double min_range) {
+        omni_fastslam::CCeilingLightsMap map;
+        map.sensorOptions.measurement_model = omni_fastslam::TMeasurementModelKind::Planar;
+        map.sensorOptions.sensor_in_robot = mrpt::poses::CPose3D();
+        map.insertionOptions.min_cross_point_range = min_range;
+        map.addLandmark({0.6, 0.1, 0}, 1e-6 * Eigen::Matrix3d::Identity());
+        COmniFastSLAM filter(map, 5, 1);
+        filter.options.bearings_label.clear();  // every CObservationBearingRange
+        mrpt::bayes::CParticleFilter pf;
+        pf.m_options.PF_algorithm = mrpt::bayes::CParticleFilter::pfOptimalProposal;
+        pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
+        filter.reset({0, 0, 0}, 0);
+        mrpt::obs::CActionCollection acts;
+        mrpt::obs::CActionRobotMovement2D odo;
+        odo.computeFromOdometry(mrpt::poses::CPose2D(0.1, 0, 0),
+                                mrpt::obs::CActionRobotMovement2D::TMotionModelOptions());
+        acts.insert(odo);
+        auto obs = mrpt::obs::CObservationBearingRange::Create();
+        obs->sensedData.resize(1);
+        obs->sensedData[0].yaw = static_cast<float>(std::atan2(0.1, 0.5));  // from (0.1, 0)
+        obs->sensedData[0].range = 0.51f;
+        obs->sensedData[0].landmarkID = -1;
+        mrpt::obs::CSensoryFrame sf;
+        sf.insert(obs);
+        pf.executeOn(filter, &acts, &sf);
+        return filter.lastStepStats.associated_to_landmarks;
+    };
+    EXPECT_EQ(associated(0), 5u);  // every particle
+    EXPECT_EQ(associated(1), 0u);
 }

@@ -11,6 +11,7 @@
 #include <mrpt_vslam/core/TumTrajectory.h>
 #include <mrpt_vslam/omni_fastslam/LightsPathSmoother.h>
 
+#include <Eigen/Cholesky>
 #include <cmath>
 
 #include "LightsTestUtils.h"
@@ -127,4 +128,43 @@ TEST(LightsPathSmoother, RefusesAPathItDidNotRecord)
     pf.executeOn(filter, &acts, &sf);
     smoother.onReset({0, 0, 0}, 0);  // the recorded run starts after the filter's
     EXPECT_THROW(smoother.smooth(filter.bestParticle()), std::logic_error);
+}
+
+// A light read from nearer than the camera reads one (min_cross_point_range): the least squares
+// keep it at that range, where its bearings would put it nearer; without the limit it stays
+// where they put it.
+TEST(LightsPathSmoother, KeepsLightsBeyondTheNearestReadingRange)
+{
+    const Eigen::Vector3d light(2, 0.8, 0);  // the path passes 0.8 m from it
+    const auto nearest = [&](double min_range) {
+        omni_fastslam::TOmniFastSLAMParticle p;
+        p.map.sensorOptions.measurement_model = omni_fastslam::TMeasurementModelKind::Planar;
+        p.map.insertionOptions.min_cross_point_range = min_range;
+        const int64_t id = p.map.addLandmark(light, 0.01 * Eigen::Matrix3d::Identity());
+        const auto model = p.map.measurementModel();
+        core::TOdometryGaussian u;
+        u.mean = {0.2, 0, 0};
+        u.cov = Eigen::Vector3d(1e-4, 1e-4, 1e-5).asDiagonal();
+        u.L = u.cov.llt().matrixL();
+        LightsPathSmoother smoother;
+        smoother.options.rounds = 1;
+        smoother.onReset({0, 0, 0}, 0);
+        p.path.append(0.0, omni_fastslam::TOmniFastSLAMStep{{0, 0, 0}});
+        for (int k = 1; k <= 20; k++) {
+            const mrpt::math::TPose2D x(0.2 * k, 0, 0);
+            omni_fastslam::TBearingMeasurement z;
+            z.z = model.predict(light, x);
+            z.Q = Eigen::Vector2d(std::pow(mrpt::DEG2RAD(3.0), 2), 1).asDiagonal();
+            smoother.onStep(u, {z});
+            p.path.append(0.2 * k, omni_fastslam::TOmniFastSLAMStep{x, {{id, -1, 0}}});
+        }
+        const auto r = smoother.smooth(p);
+        EXPECT_EQ(r.lights_with_filter_covariance, 0u);
+        const Eigen::Vector3d m = r.map.landmarks().at(0).mean;
+        double d = 1e9;
+        for (const auto& [t, x] : r.path) d = std::min(d, std::hypot(m.x() - x.x, m.y() - x.y));
+        return d;
+    };
+    EXPECT_NEAR(nearest(0), 0.8, 0.01);
+    EXPECT_GT(nearest(1), 0.97);
 }

@@ -94,11 +94,13 @@ class CCeilingLightsMap : public mrpt::maps::CMetricMap {
         /// from. false = the paper (mean = best cross-point, covariance Σ0); true is what the
         /// project measured best.
         bool refine_initialization = true;
-        /// Cross-points farther than this along either ray are not valid [m] (0 = no limit);
-        /// the planar mode's maximum range of a bearing-line crossing.
+        /// The farthest the camera reads a light [m] (0 = no limit; planar: in its plane):
+        /// cross-points farther along either ray are not valid, and a landmark farther is not
+        /// associated with a measurement (isWithinReadingRange()).
         double max_cross_point_range = 0;
-        /// Cross-points nearer than this along either ray are not valid [m] (0 = no limit);
-        /// planar: also the near end of the segment a candidate's last ray predicts.
+        /// The nearest the camera reads a light [m] (0 = no limit): as max_cross_point_range;
+        /// planar: also the near end of the segment a candidate's last ray predicts; the
+        /// smoothing (LightsPathSmoother) keeps lights beyond it.
         double min_cross_point_range = 0;
         /// Counter increment i_j of a landmark or candidate per associated measurement (a new
         /// candidate starts at it); misses still cost 1 (landmarks) or the candidate decrement.
@@ -171,6 +173,9 @@ class CCeilingLightsMap : public mrpt::maps::CMetricMap {
     /** Whether a predicted measurement can have been observed: θ ≤ max_theta + margin
      *  (spherical) and |φ| ≤ max_abs_azimuth + margin. \param margin [rad] */
     bool couldBeObserved(const Eigen::Vector2d& z_predicted, double margin = 0) const;
+    /** Whether the camera reads a light at `point_in_camera` [m] (planar: in its plane):
+     *  within [min_cross_point_range, max_cross_point_range] of it (a limit of 0: none). */
+    bool isWithinReadingRange(const Eigen::Vector3d& point_in_camera) const;
     /// log N(ν; 0, S) of a 2D innovation.
     static double logGaussian(const Eigen::Vector2d& innovation, const Eigen::Matrix2d& S);
     /// Whether a point is inside the perceptual range of the camera at robot_in_map.
