@@ -8,7 +8,8 @@
 #   2. multirobot-vslam (mrclam.ini), robots 1-3 jointly, several seeds: per-robot ATE of the
 #      smoothed paths and of the filter's vs odometry, the particle's map and the output map
 #      (landmarks matched within 0.5 m, extra landmarks), parts of paths reanchored, wrong
-#      associations, run time; the plots of the first seed;
+#      associations, the run kept of the independent filters, run time; the plots of the first
+#      seed; then each filter alone (filter_runs = 1) on more seeds, with its smoothed cost;
 #   3. the filter alone (no smoothing, the particles' own maps) on each robot alone, on 2 and 5
 #      robots, on robots 1-3, and on robots 1-3 without the readings of robots;
 #   4. robots 1-3 with known poses (the Vicon poses as odometry) and three gates D0: what the
@@ -18,9 +19,10 @@
 # (omni-fastslam's planar mode on robot 1: scripts/reproduce-omni-fastslam.sh.)
 # Writes the tables to doc/results/real-data.md (or $RESULTS) and the plots of section 2 to
 # doc/results/real-data/; run folders under out/reproduce-mrclam/ (or $OUT). Builds first
-# (scripts/setup.sh). Takes about 40 min on one core (M = 2000 as shipped).
+# (scripts/setup.sh). Takes about 25 min on two cores (M = 2000 as shipped).
 # Environment: MRPT_VSLAM_MRCLAM_DIR (required: the folder of dataset 7's .dat files, see
-# doc/real-data.md), SEEDS (default 1 2 3 4 5), OUT, RESULTS.
+# doc/real-data.md), SEEDS (default 1 2 3 4 5), SINGLE_SEEDS (the seeds of the filters alone in
+# section 2, default 1 to 15), OUT, RESULTS.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 DATASET="${MRPT_VSLAM_MRCLAM_DIR:-}"
@@ -32,12 +34,13 @@ fi
 source "$REPO_DIR/scripts/setup.sh"
 # after the build: the results header times the runs only
 source "$REPO_DIR/scripts/results-header.sh"
-COMMAND="$(results_command scripts/reproduce-mrclam.sh SEEDS OUT RESULTS)"
+COMMAND="$(results_command scripts/reproduce-mrclam.sh SEEDS SINGLE_SEEDS OUT RESULTS)"
 
 OUT="${OUT:-$REPO_DIR/out/reproduce-mrclam}"
 BIN="$BUILD_DIR/bin"
 CONFIGS="$REPO_DIR/share/mrpt-vslam/config"
 SEEDS="${SEEDS:-1 2 3 4 5}"
+SINGLE_SEEDS="${SINGLE_SEEDS:-$(seq -s ' ' 1 15)}"
 RESULTS="${RESULTS:-$REPO_DIR/doc/results/real-data.md}"
 PLOTS="${RESULTS%.md}"
 FIRST_SEED="$(echo "$SEEDS" | awk '{print $1}')"
@@ -113,6 +116,11 @@ for n in 1 2 3 4 5; do
 done
 echo
 
+# the filter alone (sections 3-5): one filter, no map along the path, no smoothing (which needs
+# it; the map along the path was chosen for robots 1-3 jointly)
+FILTER_ALONE=(--set MultiRobotVSLAM.filter_runs=1 --set TeamPathSmoother.map_along_path=false
+  --set TeamPathSmoother.smooth_paths=false)
+
 # --- 2. robots 1-3 jointly ----------------------------------------------------------------------
 # filter_rmse DIR RAWLOG: the position RMSE of each filter_path_R<n>.tum (the best particle's
 # paths before smoothing)
@@ -127,10 +135,12 @@ filter_rmse() {
 echo "## 2. Robots 1-3 jointly (mrclam.ini), identities hidden"
 echo
 echo "The output paths (smoothed), the best particle's paths before smoothing (filter), dead"
-echo "reckoning, and the maps; each seed a whole run of the shipped configuration."
+echo "reckoning, and the maps; each seed a whole run of the shipped configuration: its independent"
+echo "filters from the seed on, the one whose smoothed paths and map cost least kept (kept run: its"
+echo "seed; each run's seed and cost)."
 echo
-echo "| seed | R1 smoothed [m] | R1 filter [m] | R1 odometry [m] | R2 smoothed [m] | R2 filter [m] | R2 odometry [m] | R3 smoothed [m] | R3 filter [m] | R3 odometry [m] | particle's map landmarks | output map landmarks | true landmarks matched one-to-one within 0.5 m (mean error) | extra | parts reanchored | fused readings | of another identity | run [s] |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| seed | R1 smoothed [m] | R1 filter [m] | R1 odometry [m] | R2 smoothed [m] | R2 filter [m] | R2 odometry [m] | R3 smoothed [m] | R3 filter [m] | R3 odometry [m] | particle's map landmarks | output map landmarks | true landmarks matched one-to-one within 0.5 m (mean error) | extra | parts reanchored | fused readings | of another identity | kept run (seed: cost) | run [s] |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 : > "$OUT/joint.txt"
 for seed in $SEEDS; do
   echo "section 2, seed $seed" >&2
@@ -148,9 +158,13 @@ for seed in $SEEDS; do
   read -r -a f <<< "$(filter_rmse "$OUT/r123-seed$seed" "$OUT/data/r123-ids.rawlog")"
   reanchored=$(grep -o '"smoothing_reanchored": *[0-9]*' "$OUT/r123-seed$seed/run.json" |
     awk '{print $2}')
+  kept=$(python3 -c 'import json, sys; r = json.load(open(sys.argv[1]))
+print(r["counts"]["kept_seed"], "(" + ", ".join("%d: %.0f" % (f["seed"], f["smoothing_cost"])
+                                         for f in r["results"]["filter_runs"]) + ")")' \
+    "$OUT/r123-seed$seed/run.json")
   echo "| $seed | ${v[0]} | ${f[0]} | ${v[1]} | ${v[2]} | ${f[1]} | ${v[3]} | ${v[4]} | ${f[2]} |" \
     "${v[5]} | $particle | $total | $matched ($err m) | $((total - matched)) | $reanchored |" \
-    "$fused | $wrong | $t |"
+    "$fused | $wrong | $kept | $t |"
   echo "${v[0]} ${v[2]} ${v[4]} ${f[0]} ${f[1]} ${f[2]}" >> "$OUT/joint.txt"
 done
 awk '{a += $1; b += $2; c += $3; d += $4; e += $5; f += $6; n++; m = $1; if ($2 > m) m = $2; if ($3 > m) m = $3; if (m <= 0.25) ok++}
@@ -161,6 +175,32 @@ cp "$OUT/r123-seed$FIRST_SEED/paths.png" "$PLOTS/r123-paths.png"
 cp "$OUT/r123-seed$FIRST_SEED/errors.png" "$PLOTS/r123-errors.png"
 echo "![Robots 1-3, seed $FIRST_SEED: smoothed paths and the output map](real-data/r123-paths.png)"
 echo "![Robots 1-3, seed $FIRST_SEED: errors of the smoothed paths over time](real-data/r123-errors.png)"
+echo
+echo "### Each filter alone"
+echo
+echo "\`--set MultiRobotVSLAM.filter_runs=1\`, the rest as shipped: the run each seed gives alone,"
+echo "one of the candidates above (seed s runs the filters of seeds s, s + 1, ...), and the cost"
+echo "by which they are compared (run.json \`results.smoothing_cost\`)."
+echo
+echo "| seed | R1 smoothed [m] | R2 smoothed [m] | R3 smoothed [m] | output map landmarks | true landmarks matched one-to-one within 0.5 m (mean error) | smoothed cost |"
+echo "|---|---|---|---|---|---|---|"
+: > "$OUT/single.txt"
+for seed in $SINGLE_SEEDS; do
+  echo "section 2, filter alone, seed $seed" >&2
+  dir="$OUT/r123-single-seed$seed"
+  res=$(run "$dir" "$OUT/data/r123-ids.rawlog" "R1 R2 R3" --seed "$seed" \
+    --set MultiRobotVSLAM.filter_runs=1)
+  read -r -a v <<< "${res%%|*}"
+  read -r _ _ _ _ _ _ _ matched total err <<< "${res##*|}"
+  cost=$(grep -o '"smoothing_cost": *[0-9.e+-]*' "$dir/run.json" | awk '{printf "%.0f", $2}')
+  echo "| $seed | ${v[0]} | ${v[2]} | ${v[4]} | $total | $matched ($err m) | $cost |"
+  echo "${v[0]} ${v[2]} ${v[4]} $cost" >> "$OUT/single.txt"
+done
+awk '{m = $1; if ($2 > m) m = $2; if ($3 > m) m = $3
+  if (m <= 0.25) {ok++; if (!lo1 || $4 < lo1) lo1 = $4; if ($4 > hi1) hi1 = $4}
+  else {if (!lo2 || $4 < lo2) lo2 = $4; if ($4 > hi2) hi2 = $4}; n++}
+  END {printf "every robot within 0.25 m on %d of %d seeds; smoothed cost %.0f-%.0f on those, ", ok, n, lo1, hi1
+       if (n > ok) printf "%.0f-%.0f on the others\n", lo2, hi2; else printf "no other\n"}' "$OUT/single.txt"
 echo
 
 # --- 3. each robot alone, 2 and 5 robots --------------------------------------------------------
@@ -176,10 +216,7 @@ team() {  # team NAME RAWLOG ROBOTS
   echo "section 3, $name" >&2
   : > "$OUT/team.tmp"
   for seed in $SEEDS; do
-    # the filter alone: the map along the path (and the smoothing, which needs it) was chosen
-    # for robots 1-3 jointly
-    res=$(run "$OUT/$name-seed$seed" "$rawlog" "$robots" --seed "$seed" \
-      --set TeamPathSmoother.map_along_path=false --set TeamPathSmoother.smooth_paths=false)
+    res=$(run "$OUT/$name-seed$seed" "$rawlog" "$robots" --seed "$seed" "${FILTER_ALONE[@]}")
     echo "$res" >> "$OUT/team.tmp"
   done
   local k=0
@@ -216,8 +253,7 @@ for d0 in 11.34 30 50; do
       --set ParticleFilter.sampleSize=100 --set MotionModel.a1=0.01 --set MotionModel.a2=0.001 \
       --set MotionModel.a3=0.01 --set MotionModel.a4=0.01 --set MotionModel.minStdXY=0.0005 \
       --set MotionModel.minStdPHI_deg=0.05 \
-      --set "MappingApplication_visualLandmarksMap_00_insertOpts.D0=$d0" \
-      --set TeamPathSmoother.map_along_path=false --set TeamPathSmoother.smooth_paths=false)
+      --set "MappingApplication_visualLandmarksMap_00_insertOpts.D0=$d0" "${FILTER_ALONE[@]}")
     # vslam-eval's one-to-one (Hungarian) matching within 0.5 m (run's --landmark-cutoff):
     # "landmarks: 15 true, N estimated: K matched"
     echo "${res%%|*} $(awk '/^landmarks:/ {print $4, $6}' "$dir/summary.txt")"
@@ -241,7 +277,7 @@ for seed in $SEEDS; do
   dir="$OUT/r123-identity-seed$seed"
   res=$(run "$dir" "$OUT/data/r123-ids.rawlog" "R1 R2 R3" --seed "$seed" \
     --set MappingApplication_visualLandmarksMap_00_insertOpts.associate_by_identity=true \
-    --set TeamPathSmoother.map_along_path=false --set TeamPathSmoother.smooth_paths=false)
+    "${FILTER_ALONE[@]}")
   read -r -a v <<< "${res%%|*}"
   read -r -a w <<< "${res##*|}"
   echo "| $seed | ${v[0]} | ${v[2]} | ${v[4]} | $(awk '/^landmarks:/ {print $4 " | " $6}' \
