@@ -127,9 +127,9 @@ TEST_F(TeamOnline, RealTeamGivesTheOfflineRun)
 // R2's node killed after 50 readings of a run at 10 times real time and started again 3 s later:
 // the mapper goes on without R2 after its reorder window, takes R2's backlog once it is back (late)
 // and finishes with all 600 readings of each robot; after R2's late readings both paths are within
-// 0.5 m RMS of the truth: a robot lost would be metres off. (Offline 0.06-0.08 m; the gap costs
-// more, up to 0.29 m in doc/results/team-online.md: the filter went on with R2 standing still under
-// motion noise, then with R1 so while R2 caught up.)
+// 0.5 m RMS of the truth: a robot lost would be metres off. (After the gap the error is a little
+// above the offline runs' on average, doc/results/team-online.md: the filter went on with R2
+// standing still under motion noise, then with R1 so while R2 caught up.)
 TEST_F(TeamOnline, ANodeKilledAndRestartedLosesNoReading)
 {
     const std::string at = address(3);
