@@ -265,9 +265,11 @@ TEST(MultiRobotVSLAMOnFullDataset, IndependentRunsKeepTheTeam)
     ASSERT_EQ(runs.size(), 3u);
     double least = runs[0]["smoothing_cost"].get<double>();
     for (const auto& r : runs) least = std::min(least, r["smoothing_cost"].get<double>());
-    for (const auto& r : runs)
-        if (r["seed"] == run["counts"]["kept_seed"])
+    for (const auto& r : runs) {
+        if (r["seed"] == run["counts"]["kept_seed"]) {
             EXPECT_EQ(r["smoothing_cost"].get<double>(), least);
+        }
+    }
     const auto result = evaluate(out);
     ASSERT_TRUE(result.landmarks.has_value());
     EXPECT_EQ(result.landmarks->num_matched, 15u);
