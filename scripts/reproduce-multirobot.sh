@@ -12,7 +12,7 @@
 #   5. team3 without resample_per_robot, with the optimal proposal, and with the paper's sigmas.
 # The tables go to doc/results/multirobot.md (or $RESULTS), the plots (Fig. 3, 4 and 6) to
 # doc/results/multirobot/; run folders and the series (*.txt) under out/reproduce-multirobot/ (or
-# $OUT). Builds first (scripts/setup.sh). Takes about 75 min on one core.
+# $OUT). Builds first (scripts/setup.sh). Takes about 15 min on 2 cores.
 # Environment: SEEDS (default 1 2 3 4 5), SWEEP_SEEDS for sections 2 and 3 (default 1 to 10), OUT,
 # RESULTS.
 set -euo pipefail
