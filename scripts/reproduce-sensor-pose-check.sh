@@ -32,7 +32,7 @@ COMMAND="$(results_command scripts/reproduce-sensor-pose-check.sh SEEDS OUT RESU
 
 OUT="${OUT:-$REPO_DIR/out/reproduce-sensor-pose-check}"
 RESULTS="${RESULTS:-$REPO_DIR/doc/results/sensor-pose-check.md}"
-SEEDS="${SEEDS:-1 2}"
+SEEDS="$(words "${SEEDS:-1 2}")"
 BIN="$BUILD_DIR/bin"
 CONFIGS="$REPO_DIR/share/mrpt-vslam/config/multirobot-vslam"
 TEAM="$REPO_DIR/datasets/office-team"

@@ -2,6 +2,14 @@
 # Sourced by the reproduce and bench scripts: how a results file under doc/results/ says where
 # its figures come from. Source it before the script's environment variables are changed.
 
+# words LIST: the list on one line, one space between its items (SEEDS="$(seq 11 25)" gives
+# one item a line, which the tables and file names that print a list cannot take)
+words() {
+  local -a items
+  read -r -d '' -a items <<< "$1" || true
+  echo "${items[*]}"
+}
+
 RESULTS_LOAD_START="$(cut -d' ' -f1-3 /proc/loadavg)"
 RESULTS_T_START=$EPOCHREALTIME
 
