@@ -1,6 +1,7 @@
 # shellcheck shell=bash
 # Sourced by the reproduce and bench scripts: how a results file under doc/results/ says where
-# its figures come from. Source it before the script's environment variables are changed.
+# its figures come from, and how the scripts read the lists given in their environment. Source it
+# before the script's environment variables are changed.
 
 # words LIST: the list on one line, one space between its items (SEEDS="$(seq 11 25)" gives
 # one item a line, which the tables and file names that print a list cannot take)
