@@ -9,9 +9,10 @@
 #      the run warned;
 #   2. the office team of two with R1's camera pose in the rawlog changed by stock rawlog-edit
 #      (--sensors-pose), as a wrong calibration would state it: turned about the vertical,
-#      moved forward, raised, pitched down, rolled, a quarter and a half turn, without its
-#      roll, at the robot's origin; per seed R1's position RMSE (and odometry's), the
-#      correction and the tilt found for R1's camera, and whether the run warned;
+#      moved forward, raised (and R2's camera raised too), pitched down, rolled, a quarter and
+#      a half turn, without its roll, at the robot's origin; per seed R1's position RMSE (and
+#      odometry's) and the landmarks mapped, the correction and the tilt found for R1's
+#      camera, and whether the run warned;
 #   3. omni-fastslam (sports-hall.ini) on the sports hall with its camera pose turned or moved
 #      the same way: per seed the position RMSE and whether the run warned, and the correction
 #      found for the camera;
@@ -21,7 +22,7 @@
 #      RMSE, the share of estimated observations the gate accepts, and the warnings.
 # Writes run folders under out/reproduce-sensor-pose-check/ (or $OUT) and the tables to
 # doc/results/sensor-pose-check.md (or $RESULTS). Builds first (scripts/setup.sh). Takes about
-# three minutes.
+# 12 minutes.
 # Environment: SEEDS (default 1 2), OUT, RESULTS.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -75,10 +76,15 @@ run mrclam "$CONFIGS/mrclam.ini" "$REPO_DIR/datasets/utias-mrclam/mrclam7-r123-0
 
 # 2. R1's camera pose changed: NAME x y z [m] yaw pitch roll [deg] (the pose the data were
 # made with: 0.1 0.06 0.5 -90 0 -90; the camera's own roll turns it about the robot's y axis,
-# its pitch about the robot's x axis)
+# its pitch about the robot's x axis; a NAME ending in -both states R2's camera, made as R1's,
+# the same way)
 while read -r name x y z yaw pitch roll; do
-  printf '[R1_CAMERA]\nsensorLabel = R1_LANDMARKS\npose_x = %s\npose_y = %s\npose_z = %s\npose_yaw = %s\npose_pitch = %s\npose_roll = %s\n' \
-    "$x" "$y" "$z" "$yaw" "$pitch" "$roll" >"$OUT/$name.ini"
+  robots=(R1)
+  [[ $name == *-both ]] && robots+=(R2)
+  for r in "${robots[@]}"; do
+    printf '[%s_CAMERA]\nsensorLabel = %s_LANDMARKS\npose_x = %s\npose_y = %s\npose_z = %s\npose_yaw = %s\npose_pitch = %s\npose_roll = %s\n' \
+      "$r" "$r" "$x" "$y" "$z" "$yaw" "$pitch" "$roll"
+  done >"$OUT/$name.ini"
   restate_poses "$TEAM/team2.rawlog" "$OUT/$name.rawlog" "$OUT/$name.ini"
   for f in groundtruth_R1.tum groundtruth_R2.tum landmarks.txt; do
     cp "$TEAM/team2.$f" "$OUT/$name.$f"
@@ -96,6 +102,7 @@ forward-0.1 0.2 0.06 0.5 -90 0 -90
 forward-0.2 0.3 0.06 0.5 -90 0 -90
 forward-0.5 0.6 0.06 0.5 -90 0 -90
 raised-0.5 0.1 0.06 1.0 -90 0 -90
+raised-0.5-both 0.1 0.06 1.0 -90 0 -90
 pitched-2 0.1 0.06 0.5 -90 0 -92
 pitched-5 0.1 0.06 0.5 -90 0 -95
 pitched-10 0.1 0.06 0.5 -90 0 -100
@@ -222,34 +229,39 @@ for name in ["team2", "team3", "mrclam", "hall", "hall-hard", "omni-views"]:
             print(f"| {name} | {s} | {sensor} | {correction(c)} | {tilt(c)} | "
                   f"{warned(r, sensor)} |")
 
-def variant_row(run, labels, robot, sensor, with_tilt=False):
+def variant_row(run, labels, robot, sensor, team=False):
     """A variant's row: the labels, the position RMSE per seed (metrics.json, `robot` or the
-    single robot's), the odometry's, the correction (and `with_tilt`, the tilt) found for
-    `sensor` (first seed) and whether each run warned."""
-    rmse, odometry, warnings = [], [], []
+    single robot's), the odometry's, for a `team` the landmarks mapped per seed, the correction
+    (for a `team` also the tilt) found for `sensor` (first seed) and whether each run warned."""
+    rmse, odometry, landmarks, warnings = [], [], [], []
     for s in seeds:
         with open(f"{out}/{run}-s{s}/metrics.json") as f:
             m = json.load(f)
         m = m["robots"][robot] if robot else m
         rmse.append(f"{m['estimate']['ate_rmse_m']:.2f}")
         odometry.append(f"{m['odometry']['ate_rmse_m']:.2f}")
-        warnings.append(warned(load(f"{run}-s{s}"), sensor))
+        r = load(f"{run}-s{s}")
+        if team:
+            landmarks.append(str(r["counts"]["landmarks"]))
+        warnings.append(warned(r, sensor))
     c = load(f"{run}-s{seeds[0]}")["results"]["sensor_pose_check"][sensor]
     # one odometry figure where every seed ran on the same rawlog
     return (f"| {' | '.join(labels)} | {', '.join(rmse)} | {', '.join(dict.fromkeys(odometry))} | "
-            f"{correction(c)} | {tilt(c) + ' | ' if with_tilt else ''}{', '.join(warnings)} |")
+            f"{', '.join(landmarks) + ' | ' if team else ''}{correction(c)} | "
+            f"{tilt(c) + ' | ' if team else ''}{', '.join(warnings)} |")
 
 print("\n## The office team of two, R1's camera pose stated wrong\n")
 print("R1's camera pose as the rawlog states it (x y z [m], yaw pitch roll [deg]; the data were "
       "made with 0.1 0.06 0.5, −90 0 −90: the camera's own roll turns it about the robot's y "
       "axis, pitched-N states it turned down by N degrees more than it is; its pitch about the "
-      "robot's x axis, rolled-N), R1's position RMSE per seed against its odometry's, and the "
-      "correction and the tilt found for R1's camera (seed " + seeds[0] + ").\n")
-print("| variant | stated yaw pitch roll [deg] | stated x y z [m] | R1 RMSE [m] | odometry RMSE [m] | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | pitch, roll [deg] | readings beyond 3 σ | warned (seeds) |")
-print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+      "robot's x axis, rolled-N; -both: R2's camera, made as R1's, stated the same way), R1's "
+      "position RMSE per seed against its odometry's, the landmarks of the team's map per seed, "
+      "and the correction and the tilt found for R1's camera (seed " + seeds[0] + ").\n")
+print("| variant | stated yaw pitch roll [deg] | stated x y z [m] | R1 RMSE [m] | odometry RMSE [m] | map landmarks | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | pitch, roll [deg] | readings beyond 3 σ | warned (seeds) |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for line in open(table):
     name, position, angles = line.rstrip("\n").split("\t")
-    print(variant_row(name, [name, angles, position], "R1", "R1 R1_LANDMARKS", True))
+    print(variant_row(name, [name, angles, position], "R1", "R1 R1_LANDMARKS", team=True))
 
 def camera_variants(title, intro, variants, prefix):
     """A section of one camera stated wrong: a row per line "NAME\tX Y\tYAW" of `variants`,
