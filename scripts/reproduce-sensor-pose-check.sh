@@ -9,10 +9,10 @@
 #      the run warned;
 #   2. the office team of two with R1's camera pose in the rawlog changed by stock rawlog-edit
 #      (--sensors-pose), as a wrong calibration would state it: turned about the vertical,
-#      moved forward, raised (and R2's camera raised too), pitched down, rolled, a quarter and
-#      a half turn, without its roll, at the robot's origin; per seed R1's position RMSE (and
-#      odometry's) and the landmarks mapped, the correction and the tilt found for R1's
-#      camera, and whether the run warned;
+#      moved forward, raised or lowered (and R2's camera raised too), pitched down, rolled, a
+#      quarter and a half turn, without its roll, at the robot's origin; per seed R1's position
+#      RMSE (and odometry's) and the landmarks mapped, the correction, the tilt and the height
+#      against R2's camera found for R1's camera, and whether the run warned;
 #   3. omni-fastslam (sports-hall.ini) on the sports hall with its camera pose turned or moved
 #      the same way: per seed the position RMSE and whether the run warned, and the correction
 #      found for the camera;
@@ -101,6 +101,9 @@ turned-30 0.1 0.06 0.5 -60 0 -90
 forward-0.1 0.2 0.06 0.5 -90 0 -90
 forward-0.2 0.3 0.06 0.5 -90 0 -90
 forward-0.5 0.6 0.06 0.5 -90 0 -90
+raised-0.05 0.1 0.06 0.55 -90 0 -90
+raised-0.1 0.1 0.06 0.6 -90 0 -90
+lowered-0.2 0.1 0.06 0.3 -90 0 -90
 raised-0.5 0.1 0.06 1.0 -90 0 -90
 raised-0.5-both 0.1 0.06 1.0 -90 0 -90
 pitched-2 0.1 0.06 0.5 -90 0 -92
@@ -211,6 +214,14 @@ def tilt(c):
     return (f"{d[0]:+.1f}, {d[1]:+.1f} ({sd[0]:.1f}, {sd[1]:.1f}) | "
             f"{c['tilt_readings_beyond_3_sigma']} of {c['tilt_readings']}")
 
+def heights(c, others=("R2 R2_LANDMARKS",)):
+    """The heights found against each of `others` (all of them: None): dz (σ), landmarks."""
+    against = c.get("heights_against", {})
+    return "; ".join(
+        f"{'' if others else other.split()[0] + ' '}{h['dz_m']:+.2f} ({h['std_dz_m']:.2f}), "
+        f"{h['landmarks']}"
+        for other, h in against.items() if not others or other in others) or "—"
+
 def warned(r, sensor):
     return "yes" if any(w.startswith(sensor + ":") for w in r["warnings"]) else "no"
 
@@ -218,16 +229,17 @@ print("## The shipped data, sensor poses as given\n")
 print("Per sensor: the turn [deg] and move [m] of its pose that fit its readings best (σ in "
       "brackets), dyaw_confounding (≥ 4: the path does not tell a turn from a move), the "
       "pairs of readings beyond 3 σ; for 3D readings the pitch and roll [deg] that fit the "
-      "heights of its readings of each landmark best and the readings beyond 3 σ there; "
-      "whether the run warned.\n")
-print("| data | seed | sensor | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | pitch, roll [deg] | readings beyond 3 σ | warned |")
-print("|---|---|---|---|---|---|---|---|---|---|")
+      "heights of its readings of each landmark best and the readings beyond 3 σ there, and "
+      "how much higher [m] it puts the landmarks it shares with each other sensor than that "
+      "one does (σ, landmarks shared); whether the run warned.\n")
+print("| data | seed | sensor | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | pitch, roll [deg] | readings beyond 3 σ | heights against the others [m] | warned |")
+print("|---|---|---|---|---|---|---|---|---|---|---|")
 for name in ["team2", "team3", "mrclam", "hall", "hall-hard", "omni-views"]:
     for s in seeds if name != "mrclam" else seeds[:1]:
         r = load(f"{name}-s{s}")
         for sensor, c in r["results"]["sensor_pose_check"].items():
             print(f"| {name} | {s} | {sensor} | {correction(c)} | {tilt(c)} | "
-                  f"{warned(r, sensor)} |")
+                  f"{heights(c, None)} | {warned(r, sensor)} |")
 
 def variant_row(run, labels, robot, sensor, team=False):
     """A variant's row: the labels, the position RMSE per seed (metrics.json, `robot` or the
@@ -248,7 +260,7 @@ def variant_row(run, labels, robot, sensor, team=False):
     # one odometry figure where every seed ran on the same rawlog
     return (f"| {' | '.join(labels)} | {', '.join(rmse)} | {', '.join(dict.fromkeys(odometry))} | "
             f"{', '.join(landmarks) + ' | ' if team else ''}{correction(c)} | "
-            f"{tilt(c) + ' | ' if team else ''}{', '.join(warnings)} |")
+            f"{tilt(c) + ' | ' + heights(c) + ' | ' if team else ''}{', '.join(warnings)} |")
 
 print("\n## The office team of two, R1's camera pose stated wrong\n")
 print("R1's camera pose as the rawlog states it (x y z [m], yaw pitch roll [deg]; the data were "
@@ -256,9 +268,10 @@ print("R1's camera pose as the rawlog states it (x y z [m], yaw pitch roll [deg]
       "axis, pitched-N states it turned down by N degrees more than it is; its pitch about the "
       "robot's x axis, rolled-N; -both: R2's camera, made as R1's, stated the same way), R1's "
       "position RMSE per seed against its odometry's, the landmarks of the team's map per seed, "
-      "and the correction and the tilt found for R1's camera (seed " + seeds[0] + ").\n")
-print("| variant | stated yaw pitch roll [deg] | stated x y z [m] | R1 RMSE [m] | odometry RMSE [m] | map landmarks | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | pitch, roll [deg] | readings beyond 3 σ | warned (seeds) |")
-print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+      "and the correction, the tilt and the height against R2's camera (σ, landmarks shared) "
+      "found for R1's camera (seed " + seeds[0] + ").\n")
+print("| variant | stated yaw pitch roll [deg] | stated x y z [m] | R1 RMSE [m] | odometry RMSE [m] | map landmarks | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | pitch, roll [deg] | readings beyond 3 σ | height against R2 [m] | warned (seeds) |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for line in open(table):
     name, position, angles = line.rstrip("\n").split("\t")
     print(variant_row(name, [name, angles, position], "R1", "R1 R1_LANDMARKS", team=True))

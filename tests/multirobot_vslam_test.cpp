@@ -540,6 +540,11 @@ TEST_F(MultiRobotVSLAMApp, TeamOfTwoMeetsTheAccuracyBoundsOnEverySeed)
                 std::abs(runJson["results"]["sensor_pose_check"][sensor]["dyaw_deg"].get<double>()),
                 2)
                 << sensor << ", seed " << seed;
+        // and their heights agree: the landmarks both read lie within 2 cm in either's readings
+        const auto& heights = runJson["results"]["sensor_pose_check"]["R1 R1_LANDMARKS"]
+                                     ["heights_against"]["R2 R2_LANDMARKS"];
+        EXPECT_GE(heights["landmarks"].get<int>(), 50) << "seed " << seed;
+        EXPECT_LT(std::abs(heights["dz_m"].get<double>()), 0.02) << "seed " << seed;
     }
 }
 
@@ -596,6 +601,38 @@ TEST_F(MultiRobotVSLAMApp, SaysWhenTheCameraIsTurned)
                             0),
               0u)
         << warning;
+}
+
+// R1's camera stated 0.2 m higher than it is: its own readings cannot tell (every height moves
+// alike), but the landmarks it shares with R2, paired by place across and descriptor, lie 0.2 m
+// higher in its readings than in R2's, and the run warns of both sensors.
+TEST_F(MultiRobotVSLAMApp, SaysWhenTheCameraIsRaised)
+{
+    const std::string name = out("team2-raised");
+    writeTeam2WithR1CameraStated(name, mrpt::poses::CPose3D(0, 0, 0.2, 0, 0, 0));
+    const TCommandResult r =
+        run(kConfigs + "office-team-2.ini " + name + ".rawlog -q --seed 1 --out " + name + "-run");
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    const auto runJson = json(name + "-run/run.json");
+    const auto& checks = runJson["results"]["sensor_pose_check"];
+    const auto& r1 = checks["R1 R1_LANDMARKS"]["heights_against"]["R2 R2_LANDMARKS"];
+    const auto& r2 = checks["R2 R2_LANDMARKS"]["heights_against"]["R1 R1_LANDMARKS"];
+    std::printf("R1's camera stated 0.2 m too high: %.3f m (std %.3f) over %d landmarks\n",
+                r1["dz_m"].get<double>(), r1["std_dz_m"].get<double>(), r1["landmarks"].get<int>());
+    EXPECT_NEAR(r1["dz_m"].get<double>(), 0.2, 0.02);
+    EXPECT_NEAR(r2["dz_m"].get<double>(), -0.2, 0.02);
+    EXPECT_GE(r1["landmarks"].get<int>(), 50);
+    ASSERT_EQ(runJson["warnings"].size(), 2u) << runJson["warnings"];
+    for (const auto& [sensor, other] : {std::pair{"R1 R1_LANDMARKS", "R2 R2_LANDMARKS"},
+                                        std::pair{"R2 R2_LANDMARKS", "R1 R1_LANDMARKS"}}) {
+        bool found = false;
+        for (const auto& w : runJson["warnings"])
+            found |= w.get<std::string>().rfind(std::string(sensor) + ": ", 0) == 0 &&
+                     w.get<std::string>().find(std::string("check its height on the robot, or "
+                                                           "that of ") +
+                                               other) != std::string::npos;
+        EXPECT_TRUE(found) << sensor << ": " << runJson["warnings"];
+    }
 }
 
 // R1's camera stated pitched down by 2° (about the robot's y axis) or rolled left by 2° (x

@@ -731,12 +731,16 @@ void MultiRobotVSLAMApp::Impl::reportSensorPoseChecks(const TTeamParticle& best,
                                                       core::RunReport& report, bool quiet) const
 {
     const core::RunTimer timer;
+    const auto nameOf = [&](size_t robot, uint16_t sensor) {
+        const bool known = robot < sensorNames.size() && sensor < sensorNames[robot].size();
+        return known ? sensorNames[robot][sensor]
+                     : app.robots[robot] + " sensor " + std::to_string(sensor + 1);
+    };
     std::vector<TSensorCheck> named;
     for (auto& c : smoother().sensorPoseChecks(best)) {
-        const bool known = c.robot < sensorNames.size() && c.sensor < sensorNames[c.robot].size();
-        named.push_back({known ? sensorNames[c.robot][c.sensor]
-                               : app.robots[c.robot] + " sensor " + std::to_string(c.sensor + 1),
-                         c.correction, c.tilt});
+        named.push_back({nameOf(c.robot, c.sensor), c.correction, c.tilt, {}});
+        for (const auto& h : c.heights)
+            named.back().heights.emplace_back(nameOf(h.robot, h.sensor), h.offset);
     }
     apps::reportSensorPoseChecks("multirobot-vslam", "a landmark", "doc/multirobot.md", named,
                                  timer.elapsedSeconds(), report, quiet);

@@ -312,7 +312,7 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     const core::RunTimer checking;
     if (const auto check = smoother->cameraPoseCheck(best))
         reportSensorPoseChecks("omni-fastslam", "a landmark", "doc/multirobot.md",
-                               {{"camera", *check, std::nullopt}}, checking.elapsedSeconds(),
+                               {{"camera", *check, std::nullopt, {}}}, checking.elapsedSeconds(),
                                report, args.quiet);
     drawOdometryAndGroundTruth(scene, app.odometryPath, start.groundTruth);
     if (const auto landmarks = trueLandmarks(start.groundTruthPrefix))

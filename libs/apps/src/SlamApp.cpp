@@ -43,11 +43,23 @@ void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
     // on the simulated teams (their odometry's heading drift), moves of 0.4-0.7 m at 1-3 σ on
     // MRCLAM (doc/results/sensor-pose-check.md). A pitch or roll of 1° or more at 5 σ warns
     // too: correct cameras give up to 0.4° on the simulated teams, and a forward camera pitched
-    // by 2° more than stated can put a path several times as far from the truth.
-    constexpr double kTurnDeg = 3, kMove = 0.15, kSigmas = 5, kConfounding = 4, kTiltDeg = 1;
+    // by 2° more than stated can put a path several times as far from the truth. So does a
+    // height 0.1 m or more off another sensor's, at 5 σ or more, over 10 or more landmarks
+    // (doc/results/sensor-pose-check.md).
+    constexpr double kTurnDeg = 3, kMove = 0.15, kSigmas = 5, kConfounding = 4, kTiltDeg = 1,
+                     kHeight = 0.1;
+    constexpr size_t kHeightLandmarks = 10;
     report.setPartTiming("sensor_pose_check", seconds);
     std::string json;
-    for (const auto& [sensor, d, tilt] : checks) {
+    // per sensor: its line, what it is warned of, and the sensors its heights are off from
+    enum class TWarning { none, pose, tilt };
+    struct TVerdict {
+        std::string sensor, fit;
+        TWarning warning;
+        std::vector<std::string> heightsOffFrom;
+    };
+    std::vector<TVerdict> verdicts;
+    for (const auto& [sensor, d, tilt, heights] : checks) {
         const double turnDeg = mrpt::RAD2DEG(d.delta[2]),
                      turnStdDeg = mrpt::RAD2DEG(std::sqrt(d.cov(2, 2)));
         const Eigen::Vector2d t = d.delta.head<2>();
@@ -95,17 +107,51 @@ void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
             for (int i = 0; i < 2; i++)
                 tilted |= std::abs(deg[i]) >= kTiltDeg && std::abs(deg[i]) >= kSigmas * stdDeg[i];
         }
+        std::string heightJson;
+        std::vector<std::string> offFrom;
+        for (const auto& [other, h] : heights) {
+            heightJson += mrpt::format(
+                "%s\"%s\": {\"landmarks\": %zu, \"dz_m\": %.4f, \"std_dz_m\": %.4f}",
+                heightJson.empty() ? "" : ", ", other.c_str(), h.points, h.dz, h.std_dz);
+            fit += mrpt::format(
+                "; the %zu landmarks it shares with %s lie %.2f m (std %.2f) %s in its readings",
+                h.points, other.c_str(), std::abs(h.dz), h.std_dz, h.dz >= 0 ? "higher" : "lower");
+            if (h.points >= kHeightLandmarks && std::abs(h.dz) >= kHeight &&
+                std::abs(h.dz) >= kSigmas * h.std_dz)
+                offFrom.push_back(other);
+        }
+        if (!heightJson.empty()) json += ", \"heights_against\": {" + heightJson + "}";
         json += "}";
         if (!quiet) std::printf("%s: %s: %s\n", app, sensor.c_str(), fit.c_str());
         // with the pose and noise right, about 1 pair in 90 lies beyond 3 σ
-        if (((turned || moved) && toldApart) || 10 * d.outlier_pairs > d.pairs)
-            report.addWarning(sensor + ": " + fit +
+        const TWarning warning =
+            ((turned || moved) && toldApart) || 10 * d.outlier_pairs > d.pairs ? TWarning::pose
+            : tilted ? TWarning::tilt  // the odometry plays no part in the tilt
+                     : TWarning::none;
+        verdicts.push_back({sensor, fit, warning, offFrom});
+    }
+    for (const auto& v : verdicts) {
+        const auto warned = [&](const std::string& other) {
+            for (const auto& w : verdicts)
+                if (w.sensor == other) return w.warning != TWarning::none;
+            return false;
+        };
+        if (v.warning == TWarning::pose)
+            report.addWarning(v.sensor + ": " + v.fit +
                               ": check its pose on the robot and its noise (an odometry whose "
                               "heading drifts also looks like a turned sensor; " +
                               doc + ")");
-        else if (tilted)  // the odometry plays no part in the tilt
-            report.addWarning(sensor + ": " + fit + ": check its pitch and roll on the robot (" +
-                              doc + ")");
+        else if (v.warning == TWarning::tilt)
+            report.addWarning(v.sensor + ": " + v.fit +
+                              ": check its pitch and roll on the robot (" + doc + ")");
+        else  // which of two is off, the heights do not tell; a wrong pose or tilt also moves them
+            for (const auto& other : v.heightsOffFrom)
+                if (!warned(other)) {
+                    report.addWarning(v.sensor + ": " + v.fit +
+                                      ": check its height on the robot, or that of " + other +
+                                      " (" + doc + ")");
+                    break;
+                }
     }
     if (!json.empty()) report.setResultJson("sensor_pose_check", "{" + json + "}");
 }

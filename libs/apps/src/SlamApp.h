@@ -16,6 +16,7 @@
 #include <mrpt_vslam/core/RawlogReader.h>
 #include <mrpt_vslam/core/RunReport.h>
 #include <mrpt_vslam/core/RunTimer.h>
+#include <mrpt_vslam/core/SensorHeightOffset.h>
 #include <mrpt_vslam/core/SensorPoseCorrection.h>
 #include <mrpt_vslam/core/SensorTiltCorrection.h>
 #include <mrpt_vslam/core/TumTrajectory.h>
@@ -38,11 +39,13 @@ std::string poseJsonArray(const mrpt::poses::CPose3D& pose);
 std::string poseText(const mrpt::poses::CPose3D& pose);
 
 /// One sensor's checks (doc/multirobot.md, "Checking the sensor poses"): its name, the
-/// correction of its pose and, where it reads points in 3D, its tilt.
+/// correction of its pose and, where it reads points in 3D, its tilt and its heights against
+/// the other sensors' (by their names).
 struct TSensorCheck {
     std::string sensor;
     core::TSensorPoseCorrection pose;
     std::optional<core::TSensorTiltCorrection> tilt;
+    std::vector<std::pair<std::string, core::TSensorHeightOffset>> heights;
 };
 
 /** The sensor checks of a run: `app`'s line per sensor unless `quiet`, run.json

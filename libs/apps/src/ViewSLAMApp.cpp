@@ -294,7 +294,7 @@ void ViewSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
         const core::RunTimer checking;
         const auto c = core::TSensorPoseCorrection::estimate({}, bearings);
         reportSensorPoseChecks("view-slam", "a view", "doc/view-slam.md",
-                               {{"camera", c, std::nullopt}}, checking.elapsedSeconds(), report,
+                               {{"camera", c, std::nullopt, {}}}, checking.elapsedSeconds(), report,
                                args.quiet);
     }
     report.setResult("mean_sqrt_trace_Pvv", sqrtTrace.mean());

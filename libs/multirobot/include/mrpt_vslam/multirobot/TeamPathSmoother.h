@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPose2D.h>
+#include <mrpt_vslam/core/SensorHeightOffset.h>
 #include <mrpt_vslam/core/SensorPoseCorrection.h>
 #include <mrpt_vslam/core/SensorTiltCorrection.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
@@ -151,12 +152,23 @@ class TeamPathSmoother : public CMultiRobotVisualSLAM::TStepObserver {
         core::TSensorPoseCorrection correction;
         /// of its 3D readings (none for the planar model's) of landmarks read more than once
         std::optional<core::TSensorTiltCorrection> tilt;
+        /// How much higher its 3D readings put the landmarks it shares with another sensor
+        /// (`robot`, `sensor`) than that one's do, per such sensor (two or more shared).
+        struct THeightAgainst {
+            size_t robot = 0;
+            uint16_t sensor = 0;
+            core::TSensorHeightOffset offset;
+        };
+        std::vector<THeightAgainst> heights;
     };
     /** Per robot and sensor, the correction of the sensor's pose on the robot that best
      *  explains the readings of the map along particle `p`'s path: each reading of a landmark
      *  paired with the same sensor's previous reading of it, up to 3 steps before, through the
-     *  robot's odometry between the two; and the sensor's tilt from the heights of all its
-     *  readings of each landmark. Robots and sensors without such pairs are left out.
+     *  robot's odometry between the two; the sensor's tilt from the heights of all its
+     *  readings of each landmark; and its heights against each other sensor's, the landmarks of
+     *  the two paired by place across and descriptor, not by height (a sensor stated too high
+     *  maps its own landmarks above the other's). Robots and sensors without such pairs are
+     *  left out.
      *  \pre registered with the filter before its reset() */
     std::vector<TSensorPoseCheck> sensorPoseChecks(const TTeamParticle& p) const;
 
