@@ -1,21 +1,10 @@
+#include <mrpt_vslam/core/Median.h>
 #include <mrpt_vslam/core/SensorHeightOffset.h>
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace mrpt_vslam::core {
-
-namespace {
-double median(std::vector<double>& v)
-{
-    const size_t h = v.size() / 2;
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(h), v.end());
-    const double upper = v[h];
-    if (v.size() % 2) return upper;
-    return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(h)));
-}
-}  // namespace
 
 TSensorHeightOffset TSensorHeightOffset::estimate(std::vector<double> dz)
 {

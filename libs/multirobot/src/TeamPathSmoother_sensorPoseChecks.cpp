@@ -1,5 +1,6 @@
 #include <mrpt_vslam/multirobot/TeamPathSmoother.h>
 
+#include <iterator>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -9,13 +10,12 @@ namespace mrpt_vslam::multirobot {
 
 namespace {
 
-/// A landmark as one sensor read it: the mean of its 3D readings in the map frame, and the
-/// descriptor of the first.
+/// A landmark as one sensor read it: the mean of its 3D readings in the map frame (their sum
+/// and count while they are added), and the descriptor of the first.
 struct TPlacedLandmark {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    Eigen::Vector3d at = Eigen::Vector3d::Zero();
     size_t readings = 0;
     const LandmarkDescriptorPool::TDescriptor* descriptor = nullptr;
-    Eigen::Vector3d at() const { return sum / static_cast<double>(readings); }
 };
 
 /** For each landmark of `a`, the landmark of `b` within `radius` across (the heights play no
@@ -26,10 +26,10 @@ std::vector<std::optional<size_t>> bestAcross(const std::vector<TPlacedLandmark>
 {
     std::vector<std::optional<size_t>> best(a.size());
     for (size_t i = 0; i < a.size(); i++) {
-        const Eigen::Vector2d p = a[i].at().head<2>();
+        const Eigen::Vector2d p = a[i].at.head<2>();
         std::pair<double, double> least{E0, std::numeric_limits<double>::infinity()};
         for (size_t j = 0; j < b.size(); j++) {
-            const double across = (b[j].at().head<2>() - p).norm();
+            const double across = (b[j].at.head<2>() - p).norm();
             if (across > radius) continue;
             const std::pair<double, double> key{
                 LandmarkDescriptorPool::squaredDistance(*a[i].descriptor, *b[j].descriptor),
@@ -51,7 +51,7 @@ std::vector<double> heightDifferences(const std::vector<TPlacedLandmark>& a,
     const auto ab = bestAcross(a, b, radius, E0), ba = bestAcross(b, a, radius, E0);
     std::vector<double> dz;
     for (size_t i = 0; i < a.size(); i++)
-        if (ab[i] && ba[*ab[i]] == i) dz.push_back(a[i].at().z() - b[*ab[i]].at().z());
+        if (ab[i] && ba[*ab[i]] == i) dz.push_back(a[i].at.z() - b[*ab[i]].at.z());
     return dz;
 }
 
@@ -85,16 +85,29 @@ std::vector<TeamPathSmoother::TSensorPoseCheck> TeamPathSmoother::sensorPoseChec
             if (m.planar) continue;
             readings[sensor][*ids[f][j]].push_back({m.z, m.R});
             TPlacedLandmark& l = placed[sensor][*ids[f][j]];
-            l.sum += toMapFrame(m, pose).z;
+            l.at += toMapFrame(m, pose).z;
             if (l.readings++ == 0) l.descriptor = &m.d;
         }
     }
     std::map<TSensorKey, std::vector<TPlacedLandmark>> landmarksOf;
-    for (const auto& [sensor, of_sensor] : placed)
-        for (const auto& [id, l] : of_sensor) landmarksOf[sensor].push_back(l);
-    // the readings' own search for landmarks: within search_radius, of descriptors within E0
+    for (auto& [sensor, of_sensor] : placed)
+        for (auto& [id, l] : of_sensor) {
+            l.at /= static_cast<double>(l.readings);
+            landmarksOf[sensor].push_back(l);
+        }
+    // per two sensors, once: the readings' own search for landmarks, within search_radius and
+    // of descriptors within E0; the other way round the differences change sign
     const CVisualLandmarksMap empty = emptyMap();
     const double radius = empty.insertionOptions.search_radius, E0 = empty.insertionOptions.E0;
+    std::map<std::pair<TSensorKey, TSensorKey>, core::TSensorHeightOffset> offsets;
+    for (auto a = landmarksOf.begin(); a != landmarksOf.end(); ++a)
+        for (auto b = std::next(a); b != landmarksOf.end(); ++b) {
+            const auto o = core::TSensorHeightOffset::estimate(
+                heightDifferences(a->second, b->second, radius, E0));
+            if (o.points < 2) continue;
+            offsets[{a->first, b->first}] = o;
+            offsets[{b->first, a->first}] = {-o.dz, o.std_dz, o.points};
+        }
 
     std::vector<TSensorPoseCheck> checks;
     for (const auto& [key, of_sensor] : pairs) {
@@ -110,14 +123,9 @@ std::vector<TeamPathSmoother::TSensorPoseCheck> TeamPathSmoother::sensorPoseChec
             if (auto tilt = core::TSensorTiltCorrection::estimate(points); tilt.points > 0)
                 check.tilt = tilt;
         }
-        if (const auto own = landmarksOf.find(key); own != landmarksOf.end())
-            for (const auto& [other, theirs] : landmarksOf) {
-                if (other == key) continue;
-                const auto offset = core::TSensorHeightOffset::estimate(
-                    heightDifferences(own->second, theirs, radius, E0));
-                if (offset.points >= 2)
-                    check.heights.push_back({other.first, other.second, offset});
-            }
+        for (const auto& [sensors, offset] : offsets)
+            if (sensors.first == key)
+                check.heights.push_back({sensors.second.first, sensors.second.second, offset});
         checks.push_back(check);
     }
     return checks;

@@ -2,6 +2,7 @@
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 #include <mrpt/random/RandomGenerators.h>
+#include <mrpt_vslam/core/Median.h>
 #include <mrpt_vslam/viewmap/PlanarEssentialRansac.h>
 
 #include <Eigen/Geometry>
@@ -89,14 +90,6 @@ double requiredIterations(double inlier_ratio, double confidence)
     if (p_good >= 1) return 0;
     if (p_good <= 0) return std::numeric_limits<double>::infinity();
     return std::log(1 - confidence) / std::log1p(-p_good);
-}
-
-double median(std::vector<double> v)
-{
-    const auto mid = v.begin() + std::ptrdiff_t(v.size() / 2);
-    std::nth_element(v.begin(), mid, v.end());
-    if (v.size() % 2) return *mid;
-    return 0.5 * (*mid + *std::max_element(v.begin(), mid));
 }
 
 }  // namespace
@@ -204,7 +197,7 @@ std::optional<PlanarEssentialRansac::TResult> PlanarEssentialRansac::estimate(
             std::atan2(rays_v.col(col).cross(p_l_in_v).norm(), rays_v.col(col).dot(p_l_in_v)));
     }
     result.rms_residual = std::sqrt(sum2 / double(inliers.size()));
-    result.median_parallax = median(parallax);
+    result.median_parallax = core::median(parallax);
     // A rotation alone explains the rays: φ is not observable.
     if (result.median_parallax < m_options.min_parallax) return std::nullopt;
     return result;
