@@ -147,7 +147,8 @@ std::vector<StereoFrontEnd::TPoint> StereoFrontEnd::detect(
         const auto stereo = matcher.match(row, col);
         if (!stereo) continue;
         const TStereoPixel px{static_cast<double>(row), static_cast<double>(col),
-                              stereo->disparity};
+                              stereo->disparity - geometry.disparityOffset()};
+        if (!(px.disparity > 0)) continue;  // at or beyond infinity
         const mrpt::math::TPoint3D z = geometry.triangulate(px);
         if (z.z < m_options.min_depth || z.z > m_options.max_depth) continue;
         m_stats.stereo++;

@@ -16,27 +16,44 @@ bool nearlyEqual(double a, double b)
     return std::abs(a - b) <= 1e-6 * std::max(1.0, std::max(std::abs(a), std::abs(b)));
 }
 
+/// The error of a pair that is not rectified, `why`, with the stock command that rectifies it.
+std::invalid_argument notRectified(const std::string& why, const std::string& label)
+{
+    return std::invalid_argument("images are not rectified: " + why +
+                                 "; rectify the rawlog first: rawlog-edit -i IN.rawlog -o "
+                                 "OUT.rawlog --stereo-rectify " +
+                                 (label.empty() ? std::string("LABEL") : label) +
+                                 ",0 --image-format png");
+}
+
 /// Throws unless `cam` is an undistorted pin-hole camera.
-void checkUndistorted(const mrpt::img::TCamera& cam, const std::string& which)
+void checkUndistorted(const mrpt::img::TCamera& cam, const std::string& which,
+                      const std::string& label)
 {
     if (cam.distortion == mrpt::img::DistortionModel::kannala_brandt)
-        throw std::invalid_argument("images are not rectified: the " + which +
-                                    " camera has the kannala_brandt (fisheye) model");
+        throw notRectified("the " + which + " camera has the kannala_brandt (fisheye) model",
+                           label);
     for (const double k : cam.dist) {
         if (!std::isfinite(k))
             throw std::invalid_argument("the " + which + " camera has a non-finite distortion");
         if (k != 0)
-            throw std::invalid_argument("images are not rectified: the " + which +
-                                        " camera has non-zero distortion parameters");
+            throw notRectified("the " + which + " camera has non-zero distortion parameters",
+                               label);
     }
 }
 
 }  // namespace
 
-StereoGeometry::StereoGeometry(double fx, double fy, double cx, double cy, double baseline)
-    : m_fx(fx), m_fy(fy), m_cx(cx), m_cy(cy), m_baseline(baseline)
+StereoGeometry::StereoGeometry(double fx, double fy, double cx, double cy, double baseline,
+                               double disparity_offset)
+    : m_fx(fx),
+      m_fy(fy),
+      m_cx(cx),
+      m_cy(cy),
+      m_baseline(baseline),
+      m_disparity_offset(disparity_offset)
 {
-    for (const double v : {fx, fy, cx, cy, baseline})
+    for (const double v : {fx, fy, cx, cy, baseline, disparity_offset})
         if (!std::isfinite(v))
             throw std::invalid_argument("stereo camera parameters must be finite");
     if (!(fx > 0 && fy > 0))
@@ -49,16 +66,16 @@ StereoGeometry StereoGeometry::fromObservation(const mrpt::obs::CObservationSter
 {
     const auto& left = obs.leftCamera;
     const auto& right = obs.rightCamera;
-    checkUndistorted(left, "left");
-    checkUndistorted(right, "right");
+    const std::string& label = obs.sensorLabel;
+    checkUndistorted(left, "left", label);
+    checkUndistorted(right, "right", label);
     const double lk[4] = {left.fx(), left.fy(), left.cx(), left.cy()};
     const double rk[4] = {right.fx(), right.fy(), right.cx(), right.cy()};
     for (int i = 0; i < 4; i++) {
         if (!std::isfinite(lk[i]) || !std::isfinite(rk[i]))
             throw std::invalid_argument("the camera intrinsics are not finite");
-        if (!nearlyEqual(lk[i], rk[i]))
-            throw std::invalid_argument(
-                "images are not rectified: left and right intrinsics differ (fx fy cx cy)");
+        if (i != 2 && !nearlyEqual(lk[i], rk[i]))  // c_x may differ: the disparity's offset
+            throw notRectified("left and right intrinsics differ (fx fy cy)", label);
     }
 
     const auto& pose = obs.rightCameraPose;
@@ -69,18 +86,17 @@ StereoGeometry StereoGeometry::fromObservation(const mrpt::obs::CObservationSter
         2 * std::atan2(std::sqrt(q.x() * q.x() + q.y() * q.y() + q.z() * q.z()), std::abs(q.r()));
     if (angle > 1e-6) {
         std::ostringstream msg;
-        msg << "images are not rectified: the right camera is rotated by " << angle * 180 / M_PI
+        msg << "the right camera is rotated by " << angle * 180 / M_PI
             << " deg w.r.t. the left one";
-        throw std::invalid_argument(msg.str());
+        throw notRectified(msg.str(), label);
     }
     const double baseline = pose.x();
     if (!(baseline > 0))
         throw std::invalid_argument("the right camera must be at +x of the left one (baseline " +
                                     std::to_string(baseline) + " m)");
     if (std::abs(pose.y()) > 1e-6 * baseline || std::abs(pose.z()) > 1e-6 * baseline)
-        throw std::invalid_argument(
-            "images are not rectified: the right camera is off the left camera's x axis");
-    return StereoGeometry(lk[0], lk[1], lk[2], lk[3], baseline);
+        throw notRectified("the right camera is off the left camera's x axis", label);
+    return StereoGeometry(lk[0], lk[1], lk[2], lk[3], baseline, lk[2] - rk[2]);
 }
 
 mrpt::math::TPoint3D StereoGeometry::triangulate(const TStereoPixel& px) const

@@ -150,6 +150,27 @@ TEST(StereoGeometry, FromObservationReadsARectifiedPair)
     EXPECT_DOUBLE_EQ(g.cx(), 321.5);
     EXPECT_DOUBLE_EQ(g.cy(), 238.25);
     EXPECT_DOUBLE_EQ(g.baseline(), 0.12);
+    EXPECT_DOUBLE_EQ(g.disparityOffset(), 0);
+}
+
+// A pair rectified with the principal points' columns apart (MRPT's rawlog-edit --stereo-rectify
+// without --rectify-centers-coincide): the offset is taken off the columns' difference, so a
+// point projected into both images triangulates back to itself.
+TEST(StereoGeometry, ARightPrincipalPointOffsetShiftsTheDisparity)
+{
+    auto obs = rectifiedPair();
+    obs.rightCamera.setIntrinsicParamsFromValues(420, 400, 314.8, 238.25);
+    const StereoGeometry g = StereoGeometry::fromObservation(obs);
+    EXPECT_NEAR(g.disparityOffset(), 321.5 - 314.8, 1e-12);
+    const mrpt::math::TPoint3D point(0.4, -0.2, 3.1);
+    // the point's columns in each image, from each camera's own intrinsics
+    const double col_left = 321.5 + 420 * point.x / point.z;
+    const double col_right = 314.8 + 420 * (point.x - 0.12) / point.z;
+    const auto p = g.triangulate(
+        {238.25 + 400 * point.y / point.z, col_left, col_left - col_right - g.disparityOffset()});
+    EXPECT_NEAR(p.x, point.x, 1e-12);
+    EXPECT_NEAR(p.y, point.y, 1e-12);
+    EXPECT_NEAR(p.z, point.z, 1e-12);
 }
 
 TEST(StereoGeometry, FromObservationRejectsPairsThatAreNotRectified)
@@ -175,8 +196,10 @@ TEST(StereoGeometry, FromObservationRejectsPairsThatAreNotRectified)
     obs.leftCamera.distortion = mrpt::img::DistortionModel::kannala_brandt;
     expectError(obs, "kannala_brandt");
     obs = rectifiedPair();
-    obs.rightCamera.setIntrinsicParamsFromValues(420, 400, 325, 238.25);
+    obs.rightCamera.setIntrinsicParamsFromValues(420, 400, 321.5, 240);
     expectError(obs, "left and right intrinsics differ");
+    obs.sensorLabel = "BUMBLEBEE";
+    expectError(obs, "rawlog-edit -i IN.rawlog -o OUT.rawlog --stereo-rectify BUMBLEBEE,0");
     obs = rectifiedPair();
     obs.rightCameraPose = mrpt::poses::CPose3DQuat(mrpt::poses::CPose3D(0.12, 0, 0, 0.01, 0, 0));
     expectError(obs, "right camera is rotated by 0.57");

@@ -9,8 +9,9 @@ class CObservationStereoImages;
 
 namespace mrpt_vslam::multirobot {
 
-/** A pixel of the left image with its disparity: row r, column c, disparity d = c − c_right
- *  (all in [px]); the point appears at (r, c − d) in the right image. */
+/** A pixel of the left image with its disparity: row r, column c, disparity d (all in [px]);
+ *  the point appears at (r, c − d − o) in the right image, o = c_x − c_x,right the offset of
+ *  the two principal points' columns (StereoGeometry::disparityOffset(), 0 where they agree). */
 struct TStereoPixel {
     double row = 0;
     double col = 0;
@@ -28,7 +29,10 @@ struct TStereoPixelNoise {
 
 /** The standard rectified stereo pair of Gil et al. (2010), Sec. 3.2, Eq. 12: two pin-hole
  *  cameras with parallel optical axes, the right one displaced by the baseline B along the left
- *  camera's x axis, same intrinsics (f_x, f_y, c_x, c_y).
+ *  camera's x axis, same intrinsics (f_x, f_y, c_x, c_y) but for the right camera's c_x,right,
+ *  which a rectification may shift (OpenCV's stereoRectify() without CALIB_ZERO_DISPARITY, as
+ *  MRPT's `rawlog-edit --stereo-rectify` calls it): a column offset o = c_x − c_x,right of the
+ *  right image, taken off the columns' difference before Eq. 12.
  *
  *  Frame: MRPT's camera frame of the left camera, x right, y down, z forward. Eq. 12 writes
  *  Y = I(C_y − r)/d with Y pointing up; here Y = +B·(f_x/f_y)(r − c_y)/d points down, i.e.
@@ -46,16 +50,19 @@ struct TStereoPixelNoise {
 class StereoGeometry {
   public:
     /** \param fx, fy focal lengths [px]; \param cx, cy principal point [px];
-     *  \param baseline B [m], distance between the optical centres.
+     *  \param baseline B [m], distance between the optical centres;
+     *  \param disparity_offset o = c_x − c_x,right [px] (0: both principal points agree).
      *  \throw std::invalid_argument if a value is not finite, or fx, fy or B is not positive. */
-    StereoGeometry(double fx, double fy, double cx, double cy, double baseline);
+    StereoGeometry(double fx, double fy, double cx, double cy, double baseline,
+                   double disparity_offset = 0);
 
     /** The geometry of a rectified stereo observation: intrinsics of `leftCamera`, baseline =
-     *  x of `rightCameraPose`.
+     *  x of `rightCameraPose`, offset = the difference of the two cameras' c_x.
      *  \throw std::invalid_argument (one line) if the pair is not rectified: a distortion
-     *  parameter of either camera is non-zero, the two intrinsic matrices differ, the right
-     *  camera is rotated w.r.t. the left one or displaced off its x axis, or the baseline is
-     *  not positive; or if a parameter is not finite. */
+     *  parameter of either camera is non-zero, the two cameras' f_x, f_y or c_y differ, the
+     *  right camera is rotated w.r.t. the left one or displaced off its x axis, or the baseline
+     *  is not positive; or if a parameter is not finite. The message of a pair that is not
+     *  rectified names the stock command that rectifies the rawlog. */
     static StereoGeometry fromObservation(const mrpt::obs::CObservationStereoImages& obs);
 
     /** Eq. 12: the 3D point [m] in the left camera frame (x right, y down, z forward).
@@ -83,9 +90,11 @@ class StereoGeometry {
     double cx() const { return m_cx; }
     double cy() const { return m_cy; }
     double baseline() const { return m_baseline; }
+    /// o = c_x − c_x,right [px]: a column difference c − c_right is the disparity d plus o.
+    double disparityOffset() const { return m_disparity_offset; }
 
   private:
-    double m_fx, m_fy, m_cx, m_cy, m_baseline;
+    double m_fx, m_fy, m_cx, m_cy, m_baseline, m_disparity_offset;
 };
 
 }  // namespace mrpt_vslam::multirobot
