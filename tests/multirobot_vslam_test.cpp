@@ -15,6 +15,7 @@
 #include <mrpt_vslam/test/RunFiles.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
 #include <mrpt_vslam/test/SingleRobotRangeBearingLog.h>
+#include <mrpt_vslam/test/UnrectifiedStereoPair.h>
 
 #include <algorithm>
 #include <cmath>
@@ -22,7 +23,6 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgproc.hpp>
 #include <set>
 #include <string>
 #include <tuple>
@@ -354,67 +354,17 @@ TEST_F(MultiRobotVSLAMApp, SingleRobotStereoRunsFromItsTemplate)
     }
 }
 
-// The pair that a head with radial lens distortion (k1, k2) and its right camera turned by `turn`
-// on its optical centre takes of the scene of the rectified pair `rectified`: each pixel of the
-// new images is undistorted (fixed-point iteration), turned into the rectified camera's frame
-// and read there (bilinear, grey outside), exact for a turn about the optical centre.
-mrpt::obs::CObservationStereoImages unrectified(
-    const mrpt::obs::CObservationStereoImages& rectified, double k1, double k2,
-    const mrpt::poses::CPose3D& turn)
+// A user's own stereo rawlog from a head that is not rectified (barrel distortion, the right
+// camera turned inwards by 1 deg and tilted by 4 deg): the app rectifies it and runs as on the
+// rectified original (R1 of the 40-frame stereo sequence), its camera pose that of the
+// rectified left camera, which the tilt check confirms. The same rawlog rectified by stock
+// `rawlog-edit --stereo-rectify` gets a camera pose tilted the other way, which the check
+// finds. Measured (seeds 1-3): RMSE 0.06-0.19 m (the rectified original from the template:
+// 0.06-0.18 m; odometry 0.15 m), tilt found 0.2-0.4 deg; rectified by rawlog-edit, -3.6 deg.
+// With the rectified camera turned the way rawlog-edit turns it: the same -3.6 deg, a warning
+// and up to 0.26 m.
+TEST_F(MultiRobotVSLAMApp, AStereoRawlogOfAHeadThatIsNotRectifiedRuns)
 {
-    const auto& cam = rectified.leftCamera;
-    const auto warp = [&](const mrpt::img::CImage& image, const mrpt::math::CMatrixDouble33& R) {
-        cv::Mat map(static_cast<int>(cam.nrows), static_cast<int>(cam.ncols), CV_32FC2);
-        for (int r = 0; r < map.rows; r++)
-            for (int c = 0; c < map.cols; c++) {
-                const double xd = (c - cam.cx()) / cam.fx(), yd = (r - cam.cy()) / cam.fy();
-                double x = xd, y = yd;
-                for (int i = 0; i < 50; i++) {
-                    const double r2 = x * x + y * y, f = 1 + k1 * r2 + k2 * r2 * r2;
-                    x = xd / f;
-                    y = yd / f;
-                }
-                const Eigen::Vector3d ray = R.asEigen() * Eigen::Vector3d(x, y, 1);
-                map.at<cv::Vec2f>(r, c) = {
-                    static_cast<float>(cam.cx() + cam.fx() * ray.x() / ray.z()),
-                    static_cast<float>(cam.cy() + cam.fy() * ray.y() / ray.z())};
-            }
-        cv::Mat out;
-        cv::remap(image.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY), out, map, cv::Mat(),
-                  cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(128));
-        return mrpt::img::CImage(out, mrpt::img::DEEP_COPY);
-    };
-    mrpt::obs::CObservationStereoImages obs;
-    obs.timestamp = rectified.timestamp;
-    obs.sensorLabel = rectified.sensorLabel;
-    obs.cameraPose = rectified.cameraPose;
-    obs.hasImageRight = true;
-    obs.imageLeft = warp(rectified.imageLeft, mrpt::math::CMatrixDouble33::Identity());
-    // the turned camera's rays in the rectified camera's frame
-    obs.imageRight = warp(rectified.imageRight, turn.getRotationMatrix());
-    auto params = rectified.getStereoCameraParams();
-    for (auto* camera : {&params.leftCamera, &params.rightCamera}) {
-        camera->dist.fill(0);
-        camera->dist[0] = k1;
-        camera->dist[1] = k2;
-    }
-    const double baseline = rectified.rightCameraPose.x();
-    params.rightCameraPose =
-        mrpt::poses::CPose3DQuat(mrpt::poses::CPose3D(baseline, 0, 0) + turn).asTPose();
-    obs.setStereoCameraParams(params);
-    return obs;
-}
-
-// A user's own stereo rawlog from a head that is not rectified (lens distortion, the right
-// camera turned): the app refuses it, naming the stock command that rectifies it, and runs on
-// what that command writes as on the rectified original (R1 of the 40-frame stereo sequence).
-// rawlog-edit leaves the principal points' columns 6.9 px apart, which the front-end takes off
-// the disparities. Measured (seeds 1-3): RMSE 0.03-0.13 m (the rectified original from the
-// template: 0.06-0.18 m; odometry 0.15 m); without the offset taken off, 0.18-0.33 m and the
-// warning that the readings were rarely associated again.
-TEST_F(MultiRobotVSLAMApp, AStereoRawlogRectifiedByRawlogEditRuns)
-{
-    if (!fs::exists("/usr/bin/rawlog-edit")) GTEST_SKIP() << "/usr/bin/rawlog-edit not installed";
     const std::string name = out("unrectified"), source = "team2-stereo-short";
     {
         mrpt::io::CFileGZOutputStream file(name + ".rawlog");
@@ -431,56 +381,57 @@ TEST_F(MultiRobotVSLAMApp, AStereoRawlogRectifiedByRawlogEditRuns)
                 ar << *o;
                 continue;
             }
-            // barrel distortion, the right camera turned inwards by 1 deg and rolled by 0.3 deg
-            ar << unrectified(
+            ar << mrpt_vslam::test::unrectifiedPair(
                 *stereo, -0.2, 0.05,
-                mrpt::poses::CPose3D(0, 0, 0, 0, mrpt::DEG2RAD(-1.0), mrpt::DEG2RAD(0.3)));
+                mrpt::poses::CPose3D(0, 0, 0, 0, mrpt::DEG2RAD(-1.0), mrpt::DEG2RAD(4.0)));
             frames++;
         }
         ASSERT_EQ(frames, 40u);
     }
-    const TCommandResult refused =
-        run(kConfigs + "stereo.ini " + name + ".rawlog -q --out " + out("unrectified-run"));
-    EXPECT_NE(refused.exit_code, 0);
-    EXPECT_NE(refused.out.find("unrectified.rawlog"), std::string::npos) << refused.out;
-    EXPECT_NE(refused.out.find("rawlog-edit -i IN.rawlog -o OUT.rawlog --stereo-rectify "
-                               "BUMBLEBEE,0 --image-format png"),
-              std::string::npos)
-        << refused.out;
-
-    const std::string rectified = out("rectified");
-    const TCommandResult edit = mrpt_vslam::test::runCommand(
-        "/usr/bin/rawlog-edit -q -w -i " + name + ".rawlog -o " + rectified +
-            ".rawlog --stereo-rectify BUMBLEBEE,0 "
-            "--image-format png",
-        s_scratch->path() / "rawlog-edit.log");
-    ASSERT_EQ(edit.exit_code, 0) << edit.out;
-    {  // the rectified pair's principal points lie apart: the disparity's offset is used
-        mrpt_vslam::core::RawlogReader reader(rectified + ".rawlog");
-        double offset = 0;
-        for (mrpt_vslam::core::TRawlogEntry e; reader.next(e);)
-            if (const auto stereo =
-                    std::dynamic_pointer_cast<mrpt::obs::CObservationStereoImages>(e.observation))
-                offset = stereo->leftCamera.cx() - stereo->rightCamera.cx();
-        EXPECT_GT(std::abs(offset), 1.0);
-    }
-    fs::copy_file(kData + source + ".groundtruth_R1.tum", rectified + ".groundtruth.tum",
+    fs::copy_file(kData + source + ".groundtruth_R1.tum", name + ".groundtruth.tum",
                   fs::copy_options::overwrite_existing);
-    fs::copy_file(kData + source + ".landmarks.txt", rectified + ".landmarks.txt",
+    fs::copy_file(kData + source + ".landmarks.txt", name + ".landmarks.txt",
                   fs::copy_options::overwrite_existing);
+    // the tilt the check finds [deg]: pitch and roll of the camera on the robot
+    const auto tiltOf = [&](const std::string& dir) {
+        const auto runJson = json(dir + "/run.json");
+        const auto& tilt =
+            runJson["results"]["sensor_pose_check"]["R1 BUMBLEBEE"]["dpitch_droll_deg"];
+        return std::pair{tilt[0].get<double>(), tilt[1].get<double>()};
+    };
     for (const int seed : {1, 2, 3}) {
-        const std::string dir = rectified + "-run" + std::to_string(seed);
-        const TCommandResult r = run(kConfigs + "stereo.ini " + rectified + ".rawlog --seed " +
+        const std::string dir = name + "-run" + std::to_string(seed);
+        const TCommandResult r = run(kConfigs + "stereo.ini " + name + ".rawlog --seed " +
                                      std::to_string(seed) + " -q --out " + dir);
         ASSERT_EQ(r.exit_code, 0) << r.out;
         const auto metrics = json(dir + "/metrics.json");
         const auto& robot = metrics["robots"]["R1"];
         const double est = robot["estimate"]["ate_rmse_m"];
-        std::printf("rectified by rawlog-edit, seed %d: RMSE %.3f m (odometry %.3f m)\n", seed, est,
-                    robot["odometry"]["ate_rmse_m"].get<double>());
+        const auto [pitch, roll] = tiltOf(dir);
+        std::printf("seed %d: RMSE %.3f m (odometry %.3f m), tilt found %.2f, %.2f deg\n", seed,
+                    est, robot["odometry"]["ate_rmse_m"].get<double>(), pitch, roll);
         EXPECT_LT(est, 0.25) << "seed " << seed;
-        EXPECT_EQ(json(dir + "/run.json")["warnings"], nlohmann::json::array()) << "seed " << seed;
+        EXPECT_LT(std::abs(pitch), 1.0) << "seed " << seed;
+        const auto runJson = json(dir + "/run.json");
+        EXPECT_EQ(runJson["counts"]["stereo_frames_rectified"], 40) << "seed " << seed;
+        EXPECT_EQ(runJson["warnings"], nlohmann::json::array()) << "seed " << seed;
     }
+
+    if (!fs::exists("/usr/bin/rawlog-edit")) GTEST_SKIP() << "/usr/bin/rawlog-edit not installed";
+    const std::string edited = out("rectified-by-rawlog-edit");
+    const TCommandResult edit = mrpt_vslam::test::runCommand(
+        "/usr/bin/rawlog-edit -q -w -i " + name + ".rawlog -o " + edited +
+            ".rawlog --stereo-rectify BUMBLEBEE,0 --image-format png",
+        s_scratch->path() / "rawlog-edit.log");
+    ASSERT_EQ(edit.exit_code, 0) << edit.out;
+    for (const char* ext : {".groundtruth.tum", ".landmarks.txt"})
+        fs::copy_file(name + ext, edited + ext, fs::copy_options::overwrite_existing);
+    const TCommandResult r =
+        run(kConfigs + "stereo.ini " + edited + ".rawlog --seed 1 -q --out " + edited + "-run");
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    const auto [pitch, roll] = tiltOf(edited + "-run");
+    std::printf("rectified by rawlog-edit, seed 1: tilt found %.2f, %.2f deg\n", pitch, roll);
+    EXPECT_LT(pitch, -2.0);
 }
 
 // filter_runs = 4 from --seed 5 runs the filters of seeds 5 to 8 side by side: each gives what

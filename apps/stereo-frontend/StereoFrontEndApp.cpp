@@ -143,6 +143,7 @@ mrpt::obs::CObservation::Ptr StereoFrontEndApp::convert(const mrpt::obs::CObserv
     }
     const auto& stats = front_end.lastFrameStats();
     m_summary.frames++;
+    m_summary.rectified += stats.rectified ? 1 : 0;
     m_summary.points += stats.points;
     m_summary.landmarks += stats.emitted;
     return landmarks;
@@ -219,10 +220,12 @@ std::string StereoFrontEndApp::summaryLine() const
          << " stereo frames (";
     for (auto it = m_front_ends.begin(); it != m_front_ends.end(); ++it)
         line << (it == m_front_ends.begin() ? "" : ", ") << it->first;
-    line << "), " << double(s.points) / s.frames << " points/frame, "
-         << double(s.landmarks) / s.frames << " landmarks/frame, " << s.ms_per_frame
-         << " ms/frame; " << s.other_entries << " other observations copied, "
-         << s.ground_truth_files.size() << " ground-truth files copied";
+    line << "), ";
+    if (s.rectified > 0) line << s.rectified << " of them rectified from their calibration, ";
+    line << double(s.points) / s.frames << " points/frame, " << double(s.landmarks) / s.frames
+         << " landmarks/frame, " << s.ms_per_frame << " ms/frame; " << s.other_entries
+         << " other observations copied, " << s.ground_truth_files.size()
+         << " ground-truth files copied";
     return line.str();
 }
 

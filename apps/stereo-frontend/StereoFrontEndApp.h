@@ -35,6 +35,7 @@ class StereoFrontEndApp {
     /** What run() did. */
     struct TSummary {
         size_t frames = 0;                            ///< stereo frames turned into landmarks
+        size_t rectified = 0;                         ///< of those, rectified from the calibration
         size_t points = 0;                            ///< stereo points with descriptor, all frames
         size_t landmarks = 0;                         ///< emitted landmarks, all frames
         size_t other_entries = 0;                     ///< entries or observations copied unchanged

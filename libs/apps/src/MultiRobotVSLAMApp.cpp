@@ -118,6 +118,8 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
 
     size_t measurements = 0, stereoFrames = 0, landmarkObservations = 0;
     size_t robotReadings = 0, nonPositiveRanges = 0;
+    size_t rectifiedFrames = 0;  ///< stereo pairs rectified from their calibration
+    std::string notRectified;    ///< why the first of them was not rectified
 
     void findGroundTruth();
     /** One robot: the step's odometry alone (the best movement estimate of a rawlog's action
@@ -349,6 +351,8 @@ void MultiRobotVSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
         // the images' landmarks replace any the frame had
         ObservationSelector::of<mrpt::obs::CObservationVisualLandmarks>(landmarksLabel)
             .eraseFrom(sf);
+        if (frontEnds[k]->lastFrameStats().rectified && rectifiedFrames++ == 0)
+            notRectified = multirobot::StereoGeometry::whyNotRectified(*stereo);
         landmarks->sensorLabel = landmarksLabel.empty() ? stereo->sensorLabel : landmarksLabel;
         sf.insert(landmarks);
         stereo->imageLeft.unload();
@@ -646,6 +650,12 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     report.setCount("robots", static_cast<double>(app.robots.size()));
     report.setCount("steps", static_cast<double>(steps));
     report.setCount("stereo_frames", static_cast<double>(stereoFrames));
+    report.setCount("stereo_frames_rectified", static_cast<double>(rectifiedFrames));
+    if (rectifiedFrames > 0 && !args.quiet)
+        std::printf(
+            "multirobot-vslam: %zu stereo pairs rectified from their calibration (%s); "
+            "the camera pose is the rectified left camera's\n",
+            rectifiedFrames, notRectified.c_str());
     report.setCount("landmark_observations", static_cast<double>(landmarkObservations));
     report.setCount("measurements", static_cast<double>(measurements));
     report.setCount("robot_readings", static_cast<double>(robotReadings));

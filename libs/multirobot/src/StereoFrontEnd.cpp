@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <stdexcept>
 
 namespace mrpt_vslam::multirobot {
@@ -111,18 +112,10 @@ std::vector<StereoFrontEnd::TPoint> StereoFrontEnd::detect(
     const mrpt::obs::CObservationStereoImages& obs, const StereoGeometry& geometry)
 {
     using mrpt::img::CImage;
-    if (obs.imageLeft.isEmpty()) throw std::invalid_argument("left image is empty");
-    if (obs.imageRight.isEmpty()) throw std::invalid_argument("right image is empty");
     const CImage left(obs.imageLeft, mrpt::img::FAST_REF_OR_CONVERT_TO_GRAY);
     const CImage right(obs.imageRight, mrpt::img::FAST_REF_OR_CONVERT_TO_GRAY);
     const StereoMatcher matcher(left, right, m_options.matching);  // checks the images
     const cv::Mat gray = left.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
-    if (static_cast<uint32_t>(gray.cols) != obs.leftCamera.ncols ||
-        static_cast<uint32_t>(gray.rows) != obs.leftCamera.nrows)
-        throw std::invalid_argument("images are " + std::to_string(gray.cols) + "x" +
-                                    std::to_string(gray.rows) + " but the calibration is for " +
-                                    std::to_string(obs.leftCamera.ncols) + "x" +
-                                    std::to_string(obs.leftCamera.nrows));
     const core::USurfDescriptor usurf(left);
     m_stats = {};
 
@@ -175,14 +168,27 @@ mrpt::obs::CObservationVisualLandmarks::Ptr StereoFrontEnd::process(
         throw std::invalid_argument(
             "the stereo observation has no right image (hasImageRight "
             "is false)");
-    const StereoGeometry geometry = StereoGeometry::fromObservation(obs);
-    const mrpt::poses::CPose3D camera_on_robot(obs.cameraPose);
+    if (obs.imageLeft.isEmpty()) throw std::invalid_argument("left image is empty");
+    if (obs.imageRight.isEmpty()) throw std::invalid_argument("right image is empty");
+    for (const auto* image : {&obs.imageLeft, &obs.imageRight})
+        if (image->getWidth() != obs.leftCamera.ncols || image->getHeight() != obs.leftCamera.nrows)
+            throw std::invalid_argument(
+                "images are " + std::to_string(image->getWidth()) + "x" +
+                std::to_string(image->getHeight()) + " but the calibration is for " +
+                std::to_string(obs.leftCamera.ncols) + "x" + std::to_string(obs.leftCamera.nrows));
+    // a head whose calibration is not rectified is rectified here, its camera pose with it
+    std::optional<mrpt::obs::CObservationStereoImages> rectified;
+    if (!StereoGeometry::whyNotRectified(obs).empty()) rectified = m_rectifier.rectify(obs);
+    const auto& pair = rectified ? *rectified : obs;
+    const StereoGeometry geometry = StereoGeometry::fromObservation(pair);
+    const mrpt::poses::CPose3D camera_on_robot(pair.cameraPose);
     for (int i = 0; i < 6; i++)
         if (!std::isfinite(camera_on_robot[i]))
             throw std::invalid_argument("the camera pose on the robot is not finite");
 
     // Everything that can fail is done before the tracks change.
-    std::vector<TPoint> current = detect(obs, geometry);
+    std::vector<TPoint> current = detect(pair, geometry);
+    m_stats.rectified = rectified.has_value();
     track(current);
     m_points = std::move(current);
     const std::vector<size_t> emitted = selectEmitted();

@@ -16,30 +16,19 @@ bool nearlyEqual(double a, double b)
     return std::abs(a - b) <= 1e-6 * std::max(1.0, std::max(std::abs(a), std::abs(b)));
 }
 
-/// The error of a pair that is not rectified, `why`, with the stock command that rectifies it.
-std::invalid_argument notRectified(const std::string& why, const std::string& label)
-{
-    return std::invalid_argument("images are not rectified: " + why +
-                                 "; rectify the rawlog first: rawlog-edit -i IN.rawlog -o "
-                                 "OUT.rawlog --stereo-rectify " +
-                                 (label.empty() ? std::string("LABEL") : label) +
-                                 ",0 --image-format png");
-}
-
-/// Throws unless `cam` is an undistorted pin-hole camera.
-void checkUndistorted(const mrpt::img::TCamera& cam, const std::string& which,
-                      const std::string& label)
+/// Why `cam` is not an undistorted pin-hole camera, or empty.
+std::string whyDistorted(const mrpt::img::TCamera& cam, const std::string& which)
 {
     if (cam.distortion == mrpt::img::DistortionModel::kannala_brandt)
-        throw notRectified("the " + which + " camera has the kannala_brandt (fisheye) model",
-                           label);
+        throw std::invalid_argument("the " + which +
+                                    " camera has the kannala_brandt (fisheye) model, which is "
+                                    "not read: only the plumb_bob model");
     for (const double k : cam.dist) {
         if (!std::isfinite(k))
             throw std::invalid_argument("the " + which + " camera has a non-finite distortion");
-        if (k != 0)
-            throw notRectified("the " + which + " camera has non-zero distortion parameters",
-                               label);
+        if (k != 0) return "the " + which + " camera has non-zero distortion parameters";
     }
+    return {};
 }
 
 }  // namespace
@@ -62,41 +51,51 @@ StereoGeometry::StereoGeometry(double fx, double fy, double cx, double cy, doubl
         throw std::invalid_argument("stereo baseline must be positive (right camera at +x)");
 }
 
-StereoGeometry StereoGeometry::fromObservation(const mrpt::obs::CObservationStereoImages& obs)
+std::string StereoGeometry::whyNotRectified(const mrpt::obs::CObservationStereoImages& obs)
 {
     const auto& left = obs.leftCamera;
     const auto& right = obs.rightCamera;
-    const std::string& label = obs.sensorLabel;
-    checkUndistorted(left, "left", label);
-    checkUndistorted(right, "right", label);
+    std::string why = whyDistorted(left, "left");
+    if (const std::string r = whyDistorted(right, "right"); why.empty()) why = r;
     const double lk[4] = {left.fx(), left.fy(), left.cx(), left.cy()};
     const double rk[4] = {right.fx(), right.fy(), right.cx(), right.cy()};
     for (int i = 0; i < 4; i++) {
         if (!std::isfinite(lk[i]) || !std::isfinite(rk[i]))
             throw std::invalid_argument("the camera intrinsics are not finite");
-        if (i != 2 && !nearlyEqual(lk[i], rk[i]))  // c_x may differ: the disparity's offset
-            throw notRectified("left and right intrinsics differ (fx fy cy)", label);
+        if (why.empty() && i != 2 && !nearlyEqual(lk[i], rk[i]))  // c_x: the disparity's offset
+            why = "left and right intrinsics differ (fx fy cy)";
     }
+    if (!(lk[0] > 0 && lk[1] > 0 && rk[0] > 0 && rk[1] > 0))
+        throw std::invalid_argument("the camera focal lengths must be positive");
 
     const auto& pose = obs.rightCameraPose;
     const auto& q = pose.quat();
     for (const double v : {pose.x(), pose.y(), pose.z(), q.r(), q.x(), q.y(), q.z()})
         if (!std::isfinite(v)) throw std::invalid_argument("the right camera pose is not finite");
+    if (!(pose.x() > 0))
+        throw std::invalid_argument("the right camera must be at +x of the left one (baseline " +
+                                    std::to_string(pose.x()) + " m)");
     const double angle =
         2 * std::atan2(std::sqrt(q.x() * q.x() + q.y() * q.y() + q.z() * q.z()), std::abs(q.r()));
-    if (angle > 1e-6) {
+    if (why.empty() && angle > 1e-6) {
         std::ostringstream msg;
         msg << "the right camera is rotated by " << angle * 180 / M_PI
             << " deg w.r.t. the left one";
-        throw notRectified(msg.str(), label);
+        why = msg.str();
     }
-    const double baseline = pose.x();
-    if (!(baseline > 0))
-        throw std::invalid_argument("the right camera must be at +x of the left one (baseline " +
-                                    std::to_string(baseline) + " m)");
-    if (std::abs(pose.y()) > 1e-6 * baseline || std::abs(pose.z()) > 1e-6 * baseline)
-        throw notRectified("the right camera is off the left camera's x axis", label);
-    return StereoGeometry(lk[0], lk[1], lk[2], lk[3], baseline, lk[2] - rk[2]);
+    if (why.empty() &&
+        (std::abs(pose.y()) > 1e-6 * pose.x() || std::abs(pose.z()) > 1e-6 * pose.x()))
+        why = "the right camera is off the left camera's x axis";
+    return why;
+}
+
+StereoGeometry StereoGeometry::fromObservation(const mrpt::obs::CObservationStereoImages& obs)
+{
+    if (const std::string why = whyNotRectified(obs); !why.empty())
+        throw std::invalid_argument("images are not rectified: " + why);
+    const auto& left = obs.leftCamera;
+    return StereoGeometry(left.fx(), left.fy(), left.cx(), left.cy(), obs.rightCameraPose.x(),
+                          left.cx() - obs.rightCamera.cx());
 }
 
 mrpt::math::TPoint3D StereoGeometry::triangulate(const TStereoPixel& px) const

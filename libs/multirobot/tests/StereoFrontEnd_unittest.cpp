@@ -4,9 +4,11 @@
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/multirobot/StereoFrontEnd.h>
+#include <mrpt_vslam/test/UnrectifiedStereoPair.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numeric>
 
@@ -353,13 +355,13 @@ TEST(StereoFrontEnd, BadInputThrowsOneLineAndKeepsTheTracks)
     bad = *good;
     bad.imageRight =
         mrpt::img::CImage(cv::Mat(240, 321, CV_8UC1, cv::Scalar(0)), mrpt::img::DEEP_COPY);
-    expectError(bad, "differ in size (320x240 vs 321x240)");
+    expectError(bad, "images are 321x240 but the calibration is for 320x240");
     bad = *good;
-    bad.leftCamera.dist[0] = 0.1;
-    expectError(bad, "not rectified");
+    bad.leftCamera.distortion = mrpt::img::DistortionModel::kannala_brandt;
+    expectError(bad, "kannala_brandt (fisheye) model, which is not read");
     bad = *good;
-    bad.rightCameraPose = mrpt::poses::CPose3DQuat(mrpt::poses::CPose3D(0.12, 0, 0, 0, 0.05, 0));
-    expectError(bad, "not rectified: the right camera is rotated");
+    bad.rightCameraPose = mrpt::poses::CPose3DQuat(mrpt::poses::CPose3D(-0.12, 0, 0, 0, 0.05, 0));
+    expectError(bad, "must be at +x of the left one");
     bad = *good;
     bad.leftCamera.setIntrinsicParamsFromValues(std::nan(""), 400, 159.5, 119.5);
     bad.rightCamera = bad.leftCamera;
@@ -380,6 +382,39 @@ TEST(StereoFrontEnd, BadInputThrowsOneLineAndKeepsTheTracks)
     fe.process(*good);
     EXPECT_GE(fe.lastFrameStats().tracked, fe.lastFrameStats().points * 8 / 10);
     EXPECT_GT(fe.lastFrameStats().points, 50u);
+}
+
+// A head with barrel distortion whose right camera is turned inwards by 1 deg and tilted by
+// 4 deg, before a fronto-parallel plane 2 m away: the pair is rectified, and its points, carried
+// by the rectified camera's pose back into the stated camera's frame, lie on the plane. The
+// rectified camera is turned by R1ᵀ of the stated one; turned by R1 (as CStereoRectifyMap::
+// rectify(CObservationStereoImages&) turns it), the points would lie on a plane tilted by 4 deg.
+// Measured: 83 points, depth RMS 0.18 %, max 0.47 % (turned by R1: RMS 0.95 %, max 1.96 %).
+TEST(StereoFrontEnd, AHeadThatIsNotRectifiedIsRectifiedWithItsPose)
+{
+    const TPlaneScene scene = TPlaneScene::plane(2.0, 0.0);
+    const auto rectified = scene.stereo(positionOf(0));
+    const auto obs = mrpt_vslam::test::unrectifiedPair(
+        *rectified, -0.2, 0.05,
+        mrpt::poses::CPose3D(0, 0, 0, 0, mrpt::DEG2RAD(-1.0), mrpt::DEG2RAD(4.0)));
+    ASSERT_FALSE(mrpt_vslam::multirobot::StereoGeometry::whyNotRectified(obs).empty());
+    StereoFrontEnd fe({});
+    const auto out = fe.process(obs);
+    const mrpt::poses::CPose3D stated(obs.cameraPose), used(out->refCameraPose);
+    size_t n = 0;
+    double sum2 = 0, max_rel = 0;
+    for (const auto& p : fe.points()) {
+        const auto in_stated = stated.inverseComposePoint(used.composePoint(p.point));
+        const double rel = (in_stated.z - 2.0) / 2.0;
+        sum2 += rel * rel;
+        max_rel = std::max(max_rel, std::abs(rel));
+        n++;
+    }
+    const double rms = n ? std::sqrt(sum2 / n) : 0;
+    std::printf("%zu points, depth RMS %.2f %%, max %.2f %%\n", n, 100 * rms, 100 * max_rel);
+    EXPECT_GE(n, 40u);
+    EXPECT_LT(rms, 0.005);
+    EXPECT_LT(max_rel, 0.012);
 }
 
 TEST(StereoFrontEnd, ColourImagesGiveTheGrayscaleResult)

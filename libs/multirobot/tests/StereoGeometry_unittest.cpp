@@ -151,6 +151,7 @@ TEST(StereoGeometry, FromObservationReadsARectifiedPair)
     EXPECT_DOUBLE_EQ(g.cy(), 238.25);
     EXPECT_DOUBLE_EQ(g.baseline(), 0.12);
     EXPECT_DOUBLE_EQ(g.disparityOffset(), 0);
+    EXPECT_EQ(StereoGeometry::whyNotRectified(rectifiedPair()), "");
 }
 
 // A pair rectified with the principal points' columns apart (MRPT's rawlog-edit --stereo-rectify
@@ -198,8 +199,7 @@ TEST(StereoGeometry, FromObservationRejectsPairsThatAreNotRectified)
     obs = rectifiedPair();
     obs.rightCamera.setIntrinsicParamsFromValues(420, 400, 321.5, 240);
     expectError(obs, "left and right intrinsics differ");
-    obs.sensorLabel = "BUMBLEBEE";
-    expectError(obs, "rawlog-edit -i IN.rawlog -o OUT.rawlog --stereo-rectify BUMBLEBEE,0");
+    EXPECT_EQ(StereoGeometry::whyNotRectified(obs), "left and right intrinsics differ (fx fy cy)");
     obs = rectifiedPair();
     obs.rightCameraPose = mrpt::poses::CPose3DQuat(mrpt::poses::CPose3D(0.12, 0, 0, 0.01, 0, 0));
     expectError(obs, "right camera is rotated by 0.57");
@@ -215,6 +215,11 @@ TEST(StereoGeometry, FromObservationRejectsPairsThatAreNotRectified)
     obs = rectifiedPair();
     obs.leftCamera.dist[1] = std::numeric_limits<double>::infinity();
     expectError(obs, "non-finite distortion");
+    obs = rectifiedPair();  // distorted, as a pair that would be rectified, with f_x < 0
+    obs.leftCamera.setIntrinsicParamsFromValues(-420, 400, 321.5, 238.25);
+    obs.rightCamera = obs.leftCamera;
+    obs.leftCamera.dist[0] = obs.rightCamera.dist[0] = -0.2;
+    expectError(obs, "focal lengths must be positive");
 
     EXPECT_THROW(StereoGeometry(400, 400, 320, 240, 0), std::invalid_argument);
     EXPECT_THROW(StereoGeometry(-400, 400, 320, 240, 0.1), std::invalid_argument);

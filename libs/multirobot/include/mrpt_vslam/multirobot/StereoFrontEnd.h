@@ -8,6 +8,7 @@
 #include <mrpt_vslam/core/USurfDescriptor.h>
 #include <mrpt_vslam/multirobot/StereoGeometry.h>
 #include <mrpt_vslam/multirobot/StereoMatcher.h>
+#include <mrpt_vslam/multirobot/StereoRectifier.h>
 
 #include <cstddef>
 #include <cstdint>
@@ -18,7 +19,8 @@ namespace mrpt_vslam::multirobot {
 
 /** The stereo front-end of one robot (Gil et al. 2010, Sec. 4, 6.1 and 6.2): turns rectified
  *  stereo pairs into 3D visual landmark observations o_t = (z_t, d_t) with their covariance
- *  R_t, keeping only points tracked over several consecutive frames. Per frame:
+ *  R_t, keeping only points tracked over several consecutive frames. A pair whose calibration
+ *  is not rectified is rectified first (StereoRectifier). Per frame:
  *
  *   1. Harris corners on the left image (OpenCV's goodFeaturesToTrack with the Harris
  *      measure: quality relative to the strongest corner, 3 × 3 non-maximum suppression, a
@@ -113,12 +115,13 @@ class StereoFrontEnd {
 
     /** Counts of the last processed frame. */
     struct TFrameStats {
-        size_t corners = 0;   ///< step 1
-        size_t stereo = 0;    ///< passed step 2 (matched, depth in range)
-        size_t points = 0;    ///< passed step 3 (with descriptor): points()
-        size_t tracked = 0;   ///< continued a track of the previous frame
-        size_t eligible = 0;  ///< track length >= min_track_length
-        size_t emitted = 0;   ///< in the output (eligible, capped)
+        size_t corners = 0;      ///< step 1
+        size_t stereo = 0;       ///< passed step 2 (matched, depth in range)
+        size_t points = 0;       ///< passed step 3 (with descriptor): points()
+        size_t tracked = 0;      ///< continued a track of the previous frame
+        size_t eligible = 0;     ///< track length >= min_track_length
+        size_t emitted = 0;      ///< in the output (eligible, capped)
+        bool rectified = false;  ///< the pair was rectified here (StereoRectifier)
     };
 
     /** \throw std::invalid_argument if the options are invalid. */
@@ -126,8 +129,9 @@ class StereoFrontEnd {
 
     /** Runs steps 1-6 on one frame of this robot.
      *  \throw std::invalid_argument with a one-line reason if the images are missing, empty,
-     *  not 8-bit, of different sizes, not rectified, or the calibration or camera pose is not
-     *  finite (then the tracks are left as they were). */
+     *  not 8-bit, of another size than the calibration's, or the calibration or camera pose
+     *  cannot be read (StereoGeometry::whyNotRectified(); then the tracks are left as they
+     *  were). */
     mrpt::obs::CObservationVisualLandmarks::Ptr process(
         const mrpt::obs::CObservationStereoImages& obs);
 
@@ -148,6 +152,7 @@ class StereoFrontEnd {
     std::vector<size_t> selectEmitted();
 
     TOptions m_options;
+    StereoRectifier m_rectifier;
     std::vector<TPoint> m_points;  ///< the last frame's points: the previous frame for track()
     int64_t m_next_track_id = 0;
     TFrameStats m_stats;

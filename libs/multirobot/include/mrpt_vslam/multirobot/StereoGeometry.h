@@ -3,6 +3,8 @@
 #include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/math/TPoint3D.h>
 
+#include <string>
+
 namespace mrpt::obs {
 class CObservationStereoImages;
 }
@@ -31,8 +33,8 @@ struct TStereoPixelNoise {
  *  cameras with parallel optical axes, the right one displaced by the baseline B along the left
  *  camera's x axis, same intrinsics (f_x, f_y, c_x, c_y) but for the right camera's c_x,right,
  *  which a rectification may shift (OpenCV's stereoRectify() without CALIB_ZERO_DISPARITY, as
- *  MRPT's `rawlog-edit --stereo-rectify` calls it): a column offset o = c_x − c_x,right of the
- *  right image, taken off the columns' difference before Eq. 12.
+ *  StereoRectifier and MRPT's `rawlog-edit --stereo-rectify` call it): a column offset o = c_x −
+ * c_x,right of the right image, taken off the columns' difference before Eq. 12.
  *
  *  Frame: MRPT's camera frame of the left camera, x right, y down, z forward. Eq. 12 writes
  *  Y = I(C_y − r)/d with Y pointing up; here Y = +B·(f_x/f_y)(r − c_y)/d points down, i.e.
@@ -58,12 +60,17 @@ class StereoGeometry {
 
     /** The geometry of a rectified stereo observation: intrinsics of `leftCamera`, baseline =
      *  x of `rightCameraPose`, offset = the difference of the two cameras' c_x.
-     *  \throw std::invalid_argument (one line) if the pair is not rectified: a distortion
-     *  parameter of either camera is non-zero, the two cameras' f_x, f_y or c_y differ, the
-     *  right camera is rotated w.r.t. the left one or displaced off its x axis, or the baseline
-     *  is not positive; or if a parameter is not finite. The message of a pair that is not
-     *  rectified names the stock command that rectifies the rawlog. */
+     *  \throw std::invalid_argument (one line) if the pair is not rectified (whyNotRectified();
+     *  StereoRectifier rectifies it) or its calibration cannot be read. */
     static StereoGeometry fromObservation(const mrpt::obs::CObservationStereoImages& obs);
+
+    /** Why the calibration of `obs` is not that of a rectified pair (a distortion parameter of
+     *  either camera non-zero, the two cameras' f_x, f_y or c_y apart, the right camera turned
+     *  w.r.t. the left one or off its x axis), or empty if it is.
+     *  \throw std::invalid_argument (one line) if a parameter is not finite, a focal length is
+     *  not positive, a camera has the kannala_brandt (fisheye) model, or the right camera is not
+     *  at +x of the left one. */
+    static std::string whyNotRectified(const mrpt::obs::CObservationStereoImages& obs);
 
     /** Eq. 12: the 3D point [m] in the left camera frame (x right, y down, z forward).
      *  \throw std::invalid_argument unless the disparity is finite and positive. */
