@@ -359,10 +359,9 @@ TEST_F(MultiRobotVSLAMApp, SingleRobotStereoRunsFromItsTemplate)
 // rectified original (R1 of the 40-frame stereo sequence), its camera pose that of the
 // rectified left camera, which the tilt check confirms. The same rawlog rectified by stock
 // `rawlog-edit --stereo-rectify` gets a camera pose tilted the other way, which the check
-// finds. Measured (seeds 1-3): RMSE 0.06-0.19 m (the rectified original from the template:
-// 0.06-0.18 m; odometry 0.15 m), tilt found 0.2-0.4 deg; rectified by rawlog-edit, -3.6 deg.
-// With the rectified camera turned the way rawlog-edit turns it: the same -3.6 deg, a warning
-// and up to 0.26 m.
+// finds. Measured (seeds 1-3): RMSE 0.055-0.087 m (the rectified original from the template:
+// 0.06-0.18 m; odometry 0.15 m), pitch found -0.13 to 0.10 deg; rectified by rawlog-edit,
+// -2.9 deg.
 TEST_F(MultiRobotVSLAMApp, AStereoRawlogOfAHeadThatIsNotRectifiedRuns)
 {
     const std::string name = out("unrectified"), source = "team2-stereo-short";

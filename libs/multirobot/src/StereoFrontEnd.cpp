@@ -137,7 +137,8 @@ std::vector<StereoFrontEnd::TPoint> StereoFrontEnd::detect(
         const int col = static_cast<int>(std::lround(corner.x));
         const int row = static_cast<int>(std::lround(corner.y));
         // Step 2: stereo correspondence, depth range
-        const auto stereo = matcher.match(row, col);
+        const auto stereo =
+            matcher.match(row, col, static_cast<int>(std::lround(geometry.disparityOffset())));
         if (!stereo) continue;
         const TStereoPixel px{static_cast<double>(row), static_cast<double>(col),
                               stereo->disparity - geometry.disparityOffset()};

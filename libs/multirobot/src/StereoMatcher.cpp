@@ -124,10 +124,12 @@ struct StereoMatcher::Impl {
         if (s_tt <= 1e-9) return out;
 
         // Column of the search patch centre must keep the patch inside the image.
+        const int d_lo =
+            sign < 0 ? std::max(d_min, col + half + 1 - search.cols) : std::max(d_min, half - col);
         const int d_hi =
             sign < 0 ? std::min(d_max, col - half) : std::min(d_max, search.cols - 1 - half - col);
-        out.first_d = d_min;
-        for (int d = d_min; d <= d_hi; d++) {
+        out.first_d = d_lo;
+        for (int d = d_lo; d <= d_hi; d++) {
             const int c = col + sign * d;
             const int r0 = row - half, c0 = c - half;
             const double s = TIntegral::box(integral.sum, r0, c0, r0 + w, c0 + w);
@@ -161,15 +163,16 @@ StereoMatcher::StereoMatcher(const mrpt::img::CImage& left, const mrpt::img::CIm
 
 StereoMatcher::~StereoMatcher() = default;
 
-std::optional<TStereoMatch> StereoMatcher::match(int row, int col) const
+std::optional<TStereoMatch> StereoMatcher::match(int row, int col, int column_offset) const
 {
     const Impl& m = *m_impl;
     const int h = m.half;
     if (row < h || col < h || row + h >= m.left.rows || col + h >= m.left.cols) return std::nullopt;
 
     // Steps 1-2: scores along the right row, right column = col − d
-    const TRowScores s = m.scores(m.left, m.right, m.right_integral, row, col, -1,
-                                  m_options.min_disparity, m_options.max_disparity);
+    const int d_min = m_options.min_disparity + column_offset;
+    const int d_max = m_options.max_disparity + column_offset;
+    const TRowScores s = m.scores(m.left, m.right, m.right_integral, row, col, -1, d_min, d_max);
     if (s.ncc.size() < 3) return std::nullopt;
     const size_t b = s.best();
     const double best = s.ncc[b];
@@ -197,8 +200,8 @@ std::optional<TStereoMatch> StereoMatcher::match(int row, int col) const
     // Step 5: the right patch must find its way back to the same left column (±1 px)
     if (m_options.left_right_check) {
         const int col_right = col - d_best;
-        const TRowScores back = m.scores(m.right, m.left, m.left_integral, row, col_right, +1,
-                                         m_options.min_disparity, m_options.max_disparity);
+        const TRowScores back =
+            m.scores(m.right, m.left, m.left_integral, row, col_right, +1, d_min, d_max);
         if (back.ncc.empty() || std::abs(back.first_d + static_cast<int>(back.best()) - d_best) > 1)
             return std::nullopt;
     }

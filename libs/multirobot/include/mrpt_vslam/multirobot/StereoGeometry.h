@@ -33,8 +33,8 @@ struct TStereoPixelNoise {
  *  cameras with parallel optical axes, the right one displaced by the baseline B along the left
  *  camera's x axis, same intrinsics (f_x, f_y, c_x, c_y) but for the right camera's c_x,right,
  *  which a rectification may shift (OpenCV's stereoRectify() without CALIB_ZERO_DISPARITY, as
- *  StereoRectifier and MRPT's `rawlog-edit --stereo-rectify` call it): a column offset o = c_x −
- * c_x,right of the right image, taken off the columns' difference before Eq. 12.
+ *  StereoRectifier and MRPT's `rawlog-edit --stereo-rectify` call it): the right image's
+ *  columns are offset by o = c_x − c_x,right, taken off the columns' difference before Eq. 12.
  *
  *  Frame: MRPT's camera frame of the left camera, x right, y down, z forward. Eq. 12 writes
  *  Y = I(C_y − r)/d with Y pointing up; here Y = +B·(f_x/f_y)(r − c_y)/d points down, i.e.

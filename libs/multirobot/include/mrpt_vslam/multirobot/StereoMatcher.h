@@ -68,10 +68,12 @@ class StereoMatcher {
     StereoMatcher(const StereoMatcher&) = delete;
     StereoMatcher& operator=(const StereoMatcher&) = delete;
 
-    /** Steps 1–5 for the left pixel at row `row`, column `col`.
+    /** Steps 1–5 for the left pixel at row `row`, column `col`, with the searched disparities
+     *  moved by `column_offset` [px] (d ∈ [d_min + offset, d_max + offset]: the right image's
+     *  columns offset by a rectification, StereoGeometry::disparityOffset() rounded).
      *  \return std::nullopt when the patch leaves the image, the left patch is flat, or a test
      *  fails. */
-    std::optional<TStereoMatch> match(int row, int col) const;
+    std::optional<TStereoMatch> match(int row, int col, int column_offset = 0) const;
 
     /** Pixels from the border that the left patch needs: w / 2. */
     int halfWindow() const { return m_options.ncc_window / 2; }
