@@ -1,16 +1,21 @@
 // One frame of the multi-robot stereo front-end (Gil et al. 2010): Harris corners, stereo
-// correspondence, U-SURF descriptors, R_t and tracking against the previous frame.
+// correspondence, U-SURF descriptors, R_t and tracking against the previous frame; and the
+// rectification of a pair whose calibration is not rectified.
 #include <benchmark/benchmark.h>
 #include <mrpt/img/CImage.h>
 #include <mrpt/obs/CObservationStereoImages.h>
+#include <mrpt/poses/CPose3D.h>
+#include <mrpt/poses/CPose3DQuat.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/multirobot/StereoFrontEnd.h>
+#include <mrpt_vslam/multirobot/StereoRectifier.h>
 
 #include <algorithm>
 #include <cstdint>
 #include <vector>
 
 using mrpt_vslam::multirobot::StereoFrontEnd;
+using mrpt_vslam::multirobot::StereoRectifier;
 
 namespace {
 
@@ -102,5 +107,22 @@ void BM_StereoFrontEndFrame(benchmark::State& state)
     state.counters["tracked"] = static_cast<double>(tracked) / frames;
 }
 BENCHMARK(BM_StereoFrontEndFrame)->Arg(320)->Arg(640)->Unit(benchmark::kMillisecond);
+
+// The rectification of one pair of a head with lens distortion and its right camera turned by
+// 1 deg (the maps made once, before the loop): what a frame of such a head costs on top.
+void BM_StereoRectifierPair(benchmark::State& state)
+{
+    const TWall wall(static_cast<int>(state.range(0)));
+    auto pair = wall.frame(0);
+    auto cam = pair->getStereoCameraParams();
+    cam.leftCamera.dist[0] = cam.rightCamera.dist[0] = -0.2;
+    cam.rightCameraPose =
+        mrpt::poses::CPose3DQuat(mrpt::poses::CPose3D(0.12, 0, 0, 0, 0.0175, 0)).asTPose();
+    pair->setStereoCameraParams(cam);
+    StereoRectifier rectifier;
+    rectifier.rectify(*pair);
+    for (auto _ : state) benchmark::DoNotOptimize(rectifier.rectify(*pair));
+}
+BENCHMARK(BM_StereoRectifierPair)->Arg(320)->Arg(640)->Unit(benchmark::kMillisecond);
 
 }  // namespace
