@@ -22,6 +22,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -50,6 +51,57 @@ class MultiRobotVSLAMApp : public ::testing::Test {
     static std::string out(const std::string& name) { return s_scratch->file(name); }
     static nlohmann::json json(const std::string& file) { return mrpt_vslam::test::readJson(file); }
     static std::string bytes(const std::string& file) { return mrpt_vslam::test::readBytes(file); }
+
+    /** R1's frames of the shipped `source` as a user's own rawlog NAME.rawlog: labels WHEELS
+     *  and BUMBLEBEE, no ground-truth observations, each stereo pair through `pair` if given
+     *  (else its images referred to by absolute path), ground truth beside it. Returns the
+     *  frames of stereo pairs or of stereo landmarks written. */
+    static size_t writeR1(const std::string& source, const std::string& name,
+                          const std::function<mrpt::obs::CObservationStereoImages(
+                              const mrpt::obs::CObservationStereoImages&)>& pair = {})
+    {
+        size_t frames = 0;
+        mrpt::io::CFileGZOutputStream file(name + ".rawlog");
+        auto ar = mrpt::serialization::archiveFrom(file);
+        mrpt_vslam::core::RawlogReader reader(kData + source + ".rawlog");
+        for (mrpt_vslam::core::TRawlogEntry e; reader.next(e);) {
+            const auto& o = e.observation;
+            if (!o || o->sensorLabel.rfind("R1_", 0) != 0 || o->sensorLabel == "R1_GROUND_TRUTH")
+                continue;
+            o->sensorLabel = o->sensorLabel == "R1_ODOM" ? "WHEELS" : "BUMBLEBEE";
+            if (const auto stereo =
+                    std::dynamic_pointer_cast<mrpt::obs::CObservationStereoImages>(o)) {
+                frames++;
+                if (pair) {
+                    ar << pair(*stereo);
+                    continue;
+                }
+                for (auto* image : {&stereo->imageLeft, &stereo->imageRight})
+                    image->setExternalStorage(image->getExternalStorageFileAbsolutePath());
+            }
+            if (std::dynamic_pointer_cast<mrpt::obs::CObservationVisualLandmarks>(o)) frames++;
+            ar << *o;
+        }
+        fs::copy_file(kData + source + ".groundtruth_R1.tum", name + ".groundtruth.tum",
+                      fs::copy_options::overwrite_existing);
+        fs::copy_file(kData + source + ".landmarks.txt", name + ".landmarks.txt",
+                      fs::copy_options::overwrite_existing);
+        return frames;
+    }
+
+    /// R1's position RMSE and its odometry's [m] in the stereo template's run of NAME.rawlog
+    /// with `seed` into NAME-run<seed>.
+    static std::pair<double, double> runStereoTemplate(const std::string& name, int seed)
+    {
+        const std::string dir = name + "-run" + std::to_string(seed);
+        const TCommandResult r = run(kConfigs + "stereo.ini " + name + ".rawlog --seed " +
+                                     std::to_string(seed) + " -q --out " + dir);
+        EXPECT_EQ(r.exit_code, 0) << r.out;
+        const auto metrics = json(dir + "/metrics.json");
+        const auto& robot = metrics["robots"]["R1"];
+        return {robot["estimate"]["ate_rmse_m"].get<double>(),
+                robot["odometry"]["ate_rmse_m"].get<double>()};
+    }
     static mrpt_vslam::test::ScratchFolder* s_scratch;
 };
 mrpt_vslam::test::ScratchFolder* MultiRobotVSLAMApp::s_scratch = nullptr;
@@ -296,45 +348,13 @@ TEST_F(MultiRobotVSLAMApp, StartsFromTheTruePoseAtTheFirstStep)
 // odometry is still good, 0.06-0.18 m against 0.15 m.
 TEST_F(MultiRobotVSLAMApp, SingleRobotStereoRunsFromItsTemplate)
 {
-    // the frames of stereo pairs or of stereo landmarks it wrote
-    const auto writeR1 = [&](const std::string& source, const std::string& name) {
-        size_t frames = 0;
-        mrpt::io::CFileGZOutputStream file(name + ".rawlog");
-        auto ar = mrpt::serialization::archiveFrom(file);
-        mrpt_vslam::core::RawlogReader reader(kData + source + ".rawlog");
-        for (mrpt_vslam::core::TRawlogEntry e; reader.next(e);) {
-            const auto& o = e.observation;
-            if (!o || o->sensorLabel.rfind("R1_", 0) != 0 || o->sensorLabel == "R1_GROUND_TRUTH")
-                continue;
-            if (const auto stereo =
-                    std::dynamic_pointer_cast<mrpt::obs::CObservationStereoImages>(o)) {
-                for (auto* image : {&stereo->imageLeft, &stereo->imageRight})
-                    image->setExternalStorage(image->getExternalStorageFileAbsolutePath());
-                frames++;
-            }
-            if (std::dynamic_pointer_cast<mrpt::obs::CObservationVisualLandmarks>(o)) frames++;
-            o->sensorLabel = o->sensorLabel == "R1_ODOM" ? "WHEELS" : "BUMBLEBEE";
-            ar << *o;
-        }
-        fs::copy_file(kData + source + ".groundtruth_R1.tum", name + ".groundtruth.tum",
-                      fs::copy_options::overwrite_existing);
-        fs::copy_file(kData + source + ".landmarks.txt", name + ".landmarks.txt",
-                      fs::copy_options::overwrite_existing);
-        return frames;
-    };
     for (const auto& [source, frames, bound] : {std::tuple{std::string("team2"), 200, 0.25},
                                                 {std::string("team2-stereo-short"), 40, 0.25}}) {
         const std::string name = out("own-" + source);
         ASSERT_EQ(writeR1(source, name), static_cast<size_t>(frames));
         for (const int seed : {1, 2, 3}) {
             const std::string dir = name + "-run" + std::to_string(seed);
-            const TCommandResult r = run(kConfigs + "stereo.ini " + name + ".rawlog --seed " +
-                                         std::to_string(seed) + " -q --out " + dir);
-            ASSERT_EQ(r.exit_code, 0) << r.out;
-            const auto metrics = json(dir + "/metrics.json");
-            const auto& robot = metrics["robots"]["R1"];
-            const double est = robot["estimate"]["ate_rmse_m"];
-            const double odo = robot["odometry"]["ate_rmse_m"];
+            const auto [est, odo] = runStereoTemplate(name, seed);
             std::printf("R1 of %s, seed %d: RMSE %.3f m (odometry %.3f m)\n", source.c_str(), seed,
                         est, odo);
             EXPECT_LT(est, bound) << source << ", seed " << seed;
@@ -365,32 +385,15 @@ TEST_F(MultiRobotVSLAMApp, SingleRobotStereoRunsFromItsTemplate)
 TEST_F(MultiRobotVSLAMApp, AStereoRawlogOfAHeadThatIsNotRectifiedRuns)
 {
     const std::string name = out("unrectified"), source = "team2-stereo-short";
-    {
-        mrpt::io::CFileGZOutputStream file(name + ".rawlog");
-        auto ar = mrpt::serialization::archiveFrom(file);
-        mrpt_vslam::core::RawlogReader reader(kData + source + ".rawlog");
-        size_t frames = 0;
-        for (mrpt_vslam::core::TRawlogEntry e; reader.next(e);) {
-            const auto& o = e.observation;
-            if (!o || o->sensorLabel.rfind("R1_", 0) != 0 || o->sensorLabel == "R1_GROUND_TRUTH")
-                continue;
-            o->sensorLabel = o->sensorLabel == "R1_ODOM" ? "WHEELS" : "BUMBLEBEE";
-            const auto stereo = std::dynamic_pointer_cast<mrpt::obs::CObservationStereoImages>(o);
-            if (!stereo) {
-                ar << *o;
-                continue;
-            }
-            ar << mrpt_vslam::test::unrectifiedPair(
-                *stereo, -0.2, 0.05,
-                mrpt::poses::CPose3D(0, 0, 0, 0, mrpt::DEG2RAD(-1.0), mrpt::DEG2RAD(4.0)));
-            frames++;
-        }
-        ASSERT_EQ(frames, 40u);
-    }
-    fs::copy_file(kData + source + ".groundtruth_R1.tum", name + ".groundtruth.tum",
-                  fs::copy_options::overwrite_existing);
-    fs::copy_file(kData + source + ".landmarks.txt", name + ".landmarks.txt",
-                  fs::copy_options::overwrite_existing);
+    // barrel distortion, the right camera turned inwards by 1 deg and tilted by 4 deg
+    ASSERT_EQ(
+        writeR1(source, name,
+                [](const mrpt::obs::CObservationStereoImages& rectified) {
+                    return mrpt_vslam::test::unrectifiedPair(
+                        rectified, -0.2, 0.05,
+                        mrpt::poses::CPose3D(0, 0, 0, 0, mrpt::DEG2RAD(-1.0), mrpt::DEG2RAD(4.0)));
+                }),
+        40u);
     // the tilt the check finds [deg]: pitch and roll of the camera on the robot
     const auto tiltOf = [&](const std::string& dir) {
         const auto runJson = json(dir + "/run.json");
@@ -400,15 +403,10 @@ TEST_F(MultiRobotVSLAMApp, AStereoRawlogOfAHeadThatIsNotRectifiedRuns)
     };
     for (const int seed : {1, 2, 3}) {
         const std::string dir = name + "-run" + std::to_string(seed);
-        const TCommandResult r = run(kConfigs + "stereo.ini " + name + ".rawlog --seed " +
-                                     std::to_string(seed) + " -q --out " + dir);
-        ASSERT_EQ(r.exit_code, 0) << r.out;
-        const auto metrics = json(dir + "/metrics.json");
-        const auto& robot = metrics["robots"]["R1"];
-        const double est = robot["estimate"]["ate_rmse_m"];
+        const auto [est, odo] = runStereoTemplate(name, seed);
         const auto [pitch, roll] = tiltOf(dir);
         std::printf("seed %d: RMSE %.3f m (odometry %.3f m), tilt found %.2f, %.2f deg\n", seed,
-                    est, robot["odometry"]["ate_rmse_m"].get<double>(), pitch, roll);
+                    est, odo, pitch, roll);
         EXPECT_LT(est, 0.25) << "seed " << seed;
         EXPECT_LT(std::abs(pitch), 1.0) << "seed " << seed;
         const auto runJson = json(dir + "/run.json");
@@ -425,10 +423,8 @@ TEST_F(MultiRobotVSLAMApp, AStereoRawlogOfAHeadThatIsNotRectifiedRuns)
     ASSERT_EQ(edit.exit_code, 0) << edit.out;
     for (const char* ext : {".groundtruth.tum", ".landmarks.txt"})
         fs::copy_file(name + ext, edited + ext, fs::copy_options::overwrite_existing);
-    const TCommandResult r =
-        run(kConfigs + "stereo.ini " + edited + ".rawlog --seed 1 -q --out " + edited + "-run");
-    ASSERT_EQ(r.exit_code, 0) << r.out;
-    const auto [pitch, roll] = tiltOf(edited + "-run");
+    runStereoTemplate(edited, 1);
+    const auto [pitch, roll] = tiltOf(edited + "-run1");
     std::printf("rectified by rawlog-edit, seed 1: tilt found %.2f, %.2f deg\n", pitch, roll);
     EXPECT_LT(pitch, -2.0);
 }
