@@ -143,7 +143,7 @@ mrpt::obs::CObservation::Ptr StereoFrontEndApp::convert(const mrpt::obs::CObserv
     }
     const auto& stats = front_end.lastFrameStats();
     m_summary.frames++;
-    m_summary.rectified += stats.rectified ? 1 : 0;
+    m_summary.rectified += stats.rectified_because.empty() ? 0 : 1;
     m_summary.points += stats.points;
     m_summary.landmarks += stats.emitted;
     return landmarks;

@@ -351,8 +351,8 @@ void MultiRobotVSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
         // the images' landmarks replace any the frame had
         ObservationSelector::of<mrpt::obs::CObservationVisualLandmarks>(landmarksLabel)
             .eraseFrom(sf);
-        if (frontEnds[k]->lastFrameStats().rectified && rectifiedFrames++ == 0)
-            notRectified = multirobot::StereoGeometry::whyNotRectified(*stereo);
+        const std::string& why = frontEnds[k]->lastFrameStats().rectified_because;
+        if (!why.empty() && rectifiedFrames++ == 0) notRectified = why;
         landmarks->sensorLabel = landmarksLabel.empty() ? stereo->sensorLabel : landmarksLabel;
         sf.insert(landmarks);
         stereo->imageLeft.unload();

@@ -127,6 +127,7 @@ std::vector<StereoFrontEnd::TPoint> StereoFrontEnd::detect(
     if (gray.cols <= 2 * margin || gray.rows <= 2 * margin) return points;
     cv::Mat mask = cv::Mat::zeros(gray.size(), CV_8UC1);
     mask(cv::Rect(margin, margin, gray.cols - 2 * margin, gray.rows - 2 * margin)).setTo(255);
+    const int column_offset = static_cast<int>(std::lround(geometry.disparityOffset()));
     std::vector<cv::Point2f> corners;
     cv::goodFeaturesToTrack(gray, corners, m_options.max_corners, m_options.harris_quality,
                             m_options.min_corner_distance, mask, m_options.harris_block_size, true,
@@ -137,8 +138,7 @@ std::vector<StereoFrontEnd::TPoint> StereoFrontEnd::detect(
         const int col = static_cast<int>(std::lround(corner.x));
         const int row = static_cast<int>(std::lround(corner.y));
         // Step 2: stereo correspondence, depth range
-        const auto stereo =
-            matcher.match(row, col, static_cast<int>(std::lround(geometry.disparityOffset())));
+        const auto stereo = matcher.match(row, col, column_offset);
         if (!stereo) continue;
         const TStereoPixel px{static_cast<double>(row), static_cast<double>(col),
                               stereo->disparity - geometry.disparityOffset()};
@@ -178,8 +178,9 @@ mrpt::obs::CObservationVisualLandmarks::Ptr StereoFrontEnd::process(
                 std::to_string(image->getHeight()) + " but the calibration is for " +
                 std::to_string(obs.leftCamera.ncols) + "x" + std::to_string(obs.leftCamera.nrows));
     // a head whose calibration is not rectified is rectified here, its camera pose with it
+    std::string why = StereoGeometry::whyNotRectified(obs);
     std::optional<mrpt::obs::CObservationStereoImages> rectified;
-    if (!StereoGeometry::whyNotRectified(obs).empty()) rectified = m_rectifier.rectify(obs);
+    if (!why.empty()) rectified = m_rectifier.rectify(obs);
     const auto& pair = rectified ? *rectified : obs;
     const StereoGeometry geometry = StereoGeometry::fromObservation(pair);
     const mrpt::poses::CPose3D camera_on_robot(pair.cameraPose);
@@ -189,7 +190,7 @@ mrpt::obs::CObservationVisualLandmarks::Ptr StereoFrontEnd::process(
 
     // Everything that can fail is done before the tracks change.
     std::vector<TPoint> current = detect(pair, geometry);
-    m_stats.rectified = rectified.has_value();
+    m_stats.rectified_because = std::move(why);
     track(current);
     m_points = std::move(current);
     const std::vector<size_t> emitted = selectEmitted();

@@ -16,19 +16,21 @@ bool nearlyEqual(double a, double b)
     return std::abs(a - b) <= 1e-6 * std::max(1.0, std::max(std::abs(a), std::abs(b)));
 }
 
-/// Why `cam` is not an undistorted pin-hole camera, or empty.
-std::string whyDistorted(const mrpt::img::TCamera& cam, const std::string& which)
+/// Throws unless `cam` can be read: finite distortion of the plumb_bob model.
+void checkReadable(const mrpt::img::TCamera& cam, const std::string& which)
 {
     if (cam.distortion == mrpt::img::DistortionModel::kannala_brandt)
         throw std::invalid_argument("the " + which +
                                     " camera has the kannala_brandt (fisheye) model, which is "
                                     "not read: only the plumb_bob model");
-    for (const double k : cam.dist) {
+    for (const double k : cam.dist)
         if (!std::isfinite(k))
             throw std::invalid_argument("the " + which + " camera has a non-finite distortion");
-        if (k != 0) return "the " + which + " camera has non-zero distortion parameters";
-    }
-    return {};
+}
+
+bool distorted(const mrpt::img::TCamera& cam)
+{
+    return std::any_of(cam.dist.begin(), cam.dist.end(), [](double k) { return k != 0; });
 }
 
 }  // namespace
@@ -53,21 +55,18 @@ StereoGeometry::StereoGeometry(double fx, double fy, double cx, double cy, doubl
 
 std::string StereoGeometry::whyNotRectified(const mrpt::obs::CObservationStereoImages& obs)
 {
+    // what cannot be read at all
     const auto& left = obs.leftCamera;
     const auto& right = obs.rightCamera;
-    std::string why = whyDistorted(left, "left");
-    if (const std::string r = whyDistorted(right, "right"); why.empty()) why = r;
+    checkReadable(left, "left");
+    checkReadable(right, "right");
     const double lk[4] = {left.fx(), left.fy(), left.cx(), left.cy()};
     const double rk[4] = {right.fx(), right.fy(), right.cx(), right.cy()};
-    for (int i = 0; i < 4; i++) {
+    for (int i = 0; i < 4; i++)
         if (!std::isfinite(lk[i]) || !std::isfinite(rk[i]))
             throw std::invalid_argument("the camera intrinsics are not finite");
-        if (why.empty() && i != 2 && !nearlyEqual(lk[i], rk[i]))  // c_x: the disparity's offset
-            why = "left and right intrinsics differ (fx fy cy)";
-    }
     if (!(lk[0] > 0 && lk[1] > 0 && rk[0] > 0 && rk[1] > 0))
         throw std::invalid_argument("the camera focal lengths must be positive");
-
     const auto& pose = obs.rightCameraPose;
     const auto& q = pose.quat();
     for (const double v : {pose.x(), pose.y(), pose.z(), q.r(), q.x(), q.y(), q.z()})
@@ -75,18 +74,23 @@ std::string StereoGeometry::whyNotRectified(const mrpt::obs::CObservationStereoI
     if (!(pose.x() > 0))
         throw std::invalid_argument("the right camera must be at +x of the left one (baseline " +
                                     std::to_string(pose.x()) + " m)");
+
+    // what a rectification changes
+    if (distorted(left)) return "the left camera has non-zero distortion parameters";
+    if (distorted(right)) return "the right camera has non-zero distortion parameters";
+    for (const int i : {0, 1, 3})  // c_x may differ: the disparity's offset
+        if (!nearlyEqual(lk[i], rk[i])) return "left and right intrinsics differ (fx fy cy)";
     const double angle =
         2 * std::atan2(std::sqrt(q.x() * q.x() + q.y() * q.y() + q.z() * q.z()), std::abs(q.r()));
-    if (why.empty() && angle > 1e-6) {
+    if (angle > 1e-6) {
         std::ostringstream msg;
         msg << "the right camera is rotated by " << angle * 180 / M_PI
             << " deg w.r.t. the left one";
-        why = msg.str();
+        return msg.str();
     }
-    if (why.empty() &&
-        (std::abs(pose.y()) > 1e-6 * pose.x() || std::abs(pose.z()) > 1e-6 * pose.x()))
-        why = "the right camera is off the left camera's x axis";
-    return why;
+    if (std::abs(pose.y()) > 1e-6 * pose.x() || std::abs(pose.z()) > 1e-6 * pose.x())
+        return "the right camera is off the left camera's x axis";
+    return {};
 }
 
 StereoGeometry StereoGeometry::fromObservation(const mrpt::obs::CObservationStereoImages& obs)

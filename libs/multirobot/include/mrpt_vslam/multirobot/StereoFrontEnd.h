@@ -115,13 +115,14 @@ class StereoFrontEnd {
 
     /** Counts of the last processed frame. */
     struct TFrameStats {
-        size_t corners = 0;      ///< step 1
-        size_t stereo = 0;       ///< passed step 2 (matched, depth in range)
-        size_t points = 0;       ///< passed step 3 (with descriptor): points()
-        size_t tracked = 0;      ///< continued a track of the previous frame
-        size_t eligible = 0;     ///< track length >= min_track_length
-        size_t emitted = 0;      ///< in the output (eligible, capped)
-        bool rectified = false;  ///< the pair was rectified here (StereoRectifier)
+        size_t corners = 0;   ///< step 1
+        size_t stereo = 0;    ///< passed step 2 (matched, depth in range)
+        size_t points = 0;    ///< passed step 3 (with descriptor): points()
+        size_t tracked = 0;   ///< continued a track of the previous frame
+        size_t eligible = 0;  ///< track length >= min_track_length
+        size_t emitted = 0;   ///< in the output (eligible, capped)
+        /// why the pair was rectified here (StereoRectifier), empty if it was not
+        std::string rectified_because;
     };
 
     /** \throw std::invalid_argument if the options are invalid. */
