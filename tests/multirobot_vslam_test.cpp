@@ -837,6 +837,24 @@ TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
               std::string::npos)
         << noLabel.out;
 
+    // stereo pairs that give no landmark: the message says at which step they were lost
+    const TCommandResult noPoints =
+        run(kConfigs + "stereo.ini " + kData +
+            "team2-stereo-short.rawlog -q --set MultiRobotVSLAM.sensor_label=R1_STEREO --set "
+            "MultiRobotVSLAM.odometry_label=R1_ODOM --set StereoFrontEnd.min_depth=50 --set "
+            "StereoFrontEnd.max_depth=60 --out " +
+            out("e-far"));
+    EXPECT_EQ(noPoints.exit_code, 1);
+    EXPECT_NE(noPoints.out.find("team2-stereo-short.rawlog: no landmark measurements: the stereo "
+                                "front-end found none in 40 stereo pairs: none of the "),
+              std::string::npos)
+        << noPoints.out;
+    EXPECT_NE(noPoints.out.find("matched corners lies within min_depth, max_depth = 50, 60 m"),
+              std::string::npos)
+        << noPoints.out;
+    EXPECT_FALSE(json(out("e-far/run.json"))["completed"].get<bool>());
+    EXPECT_FALSE(fs::exists(out("e-far/estimated_path_R1.tum")));
+
     // the template without its robots key: the class's two robots are no guess for a rawlog
     std::ifstream templateIn(kConfigs + "range-bearing.ini");
     std::string withoutRobots, line;

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -368,6 +369,24 @@ TEST_F(StereoFrontendApp, BadDataExitsWith1AndLeavesNoOutput)
         << none.out;
     EXPECT_FALSE(fs::exists(out("r2/x.rawlog")));
     EXPECT_FALSE(fs::exists(out("r2/x.rawlog.tmp")));
+
+    // Stereo pairs without a landmark: the error names the step that lost the points.
+    const std::string far = s_scratch->write(
+        "far.ini", "[StereoFrontEnd]\nmax_disparity = 64\nmin_depth = 50\nmax_depth = 60\n");
+    const TRun empty = run(far + " " + s_rawlog + " -q --out " + out("r5/x"));
+    EXPECT_EQ(empty.exit_code, 1) << empty.out;
+    EXPECT_EQ(lineCount(empty.out), 1) << empty.out;
+    EXPECT_NE(empty.out.find("walls.rawlog: no landmarks in 10 stereo pairs: none of the "),
+              std::string::npos)
+        << empty.out;
+    // the walls stand at 280 px · 0.12 m / 16 px = 2.1 m (sub-pixel disparities: ± 0.05 m)
+    EXPECT_TRUE(std::regex_search(empty.out,
+                                  std::regex("matched corners lies within min_depth, max_depth = "
+                                             "50, 60 m: they lie at 2\\.(0[5-9]|1[0-5])-"
+                                             "2\\.(0[5-9]|1[0-5]) m \\(step 2")))
+        << empty.out;
+    EXPECT_FALSE(fs::exists(out("r5/x.rawlog")));
+    EXPECT_FALSE(fs::exists(out("r5/x.rawlog.tmp")));
 
     // An external image is missing: the error names the entry and the file.
     const fs::path copy = s_scratch->path() / "broken";

@@ -144,8 +144,7 @@ mrpt::obs::CObservation::Ptr StereoFrontEndApp::convert(const mrpt::obs::CObserv
     const auto& stats = front_end.lastFrameStats();
     m_summary.frames++;
     m_summary.rectified += stats.rectified_because.empty() ? 0 : 1;
-    m_summary.points += stats.points;
-    m_summary.landmarks += stats.emitted;
+    m_summary.counts += stats;
     return landmarks;
 }
 
@@ -203,6 +202,10 @@ void StereoFrontEndApp::run()
                                  ": found no CObservationStereoImages; "
                                  "the rawlog has: " +
                                  reader.summary().describe());
+    if (m_summary.counts.emitted == 0)
+        throw std::runtime_error(
+            m_args.input + ": no landmarks in " + std::to_string(m_summary.frames) +
+            " stereo pairs: " + StereoFrontEnd::whyNoLandmarks(m_summary.counts, m_options));
     progress.finish(m_summary.frames);
     m_summary.ms_per_frame = m_timer.stepStatistics().mean_ms;
     copyGroundTruth();
@@ -222,10 +225,10 @@ std::string StereoFrontEndApp::summaryLine() const
         line << (it == m_front_ends.begin() ? "" : ", ") << it->first;
     line << "), ";
     if (s.rectified > 0) line << s.rectified << " of them rectified from their calibration, ";
-    line << double(s.points) / s.frames << " points/frame, " << double(s.landmarks) / s.frames
-         << " landmarks/frame, " << s.ms_per_frame << " ms/frame; " << s.other_entries
-         << " other observations copied, " << s.ground_truth_files.size()
-         << " ground-truth files copied";
+    line << double(s.counts.points) / s.frames << " points/frame, "
+         << double(s.counts.emitted) / s.frames << " landmarks/frame, " << s.ms_per_frame
+         << " ms/frame; " << s.other_entries << " other observations copied, "
+         << s.ground_truth_files.size() << " ground-truth files copied";
     return line.str();
 }
 

@@ -36,8 +36,7 @@ class StereoFrontEndApp {
     struct TSummary {
         size_t frames = 0;                            ///< stereo frames turned into landmarks
         size_t rectified = 0;                         ///< of those, rectified from the calibration
-        size_t points = 0;                            ///< stereo points with descriptor, all frames
-        size_t landmarks = 0;                         ///< emitted landmarks, all frames
+        StereoFrontEnd::TFrameStats counts;           ///< of all frames, summed
         size_t other_entries = 0;                     ///< entries or observations copied unchanged
         double ms_per_frame = 0;                      ///< mean front-end time per stereo frame
         std::vector<std::string> ground_truth_files;  ///< copied, output names

@@ -118,8 +118,9 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
 
     size_t measurements = 0, stereoFrames = 0, landmarkObservations = 0;
     size_t robotReadings = 0, nonPositiveRanges = 0;
-    size_t rectifiedFrames = 0;  ///< stereo pairs rectified from their calibration
-    std::string notRectified;    ///< why the first of them was not rectified
+    size_t frontEndFrames = 0;             ///< stereo pairs through the front-end
+    size_t rectifiedFrames = 0;            ///< of those, rectified from their calibration
+    StereoFrontEnd::TFrameStats frontEnd;  ///< their counts, summed
 
     void findGroundTruth();
     /** One robot: the step's odometry alone (the best movement estimate of a rawlog's action
@@ -351,8 +352,10 @@ void MultiRobotVSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
         // the images' landmarks replace any the frame had
         ObservationSelector::of<mrpt::obs::CObservationVisualLandmarks>(landmarksLabel)
             .eraseFrom(sf);
-        const std::string& why = frontEnds[k]->lastFrameStats().rectified_because;
-        if (!why.empty() && rectifiedFrames++ == 0) notRectified = why;
+        const auto& stats = frontEnds[k]->lastFrameStats();
+        frontEnd += stats;
+        frontEndFrames++;
+        rectifiedFrames += stats.rectified_because.empty() ? 0 : 1;
         landmarks->sensorLabel = landmarksLabel.empty() ? stereo->sensorLabel : landmarksLabel;
         sf.insert(landmarks);
         stereo->imageLeft.unload();
@@ -517,6 +520,12 @@ void MultiRobotVSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
     if (steps == 0)
         throw std::runtime_error(rawlog + ": no steps (" + inputs +
                                  "); the rawlog has: " + contents.describe());
+    if (measurements == 0 && frontEndFrames > 0 && frontEnd.emitted == 0)
+        throw std::runtime_error(rawlog +
+                                 ": no landmark measurements: the stereo front-end found "
+                                 "none in " +
+                                 std::to_string(frontEndFrames) + " stereo pairs: " +
+                                 StereoFrontEnd::whyNoLandmarks(frontEnd, frontEndOptions));
     if (measurements == 0)
         throw std::runtime_error(rawlog + ": no landmark measurements (" + inputs +
                                  "); the rawlog has: " + contents.describe());
@@ -655,7 +664,7 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
         std::printf(
             "multirobot-vslam: %zu stereo pairs rectified from their calibration (%s); "
             "the camera pose is the rectified left camera's\n",
-            rectifiedFrames, notRectified.c_str());
+            rectifiedFrames, frontEnd.rectified_because.c_str());
     report.setCount("landmark_observations", static_cast<double>(landmarkObservations));
     report.setCount("measurements", static_cast<double>(measurements));
     report.setCount("robot_readings", static_cast<double>(robotReadings));

@@ -1,8 +1,10 @@
 #include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/core/format.h>
 #include <mrpt/img/CImage.h>
 #include <mrpt_vslam/core/EndsWith.h>
 #include <mrpt_vslam/multirobot/StereoFrontEnd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <optional>
@@ -108,6 +110,50 @@ std::string StereoFrontEnd::landmarksLabel(const std::string& stereo_label)
 
 void StereoFrontEnd::reset() { m_points.clear(); }
 
+StereoFrontEnd::TFrameStats& StereoFrontEnd::TFrameStats::operator+=(const TFrameStats& frame)
+{
+    corners += frame.corners;
+    matched += frame.matched;
+    nearest_match = std::min(nearest_match, frame.nearest_match);
+    farthest_match = std::max(farthest_match, frame.farthest_match);
+    stereo += frame.stereo;
+    points += frame.points;
+    tracked += frame.tracked;
+    eligible += frame.eligible;
+    emitted += frame.emitted;
+    if (rectified_because.empty()) rectified_because = frame.rectified_because;
+    return *this;
+}
+
+std::string StereoFrontEnd::whyNoLandmarks(const TFrameStats& frames, const TOptions& o)
+{
+    const auto n = [](size_t count) { return std::to_string(count); };
+    if (frames.emitted > 0) return {};
+    if (frames.corners == 0)
+        return "no Harris corner in the left images (step 1: blank or textureless images, or "
+               "too small for the correlation patch and the descriptor window; "
+               "harris_quality, ncc_window, usurf_scale)";
+    if (frames.matched == 0)
+        return "none of the " + n(frames.corners) +
+               " corners matched along its row of the right image (step 2: check the "
+               "calibration; min_ncc, uniqueness_ratio, min_disparity, max_disparity)";
+    if (frames.stereo == 0)
+        return mrpt::format(
+            "none of the %zu matched corners lies within min_depth, max_depth = %g, %g m: "
+            "they lie at %.2f-%.2f m (step 2: check the depth range and the calibration's "
+            "baseline)",
+            frames.matched, o.min_depth, o.max_depth, frames.nearest_match, frames.farthest_match);
+    if (frames.points == 0)
+        return "none of the " + n(frames.stereo) +
+               " stereo points got a U-SURF descriptor (step 3: flat patches; usurf_scale)";
+    // every eligible point is emitted (step 6 caps at >= 1)
+    return "none of the " + n(frames.points) + " stereo points was tracked over " +
+           n(static_cast<size_t>(o.min_track_length)) +
+           " consecutive pairs (step 5: too few pairs, or the image moves farther than "
+           "track_search_radius between them; track_ratio, track_max_descriptor_distance, "
+           "min_track_length)";
+}
+
 std::vector<StereoFrontEnd::TPoint> StereoFrontEnd::detect(
     const mrpt::obs::CObservationStereoImages& obs, const StereoGeometry& geometry)
 {
@@ -144,6 +190,9 @@ std::vector<StereoFrontEnd::TPoint> StereoFrontEnd::detect(
                               stereo->disparity - geometry.disparityOffset()};
         if (!(px.disparity > 0)) continue;  // at or beyond infinity
         const mrpt::math::TPoint3D z = geometry.triangulate(px);
+        m_stats.matched++;
+        m_stats.nearest_match = std::min(m_stats.nearest_match, z.z);
+        m_stats.farthest_match = std::max(m_stats.farthest_match, z.z);
         if (z.z < m_options.min_depth || z.z > m_options.max_depth) continue;
         m_stats.stereo++;
         // Step 3: U-SURF descriptor at the fixed scale

@@ -417,6 +417,57 @@ TEST(StereoFrontEnd, AHeadThatIsNotRectifiedIsRectifiedWithItsPose)
     EXPECT_LT(max_rel, 0.012);
 }
 
+TEST(StereoFrontEnd, WhyNoLandmarksNamesTheStepThatLostThePoints)
+{
+    const TPlaneScene scene = TPlaneScene::plane(2.0, 0.0);
+    // The counts of several frames add up; three frames of a plane at 2 m emit landmarks.
+    StereoFrontEnd fe({});
+    StereoFrontEnd::TFrameStats sum;
+    size_t corners = 0, emitted = 0;
+    for (int frame = 0; frame < 3; frame++) {
+        fe.process(*scene.stereo(positionOf(frame)));
+        sum += fe.lastFrameStats();
+        corners += fe.lastFrameStats().corners;
+        emitted += fe.lastFrameStats().emitted;
+        if (frame < 2) {
+            EXPECT_NE(StereoFrontEnd::whyNoLandmarks(sum, fe.options()).find("(step 5"),
+                      std::string::npos)
+                << "frame " << frame;
+        }
+    }
+    EXPECT_EQ(sum.corners, corners);
+    EXPECT_EQ(sum.emitted, emitted);
+    EXPECT_GT(emitted, 0u);
+    EXPECT_EQ(StereoFrontEnd::whyNoLandmarks(sum, fe.options()), "");
+    EXPECT_NEAR(sum.nearest_match, 2.0, 0.03);
+    EXPECT_NEAR(sum.farthest_match, 2.0, 0.03);
+
+    const auto why = [&](mrpt::obs::CObservationStereoImages obs, StereoFrontEnd::TOptions o) {
+        StereoFrontEnd one(o);
+        one.process(obs);
+        return StereoFrontEnd::whyNoLandmarks(one.lastFrameStats(), o);
+    };
+    const auto good = scene.stereo(positionOf(0));
+    const mrpt::img::CImage blank(cv::Mat(240, 320, CV_8UC1, cv::Scalar(128)),
+                                  mrpt::img::DEEP_COPY);
+    auto obs = *good;
+    obs.imageLeft = blank;
+    EXPECT_NE(why(obs, {}).find("no Harris corner in the left images (step 1"), std::string::npos)
+        << why(obs, {});
+    obs = *good;
+    obs.imageRight = blank;
+    EXPECT_NE(why(obs, {}).find("corners matched along its row of the right image (step 2"),
+              std::string::npos)
+        << why(obs, {});
+    StereoFrontEnd::TOptions far;
+    far.min_depth = 5;
+    far.max_depth = 10;
+    const std::string depth = why(*good, far);
+    EXPECT_NE(depth.find("min_depth, max_depth = 5, 10 m: they lie at 1.9"), std::string::npos)
+        << depth;
+    EXPECT_NE(depth.find("(step 2"), std::string::npos) << depth;
+}
+
 TEST(StereoFrontEnd, ColourImagesGiveTheGrayscaleResult)
 {
     const TPlaneScene scene = TPlaneScene::plane(2.0, 0.0);

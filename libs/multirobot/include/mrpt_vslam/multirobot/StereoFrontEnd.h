@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -113,17 +114,28 @@ class StereoFrontEnd {
         uint32_t track_length = 1;  ///< consecutive frames, this one included
     };
 
-    /** Counts of the last processed frame. */
+    /** Counts of one frame (lastFrameStats()), or of several added with +=. */
     struct TFrameStats {
-        size_t corners = 0;   ///< step 1
-        size_t stereo = 0;    ///< passed step 2 (matched, depth in range)
-        size_t points = 0;    ///< passed step 3 (with descriptor): points()
-        size_t tracked = 0;   ///< continued a track of the previous frame
-        size_t eligible = 0;  ///< track length >= min_track_length
-        size_t emitted = 0;   ///< in the output (eligible, capped)
+        size_t corners = 0;  ///< step 1
+        size_t matched = 0;  ///< matched in the right image at a positive disparity (step 2)
+        double nearest_match = std::numeric_limits<double>::infinity();  ///< [m] depth
+        double farthest_match = 0;  ///< [m] depth of the farthest matched corner
+        size_t stereo = 0;          ///< passed step 2 (matched, depth in range)
+        size_t points = 0;          ///< passed step 3 (with descriptor): points()
+        size_t tracked = 0;         ///< continued a track of the previous frame
+        size_t eligible = 0;        ///< track length >= min_track_length
+        size_t emitted = 0;         ///< in the output (eligible, capped)
         /// why the pair was rectified here (StereoRectifier), empty if it was not
         std::string rectified_because;
+
+        /** Adds the counts of `frame` and widens the depth range; keeps the first reason. */
+        TFrameStats& operator+=(const TFrameStats& frame);
     };
+
+    /** Empty if `frames` (the counts of one or more frames) emitted a landmark. Else one line
+     *  for an error message: the step at which the last of the points were lost, what it had,
+     *  and the keys of `options` (`[StereoFrontEnd]`) that govern it. */
+    static std::string whyNoLandmarks(const TFrameStats& frames, const TOptions& options);
 
     /** \throw std::invalid_argument if the options are invalid. */
     explicit StereoFrontEnd(const TOptions& options);
