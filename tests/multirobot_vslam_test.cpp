@@ -610,14 +610,15 @@ TEST_F(MultiRobotVSLAMApp, TeamOfTwoMeetsTheAccuracyBoundsOnEverySeed)
             EXPECT_LE(est, 0.40 * odo) << name << " seed " << seed;
         }
         // the cameras' poses are right: the readings find them within 2° (the odometry's
-        // heading drift turns them by about 1°)
+        // heading drift turns them by about 1°), and their scale within 5 % of 1
         const auto runJson = json(dir + "/run.json");
         EXPECT_EQ(runJson["warnings"], nlohmann::json::array()) << "seed " << seed;
-        for (const char* sensor : {"R1 R1_LANDMARKS", "R2 R2_LANDMARKS"})
-            EXPECT_LT(
-                std::abs(runJson["results"]["sensor_pose_check"][sensor]["dyaw_deg"].get<double>()),
-                2)
+        for (const char* sensor : {"R1 R1_LANDMARKS", "R2 R2_LANDMARKS"}) {
+            const auto& check = runJson["results"]["sensor_pose_check"][sensor];
+            EXPECT_LT(std::abs(check["dyaw_deg"].get<double>()), 2) << sensor << ", seed " << seed;
+            EXPECT_LT(std::abs(check["range_scale"].get<double>() - 1), 0.05)
                 << sensor << ", seed " << seed;
+        }
         // and their heights agree: the landmarks both read lie within 2 cm in either's readings
         const auto& heights = runJson["results"]["sensor_pose_check"]["R1 R1_LANDMARKS"]
                                      ["heights_against"]["R2 R2_LANDMARKS"];
@@ -627,8 +628,10 @@ TEST_F(MultiRobotVSLAMApp, TeamOfTwoMeetsTheAccuracyBoundsOnEverySeed)
 }
 
 // team2 with R1's camera stated turned by `error` (about the robot's origin; the data were made
-// without it) as `name`.rawlog, beside its ground truth.
-void writeTeam2WithR1CameraStated(const std::string& name, const mrpt::poses::CPose3D& error)
+// without it) and its readings `scale` times as far as they are (as from a stereo baseline
+// stated `scale` times the true one) as `name`.rawlog, beside its ground truth.
+void writeTeam2WithR1CameraStated(const std::string& name, const mrpt::poses::CPose3D& error,
+                                  double scale = 1)
 {
     {
         mrpt::io::CFileGZOutputStream file(name + ".rawlog");
@@ -638,8 +641,15 @@ void writeTeam2WithR1CameraStated(const std::string& name, const mrpt::poses::CP
             if (const auto landmarks =
                     std::dynamic_pointer_cast<mrpt::obs::CObservationVisualLandmarks>(
                         e.observation);
-                landmarks && landmarks->sensorLabel == "R1_LANDMARKS")
+                landmarks && landmarks->sensorLabel == "R1_LANDMARKS") {
                 landmarks->refCameraPose = error + landmarks->refCameraPose;
+                for (auto& l : landmarks->landmarks.landmarks) {
+                    l.pose_mean *= scale;
+                    for (float* c : {&l.pose_cov_11, &l.pose_cov_22, &l.pose_cov_33, &l.pose_cov_12,
+                                     &l.pose_cov_13, &l.pose_cov_23})
+                        *c *= static_cast<float>(scale * scale);
+                }
+            }
             ar << *e.observation;
         }
     }
@@ -678,6 +688,43 @@ TEST_F(MultiRobotVSLAMApp, SaysWhenTheCameraIsTurned)
                             "best with the sensor turned by ",
                             0),
               0u)
+        << warning;
+}
+
+// R1's readings 0.8 times as far as they are (a stereo baseline stated 20 % short): the readings
+// of a landmark from nearby steps fit best 1.25 times as far (as with the right baseline, times
+// 1.25), and the run warns of R1's scale alone (R2's heights against R1's are off too, but R1
+// is warned of). Measured: 1.022 right, 1.269 short (std 0.021).
+TEST_F(MultiRobotVSLAMApp, SaysWhenTheReadingsAreScaled)
+{
+    const std::string name = out("team2-short");
+    writeTeam2WithR1CameraStated(name, mrpt::poses::CPose3D(), 0.8);
+    double scale[2] = {0, 0};
+    nlohmann::json warnings;
+    for (const bool shortened : {false, true}) {
+        const std::string dir = name + (shortened ? "-run" : "-right-run");
+        const TCommandResult r =
+            run(kConfigs + "office-team-2.ini " + (shortened ? name : kData + "team2") +
+                ".rawlog -q --seed 1 --out " + dir);
+        ASSERT_EQ(r.exit_code, 0) << r.out;
+        const auto runJson = json(dir + "/run.json");
+        const auto& check = runJson["results"]["sensor_pose_check"]["R1 R1_LANDMARKS"];
+        scale[shortened] = check["range_scale"].get<double>();
+        EXPECT_LT(std::abs(check["dyaw_deg"].get<double>()), 2);
+        warnings = runJson["warnings"];
+    }
+    std::printf("R1's readings right: scale %.3f; 0.8 times as far: %.3f\n", scale[0], scale[1]);
+    EXPECT_NEAR(scale[1], 1.25 * scale[0], 0.05);
+    ASSERT_EQ(warnings.size(), 1u) << warnings;
+    const std::string warning = warnings[0].get<std::string>();
+    EXPECT_EQ(warning.rfind("R1 R1_LANDMARKS: its readings of a landmark from nearby steps fit "
+                            "best with the sensor turned by ",
+                            0),
+              0u)
+        << warning;
+    EXPECT_NE(warning.find("check what gives its readings their scale (a stereo baseline, a range "
+                           "unit) and the odometry's distances"),
+              std::string::npos)
         << warning;
 }
 

@@ -45,14 +45,15 @@ void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
     // too: correct cameras give up to 0.4° on the simulated teams, and a forward camera pitched
     // by 2° more than stated can put a path several times as far from the truth. So does a
     // height 0.1 m or more off another sensor's, at 5 σ or more, over 10 or more landmarks
-    // (doc/results/sensor-pose-check.md).
+    // (doc/results/sensor-pose-check.md). A scale of the readings 5 % or more from 1 at 5 σ or
+    // more warns: correct sensors give 1.00 to 1.02 on the simulated teams.
     constexpr double kTurnDeg = 3, kMove = 0.15, kSigmas = 5, kConfounding = 4, kTiltDeg = 1,
-                     kHeight = 0.1;
+                     kHeight = 0.1, kScale = 0.05;
     constexpr size_t kHeightLandmarks = 10;
     report.setPartTiming("sensor_pose_check", seconds);
     std::string json;
     // per sensor: its line, what it is warned of, and the sensors its heights are off from
-    enum class TWarning { none, pose, tilt };
+    enum class TWarning { none, pose, scale, tilt };
     struct TVerdict {
         std::string sensor, fit;
         TWarning warning;
@@ -64,30 +65,42 @@ void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
                      turnStdDeg = mrpt::RAD2DEG(std::sqrt(d.cov(2, 2)));
         const Eigen::Vector2d t = d.delta.head<2>();
         const double turnConfounding = d.turnConfounding();
+        const bool scaleTold = d.scaleTold();
         json += mrpt::format(
             "%s\"%s\": {\"pairs\": %zu, \"pairs_beyond_3_sigma\": %zu, \"dx_dy_m\": [%.4f, %.4f], "
             "\"std_dx_dy_m\": [%.4f, %.4f], \"dyaw_deg\": %.3f, \"std_dyaw_deg\": %.3f, "
-            "\"dyaw_confounding\": %.2f",
+            "\"dyaw_confounding\": %.2f, \"range_scale\": %s, \"std_range_scale\": %s, "
+            "\"range_scale_confounding\": %.2f",
             json.empty() ? "" : ", ", sensor.c_str(), d.pairs, d.outlier_pairs, t[0], t[1],
-            std::sqrt(d.cov(0, 0)), std::sqrt(d.cov(1, 1)), turnDeg, turnStdDeg, turnConfounding);
+            std::sqrt(d.cov(0, 0)), std::sqrt(d.cov(1, 1)), turnDeg, turnStdDeg, turnConfounding,
+            scaleTold ? mrpt::format("%.4f", d.scale).c_str() : "null",
+            scaleTold ? mrpt::format("%.4f", d.scale_std).c_str() : "null", d.scale_confounding);
+        const std::string scaleFit =
+            scaleTold
+                ? mrpt::format(" read at %.3f (std %.3f) times their range", d.scale, d.scale_std)
+                : "";
         // on a path of one curvature the fit is a point of a ridge, picked by the noise
         const bool toldApart = turnConfounding < kConfounding;
         std::string fit =
             toldApart
                 ? mrpt::format(
                       "its readings of %s from nearby steps fit best with the sensor turned by "
-                      "%.1f deg (std %.1f) and moved by (%.2f, %.2f) m (std %.2f, %.2f), %zu of "
-                      "%zu pairs beyond 3 sigma",
+                      "%.1f deg (std %.1f) and moved by (%.2f, %.2f) m (std %.2f, %.2f)%s%s, %zu "
+                      "of %zu pairs beyond 3 sigma",
                       read, turnDeg, turnStdDeg, t[0], t[1], std::sqrt(d.cov(0, 0)),
-                      std::sqrt(d.cov(1, 1)), d.outlier_pairs, d.pairs)
+                      std::sqrt(d.cov(1, 1)), scaleTold ? " and" : "", scaleFit.c_str(),
+                      d.outlier_pairs, d.pairs)
                 : mrpt::format(
                       "its readings of %s from nearby steps cannot tell a turn of the sensor from "
                       "a move on this path (of one curvature throughout: a circle), so its yaw "
-                      "and position are not checked; %zu of %zu pairs beyond 3 sigma",
-                      read, d.outlier_pairs, d.pairs);
+                      "and position are not checked; %s%zu of %zu pairs beyond 3 sigma",
+                      read, scaleTold ? ("they fit best" + scaleFit + "; ").c_str() : "",
+                      d.outlier_pairs, d.pairs);
         const bool turned =
             std::abs(turnDeg) >= kTurnDeg && std::abs(turnDeg) >= kSigmas * turnStdDeg;
         const bool moved = t.norm() >= kMove && t.norm() >= kSigmas * d.largestMoveStd();
+        const bool scaled = scaleTold && std::abs(d.scale - 1) >= kScale &&
+                            std::abs(d.scale - 1) >= kSigmas * d.scale_std;
         bool tilted = false;
         if (tilt) {
             const Eigen::Vector2d deg = tilt->delta * (180 / M_PI),
@@ -126,6 +139,7 @@ void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
         // with the pose and noise right, about 1 pair in 90 lies beyond 3 σ
         const TWarning warning =
             ((turned || moved) && toldApart) || 10 * d.outlier_pairs > d.pairs ? TWarning::pose
+            : scaled                                                           ? TWarning::scale
             : tilted ? TWarning::tilt  // the odometry plays no part in the tilt
                      : TWarning::none;
         verdicts.push_back({sensor, fit, warning, offFrom});
@@ -140,6 +154,11 @@ void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
             report.addWarning(v.sensor + ": " + v.fit +
                               ": check its pose on the robot and its noise (an odometry whose "
                               "heading drifts also looks like a turned sensor; " +
+                              doc + ")");
+        else if (v.warning == TWarning::scale)
+            report.addWarning(v.sensor + ": " + v.fit +
+                              ": check what gives its readings their scale (a stereo baseline, a "
+                              "range unit) and the odometry's distances (" +
                               doc + ")");
         else if (v.warning == TWarning::tilt)
             report.addWarning(v.sensor + ": " + v.fit +

@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <utility>
@@ -20,15 +21,18 @@ Eigen::Matrix2d rotation(double a)
     return R;
 }
 
+/// The unknowns x = (t_x, t_y, θ, k).
+using TUnknowns = Eigen::Matrix<double, 4, 1>;
+
 /// r(x), its Jacobian ∂r/∂x and its covariance, of one pair (N = 2) or bearing (N = 1).
 template <int N>
 struct TLinearized {
     Eigen::Matrix<double, N, 1> r;
-    Eigen::Matrix<double, N, 3> J;
+    Eigen::Matrix<double, N, 4> J;
     Eigen::Matrix<double, N, N> C;
 
     /// The whitened residual e and Jacobian: L e = r, L Je = J with C = L Lᵀ.
-    std::pair<Eigen::Matrix<double, N, 1>, Eigen::Matrix<double, N, 3>> whitened() const
+    std::pair<Eigen::Matrix<double, N, 1>, Eigen::Matrix<double, N, 4>> whitened() const
     {
         const Eigen::Matrix<double, N, N> L = C.llt().matrixL();
         return {L.template triangularView<Eigen::Lower>().solve(r),
@@ -40,32 +44,41 @@ struct TLinearized {
 const Eigen::Matrix2d S = (Eigen::Matrix2d() << 0, -1, 1, 0).finished();
 
 /// A pair's linearization, with its covariance C = A + B Q Bᵀ in two parts: that of its
-/// readings (A) and the odometry's Jacobian (B).
+/// readings (A) and the odometry's Jacobian (B), and what the scale's gradient needs: ∂r/∂k
+/// itself and ∂B/∂k (its θ column; the others are 0).
 struct TPairLinearized : TLinearized<2> {
     Eigen::Matrix2d A;
     Eigen::Matrix<double, 2, 3> B;
+    Eigen::Vector2d dr_dk, dB_dk;
 };
 
-TPairLinearized linearize(const TReadingPair& p, const Eigen::Vector3d& x)
+TPairLinearized linearize(const TReadingPair& p, const TUnknowns& x)
 {
     const Eigen::Vector2d t = x.head<2>(), tu(p.u.x, p.u.y);
+    const double k = x[3];
     const Eigen::Matrix2d Rd = rotation(x[2]), Ru = rotation(p.u.phi);
-    const Eigen::Vector2d pj = Rd * p.z_j + t;  // the point in x_j's frame
+    const Eigen::Vector2d pj = k * Rd * p.z_j + t;  // the point in x_j's frame
     TPairLinearized l;
-    l.r = Rd * p.z_i + t - (Ru * pj + tu);
+    l.r = k * Rd * p.z_i + t - (Ru * pj + tu);
     l.J.leftCols<2>() = Eigen::Matrix2d::Identity() - Ru;
-    // ∂r/∂θ = S (R(θ) z_i − Ru R(θ) z_j) is S (tu − (I − Ru) t) plus S r: the readings' noise,
-    // which would count as information on θ; the expected Jacobian leaves it out
-    l.J.col(2) = S * (tu - l.J.leftCols<2>() * t);
+    // ∂r/∂θ = k S (R(θ) z_i − Ru R(θ) z_j) is S v plus S r, with v = tu − (I − Ru) t; S r, the
+    // readings' noise, would count as information on θ: the expected Jacobian leaves it out.
+    // Likewise ∂r/∂k is v / k (along v, where θ's is across it) in the information; the
+    // gradient takes k's own (estimate(): errors in variables).
+    const Eigen::Vector2d v = tu - l.J.leftCols<2>() * t;
+    l.J.col(2) = S * v;
+    l.J.col(3) = v / k;
     // ∂(u ⊕ pj)/∂u = [I, S Ru pj]
     l.B.leftCols<2>().setIdentity();
     l.B.col(2) = S * Ru * pj;
-    l.A = Rd * p.R_i * Rd.transpose() + Ru * Rd * p.R_j * Rd.transpose() * Ru.transpose();
+    l.dr_dk = Rd * p.z_i - Ru * Rd * p.z_j;
+    l.dB_dk = S * Ru * Rd * p.z_j;
+    l.A = k * k * (Rd * p.R_i * Rd.transpose() + Ru * Rd * p.R_j * Rd.transpose() * Ru.transpose());
     l.C = l.A + l.B * p.Q * l.B.transpose();
     return l;
 }
 
-TLinearized<1> linearize(const TEarlierPoseBearing& b, const Eigen::Vector3d& x)
+TLinearized<1> linearize(const TEarlierPoseBearing& b, const TUnknowns& x)
 {
     const Eigen::Vector2d tu(b.u.x, b.u.y);
     const Eigen::Matrix2d Rd = rotation(x[2]), RuT = rotation(-b.u.phi);
@@ -80,6 +93,7 @@ TLinearized<1> linearize(const TEarlierPoseBearing& b, const Eigen::Vector3d& x)
     const Eigen::Matrix2d dv = RuT - Eigen::Matrix2d::Identity();
     l.J.leftCols<2>() = a * dv;
     l.J(0, 2) = a * dv * S * Rd * b.sensor - 1;
+    l.J(0, 3) = 0;
     // ∂p/∂u = [−Ruᵀ, −S p]
     Eigen::Matrix<double, 2, 3> Ju;
     Ju.leftCols<2>() = -RuT;
@@ -104,12 +118,12 @@ std::pair<mrpt::math::TPose2D, Eigen::Matrix3d> composedOdometry(
 
 Eigen::Vector2d TSensorPoseCorrection::whitenedResidual(const TReadingPair& p) const
 {
-    return linearize(p, delta).whitened().first;
+    return linearize(p, TUnknowns(delta[0], delta[1], delta[2], scale)).whitened().first;
 }
 
 double TSensorPoseCorrection::whitenedResidual(const TEarlierPoseBearing& b) const
 {
-    return linearize(b, delta).whitened().first[0];
+    return linearize(b, TUnknowns(delta[0], delta[1], delta[2], scale)).whitened().first[0];
 }
 
 double TSensorPoseCorrection::turnConfounding() const { return cov(2, 2) * cov.inverse()(2, 2); }
@@ -122,15 +136,16 @@ double TSensorPoseCorrection::largestMoveStd() const
 
 TSensorPoseCorrection TSensorPoseCorrection::estimate(
     const std::vector<TReadingPair>& pairs, const std::vector<TEarlierPoseBearing>& bearings,
-    double huber)
+    double huber, bool fit_scale)
 {
-    const Eigen::Vector3d priorInfo(1.0, 1.0, 1.0 / (M_PI * M_PI));
+    const TUnknowns priorMean(0, 0, 0, 1), priorInfo(1.0, 1.0, 1.0 / (M_PI * M_PI), 1.0);
     const auto rho = [&](double n) {
         return huber > 0 && n > huber ? 2 * huber * n - huber * huber : n * n;
     };
     // Σ ρ(‖e‖²) plus the prior's, at `c`
     const auto cost = [&](const TSensorPoseCorrection& c) {
-        double sum = c.delta.dot(priorInfo.cwiseProduct(c.delta));
+        const TUnknowns d = TUnknowns(c.delta[0], c.delta[1], c.delta[2], c.scale) - priorMean;
+        double sum = d.dot(priorInfo.cwiseProduct(d));
         for (const auto& p : pairs) sum += rho(c.whitenedResidual(p).norm());
         for (const auto& b : bearings) sum += rho(std::abs(c.whitenedResidual(b)));
         return sum;
@@ -148,17 +163,17 @@ TSensorPoseCorrection TSensorPoseCorrection::estimate(
             groups.push_back({i});
     }
     for (auto& [steps, members] : bySteps) groups.push_back(std::move(members));
+    using Matrix34 = Eigen::Matrix<double, 3, 4>;
+    using Matrix4 = Eigen::Matrix<double, 4, 4>;
     // from four turns: a sensor mounted a quarter or half turn off is found too
     std::optional<TSensorPoseCorrection> best;
     double bestCost = 0;
     for (const double start : {0.0, M_PI / 2, M_PI, -M_PI / 2}) {
-        TSensorPoseCorrection c;
-        c.pairs = pairs.size() + bearings.size();
-        c.delta[2] = start;
-        Eigen::Matrix3d H;
+        TUnknowns x(0, 0, start, 1);
+        Matrix4 H;
         for (int iteration = 0; iteration < 20; iteration++) {
             H = priorInfo.asDiagonal();
-            Eigen::Vector3d g = priorInfo.cwiseProduct(c.delta);
+            TUnknowns g = priorInfo.cwiseProduct(x - priorMean);
             const auto add = [&](const auto& l) {
                 const auto [e, Je] = l.whitened();
                 const double w = weight(e.norm());
@@ -168,32 +183,61 @@ TSensorPoseCorrection TSensorPoseCorrection::estimate(
             // A group's residuals r_p = (readings' part, covariance A_p) − B_p η share one
             // odometry error η ~ N(0, Q): its information is Σ J_pᵀ W_p J_p less
             // Gᵀ Q (I + K Q)⁻¹ G (Woodbury), W_p = w_p A_p⁻¹, K = Σ B_pᵀ W_p B_p,
-            // G = Σ B_pᵀ W_p J_p; likewise its gradient. A pair alone (w = 1): (A + B Q Bᵀ)⁻¹.
+            // G = Σ B_pᵀ W_p J_p. A pair alone (w = 1): (A + B Q Bᵀ)⁻¹. Its gradient is
+            // Σ J_pᵀ s_p with s = C⁻¹ r: s_p = W_p (r_p − B_p η̂), η̂ = N Σ B_pᵀ W_p r_p.
             for (const auto& group : groups) {
-                Eigen::Matrix3d K = Eigen::Matrix3d::Zero(), G = Eigen::Matrix3d::Zero();
+                Eigen::Matrix3d K = Eigen::Matrix3d::Zero();
+                Matrix34 G = Matrix34::Zero();
                 Eigen::Vector3d Gr = Eigen::Vector3d::Zero();
+                std::vector<std::pair<TPairLinearized, Eigen::Matrix2d>> members;
                 for (const size_t i : group) {
-                    const TPairLinearized l = linearize(pairs[i], c.delta);
+                    const TPairLinearized l = linearize(pairs[i], x);
                     const Eigen::Matrix2d W = weight(l.whitened().first.norm()) * l.A.inverse();
                     H += l.J.transpose() * W * l.J;
-                    g += l.J.transpose() * W * l.r;
                     K += l.B.transpose() * W * l.B;
                     G += l.B.transpose() * W * l.J;
                     Gr += l.B.transpose() * W * l.r;
+                    members.emplace_back(l, W);
                 }
                 const Eigen::Matrix3d& Q = pairs[group.front()].Q;
                 const Eigen::Matrix3d N =
                     Q * (Eigen::Matrix3d::Identity() + K * Q).partialPivLu().inverse();
                 H -= G.transpose() * N * G;
-                g -= G.transpose() * N * Gr;
+                const Eigen::Vector3d eta = N * Gr;
+                // k's gradient is that of rᵀ C(k)⁻¹ r with C's own dependence on k,
+                // sᵀ ∂r/∂k − ½ sᵀ (∂C/∂k) s, where ∂C/∂k = 2 A / k + ∂(B Q Bᵀ)/∂k: the
+                // expected Jacobian's, v / k, would share the odometry's noise with r (a
+                // bias of several per cent where that noise is large); weighed by C(k) the
+                // readings' noise does not bias it either (errors in variables)
+                Eigen::Vector3d Bs = Eigen::Vector3d::Zero(), dBs = Eigen::Vector3d::Zero();
+                for (const auto& [l, W] : members) {
+                    const Eigen::Vector2d sp = W * (l.r - l.B * eta);
+                    g.head<3>() += l.J.leftCols<3>().transpose() * sp;
+                    g[3] += l.dr_dk.dot(sp) - sp.dot(W.inverse() * sp) / x[3];
+                    Bs += l.B.transpose() * sp;
+                    dBs[2] += l.dB_dk.dot(sp);
+                }
+                g[3] -= dBs.dot(Q * Bs);
             }
-            for (const auto& b : bearings) add(linearize(b, c.delta));
-            const Eigen::Vector3d step = -H.ldlt().solve(g);
-            c.delta += step;
+            for (const auto& b : bearings) add(linearize(b, x));
+            if (!fit_scale) {  // k = 1 held: its row and column out
+                H.row(3).setZero();
+                H.col(3).setZero();
+                H(3, 3) = 1;
+                g[3] = 0;
+            }
+            const TUnknowns step = -H.ldlt().solve(g);
+            x += step;
             if (step.cwiseAbs().maxCoeff() < 1e-9) break;
         }
-        c.delta[2] = mrpt::math::wrapToPi(c.delta[2]);
-        c.cov = H.inverse();
+        TSensorPoseCorrection c;
+        c.pairs = pairs.size() + bearings.size();
+        c.delta = Eigen::Vector3d(x[0], x[1], mrpt::math::wrapToPi(x[2]));
+        c.scale = x[3];
+        const Matrix4 cov = H.inverse();
+        c.cov = cov.topLeftCorner<3, 3>();
+        c.scale_std = fit_scale ? std::sqrt(cov(3, 3)) : std::numeric_limits<double>::infinity();
+        c.scale_confounding = cov(3, 3) * H(3, 3);
         const double f = cost(c);
         if (best && f >= bestCost) continue;
         best = c;

@@ -64,7 +64,8 @@ std::optional<core::TSensorPoseCorrection> LightsPathSmoother::cameraPoseCheck(
                 pairs.push_back(*pair);
         }
     if (pairs.empty()) return std::nullopt;
-    return core::TSensorPoseCorrection::estimate(pairs);
+    // the points' scale is that of the lights' heights in the map, not the camera's
+    return core::TSensorPoseCorrection::estimate(pairs, {}, 3, false);
 }
 
 }  // namespace mrpt_vslam::omni_fastslam

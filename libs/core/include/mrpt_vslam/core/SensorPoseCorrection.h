@@ -81,36 +81,49 @@ class ReadingPairing {
     std::map<Key, TReading> m_last;
 };
 
-/** The planar correction δ = (t, θ) of a sensor's pose on the robot that best explains pairs of
- *  readings of the same point (ours; doc/multirobot.md, "Checking the sensor poses"): with the
- *  sensor at δ ⊕ (its pose), a reading z lies at δ ⊕ z = R(θ) z + t in the robot frame, and the
- *  point read from x_i and from x_j = x_i ⊕ u is one: r = (δ ⊕ z_i) − u ⊕ (δ ⊕ z_j) = 0. A
+/** The planar correction δ = (t, θ) of a sensor's pose on the robot, and the scale k of its
+ *  readings, that best explain pairs of readings of the same point (ours; doc/multirobot.md,
+ *  "Checking the sensor poses"): with the sensor at δ ⊕ (its pose) and its readings k times as
+ *  far as they say, a reading z lies at δ ⊕ k z = R(θ) k z + t in the robot frame, and the
+ *  point read from x_i and from x_j = x_i ⊕ u is one: r = (δ ⊕ k z_i) − u ⊕ (δ ⊕ k z_j) = 0. A
  *  bearing b of the sensor's position c = δ ⊕ s at x_i (TEarlierPoseBearing) is that of
- *  v = u⁻¹ ⊕ c − c turned by θ: r = atan2(v) − θ − b. A translation t shows only where the robot
- *  turns, θ where it moves. An odometry whose heading drifts by ε [rad/m] looks like a sensor
- *  turned by about ε times the readings' range: the two are not told apart. */
+ *  v = u⁻¹ ⊕ c − c turned by θ: r = atan2(v) − θ − b (k plays no part). A translation t shows
+ *  only where the robot turns, θ and k where it moves: θ across the readings, k along them. An
+ *  odometry whose heading drifts by ε [rad/m] looks like a sensor turned by about ε times the
+ *  readings' range, and one whose distances are k times too short like readings k times too
+ *  long (a stereo baseline or a range unit off): the two are not told apart. */
 struct TSensorPoseCorrection {
     Eigen::Vector3d delta = Eigen::Vector3d::Zero();  ///< (t_x [m], t_y [m], θ [rad])
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();    ///< its covariance
-    size_t pairs = 0;                                 ///< reading pairs and bearings
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();    ///< its covariance (k unknown too)
+    double scale = 1;                                 ///< [-] k
+    double scale_std = 0;  ///< [-] its σ (δ unknown too); ∞ where k was not fitted
+    /// k's variance over its variance were δ known: about 1 where the path tells the scale
+    /// from a turn and move of the sensor, large on paths of one curvature (circles)
+    double scale_confounding = 1;
+    size_t pairs = 0;          ///< reading pairs and bearings
     size_t outlier_pairs = 0;  ///< whitened residual beyond the Huber threshold
 
     /** Weighted least squares over `pairs` and `bearings` (Gauss-Newton; Huber on each one's
-     *  whitened residual norm at `huber` σ; a weak prior N(0, diag(1 m², 1 m², π²)) keeps t
-     *  solvable when the robot never turns), from θ = 0, ±π/2 and π: the least cost is kept.
+     *  whitened residual norm at `huber` σ; a weak prior N((0, 0, 0, 1), diag(1 m², 1 m², π²,
+     *  1)) on (t, θ, k) keeps t solvable when the robot never turns and k when it never moves),
+     *  from θ = 0, ±π/2 and π and k = 1: the least cost is kept. Without `fit_scale`, k stays
+     *  1 (readings whose scale is not the sensor's: points placed at a map's estimated heights).
      *  The pairs of the same two steps share one odometry error: each such group is weighed
      *  with the joint covariance of its residuals, not as independent pairs, which would count
      *  the odometry's information once per point read. */
     static TSensorPoseCorrection estimate(const std::vector<TReadingPair>& pairs,
                                           const std::vector<TEarlierPoseBearing>& bearings = {},
-                                          double huber = 3);
+                                          double huber = 3, bool fit_scale = true);
+    /// Whether the readings tell k: fitted, with σ under half its prior's (1) (bearings alone
+    /// do not), on a path that tells it from δ (scale_confounding < 4).
+    bool scaleTold() const { return scale_std < 0.5 && scale_confounding < 4; }
     /// The whitened residual of `p` with this correction.
     Eigen::Vector2d whitenedResidual(const TReadingPair& p) const;
     /// The whitened residual of `b` with this correction.
     double whitenedResidual(const TEarlierPoseBearing& b) const;
-    /// Σ_θθ (Σ⁻¹)_θθ, θ's variance over its variance were t known: about 1 where the robot's
-    /// path tells a turn from a move, large on paths of one curvature (circles), where a turn
-    /// passes for a move.
+    /// Σ_θθ (Σ⁻¹)_θθ of `cov`, θ's variance over its variance were t known (k unknown either
+    /// way): about 1 where the robot's path tells a turn from a move, large on paths of one
+    /// curvature (circles), where a turn passes for a move.
     double turnConfounding() const;
     /// [m] the largest σ of t (the square root of its covariance's largest eigenvalue).
     double largestMoveStd() const;
