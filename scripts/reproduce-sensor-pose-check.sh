@@ -5,8 +5,8 @@
 #      (office-team-2.ini, office-team-3.ini) and the MRCLAM cut (mrclam.ini) for
 #      multirobot-vslam, the sports hall and the hard hall (sports-hall.ini) for omni-fastslam,
 #      the 40 frames of omni-views (omni-views.ini) for view-slam;
-#      per sensor the correction and the tilt found, their σ, the pairs beyond 3 σ and whether
-#      the run warned;
+#      per sensor the correction, the scale of its readings and the tilt found, their σ, the
+#      pairs beyond 3 σ and whether the run warned;
 #   2. the office team of two with R1's camera pose in the rawlog changed by stock rawlog-edit
 #      (--sensors-pose), as a wrong calibration would state it: turned about the vertical,
 #      moved forward, raised or lowered (and R2's camera raised too), pitched down, rolled, a
@@ -202,9 +202,11 @@ def load(d):
         return json.load(f)
 
 def correction(c):
+    scale = ("—" if c["range_scale"] is None
+             else f"{c['range_scale']:.3f} ({c['std_range_scale']:.3f})")
     return (f"{c['dyaw_deg']:+.1f} ({c['std_dyaw_deg']:.1f}) | "
             f"{c['dx_dy_m'][0]:+.2f}, {c['dx_dy_m'][1]:+.2f} "
-            f"({c['std_dx_dy_m'][0]:.2f}, {c['std_dx_dy_m'][1]:.2f}) | "
+            f"({c['std_dx_dy_m'][0]:.2f}, {c['std_dx_dy_m'][1]:.2f}) | {scale} | "
             f"{c['dyaw_confounding']:.1f} | {c['pairs_beyond_3_sigma']} of {c['pairs']}")
 
 def tilt(c):
@@ -226,14 +228,15 @@ def warned(r, sensor):
     return "yes" if any(w.startswith(sensor + ":") for w in r["warnings"]) else "no"
 
 print("## The shipped data, sensor poses as given\n")
-print("Per sensor: the turn [deg] and move [m] of its pose that fit its readings best (σ in "
-      "brackets), dyaw_confounding (≥ 4: the path does not tell a turn from a move), the "
+print("Per sensor: the turn [deg] and move [m] of its pose and the scale of its readings that "
+      "fit its readings best (σ in brackets; — where the readings do not tell the scale: "
+      "bearings alone, or too noisy), dyaw_confounding (≥ 4: the path does not tell a turn from a move), the "
       "pairs of readings beyond 3 σ; for 3D readings the pitch and roll [deg] that fit the "
       "heights of its readings of each landmark best and the readings beyond 3 σ there, and "
       "how much higher [m] it puts the landmarks it shares with each other sensor than that "
       "one does (σ, landmarks shared); whether the run warned.\n")
-print("| data | seed | sensor | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | pitch, roll [deg] | readings beyond 3 σ | heights against the others [m] | warned |")
-print("|---|---|---|---|---|---|---|---|---|---|---|")
+print("| data | seed | sensor | turn [deg] | move [m] | range scale | dyaw_confounding | pairs beyond 3 σ | pitch, roll [deg] | readings beyond 3 σ | heights against the others [m] | warned |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|")
 for name in ["team2", "team3", "mrclam", "hall", "hall-hard", "omni-views"]:
     for s in seeds if name != "mrclam" else seeds[:1]:
         r = load(f"{name}-s{s}")
@@ -270,8 +273,8 @@ print("R1's camera pose as the rawlog states it (x y z [m], yaw pitch roll [deg]
       "position RMSE per seed against its odometry's, the landmarks of the team's map per seed, "
       "and the correction, the tilt and the height against R2's camera (σ, landmarks shared) "
       "found for R1's camera (seed " + seeds[0] + ").\n")
-print("| variant | stated yaw pitch roll [deg] | stated x y z [m] | R1 RMSE [m] | odometry RMSE [m] | map landmarks | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | pitch, roll [deg] | readings beyond 3 σ | height against R2 [m] | warned (seeds) |")
-print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+print("| variant | stated yaw pitch roll [deg] | stated x y z [m] | R1 RMSE [m] | odometry RMSE [m] | map landmarks | turn [deg] | move [m] | range scale | dyaw_confounding | pairs beyond 3 σ | pitch, roll [deg] | readings beyond 3 σ | height against R2 [m] | warned (seeds) |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for line in open(table):
     name, position, angles = line.rstrip("\n").split("\t")
     print(variant_row(name, [name, angles, position], "R1", "R1 R1_LANDMARKS", team=True))
@@ -281,8 +284,8 @@ def camera_variants(title, intro, variants, prefix):
     its runs in PREFIX-NAME-sSEED."""
     print(f"\n## {title}\n")
     print(intro + "\n")
-    print("| variant | stated x y [m] | stated yaw [deg] | RMSE [m] | odometry RMSE [m] | turn [deg] | move [m] | dyaw_confounding | pairs beyond 3 σ | warned (seeds) |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("| variant | stated x y [m] | stated yaw [deg] | RMSE [m] | odometry RMSE [m] | turn [deg] | move [m] | range scale | dyaw_confounding | pairs beyond 3 σ | warned (seeds) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for line in open(variants):
         name, position, yaw = line.rstrip("\n").split("\t")
         print(variant_row(f"{prefix}-{name}", [name, position, yaw], None, "camera"))
