@@ -18,6 +18,7 @@
 #include <mrpt_vslam/test/UnrectifiedStereoPair.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -101,6 +102,25 @@ class MultiRobotVSLAMApp : public ::testing::Test {
         const auto& robot = metrics["robots"]["R1"];
         return {robot["estimate"]["ate_rmse_m"].get<double>(),
                 robot["odometry"]["ate_rmse_m"].get<double>()};
+    }
+    /// team2 as shipped and NAME.rawlog (writeTeam2WithR1CameraStated()), each run with
+    /// office-team-2.ini and seed 1 into NAME-right-run and NAME-run: their run.json, and what
+    /// the second run printed.
+    static std::pair<std::array<nlohmann::json, 2>, std::string> runTeam2AndStated(
+        const std::string& name)
+    {
+        std::array<nlohmann::json, 2> reports;
+        std::string printed;
+        for (const bool stated : {false, true}) {
+            const std::string dir = name + (stated ? "-run" : "-right-run");
+            const TCommandResult r =
+                run(kConfigs + "office-team-2.ini " + (stated ? name : kData + "team2") +
+                    ".rawlog -q --seed 1 --out " + dir);
+            EXPECT_EQ(r.exit_code, 0) << r.out;
+            reports[stated] = json(dir + "/run.json");
+            printed = r.out;
+        }
+        return {reports, printed};
     }
     static mrpt_vslam::test::ScratchFolder* s_scratch;
 };
@@ -663,25 +683,15 @@ TEST_F(MultiRobotVSLAMApp, SaysWhenTheCameraIsTurned)
 {
     const std::string name = out("team2-turned");
     writeTeam2WithR1CameraStated(name, mrpt::poses::CPose3D(0, 0, 0, mrpt::DEG2RAD(5.0), 0, 0));
+    const auto [reports, printed] = runTeam2AndStated(name);
     double dyaw[2] = {0, 0};
-    std::string warning;
-    for (const bool turned : {false, true}) {
-        const std::string dir = name + (turned ? "-run" : "-right-run");
-        const TCommandResult r =
-            run(kConfigs + "office-team-2.ini " + (turned ? name : kData + "team2") +
-                ".rawlog -q --seed 1 --out " + dir);
-        ASSERT_EQ(r.exit_code, 0) << r.out;
-        const auto runJson = json(dir + "/run.json");
-        const auto& check = runJson["results"]["sensor_pose_check"]["R1 R1_LANDMARKS"];
-        dyaw[turned] = check["dyaw_deg"].get<double>();
-        if (turned) {
-            ASSERT_EQ(runJson["warnings"].size(), 1u) << runJson["warnings"];
-            warning = runJson["warnings"][0].get<std::string>();
-            EXPECT_NE(r.out.find("multirobot-vslam: warning: " + warning), std::string::npos);
-        } else {
-            EXPECT_EQ(runJson["warnings"].size(), 0u) << runJson["warnings"];
-        }
-    }
+    for (const int i : {0, 1})
+        dyaw[i] =
+            reports[i]["results"]["sensor_pose_check"]["R1 R1_LANDMARKS"]["dyaw_deg"].get<double>();
+    EXPECT_EQ(reports[0]["warnings"].size(), 0u) << reports[0]["warnings"];
+    ASSERT_EQ(reports[1]["warnings"].size(), 1u) << reports[1]["warnings"];
+    const std::string warning = reports[1]["warnings"][0].get<std::string>();
+    EXPECT_NE(printed.find("multirobot-vslam: warning: " + warning), std::string::npos);
     std::printf("R1's camera right: %.2f deg; turned by 5 deg: %.2f deg\n", dyaw[0], dyaw[1]);
     EXPECT_NEAR(dyaw[1] - dyaw[0], -5, 1);
     EXPECT_EQ(warning.rfind("R1 R1_LANDMARKS: its readings of a landmark from nearby steps fit "
@@ -699,20 +709,14 @@ TEST_F(MultiRobotVSLAMApp, SaysWhenTheReadingsAreScaled)
 {
     const std::string name = out("team2-short");
     writeTeam2WithR1CameraStated(name, mrpt::poses::CPose3D(), 0.8);
+    const auto reports = runTeam2AndStated(name).first;
     double scale[2] = {0, 0};
-    nlohmann::json warnings;
-    for (const bool shortened : {false, true}) {
-        const std::string dir = name + (shortened ? "-run" : "-right-run");
-        const TCommandResult r =
-            run(kConfigs + "office-team-2.ini " + (shortened ? name : kData + "team2") +
-                ".rawlog -q --seed 1 --out " + dir);
-        ASSERT_EQ(r.exit_code, 0) << r.out;
-        const auto runJson = json(dir + "/run.json");
-        const auto& check = runJson["results"]["sensor_pose_check"]["R1 R1_LANDMARKS"];
-        scale[shortened] = check["range_scale"].get<double>();
+    for (const int i : {0, 1}) {
+        const auto& check = reports[i]["results"]["sensor_pose_check"]["R1 R1_LANDMARKS"];
+        scale[i] = check["range_scale"].get<double>();
         EXPECT_LT(std::abs(check["dyaw_deg"].get<double>()), 2);
-        warnings = runJson["warnings"];
     }
+    const auto& warnings = reports[1]["warnings"];
     std::printf("R1's readings right: scale %.3f; 0.8 times as far: %.3f\n", scale[0], scale[1]);
     EXPECT_NEAR(scale[1], 1.25 * scale[0], 0.05);
     ASSERT_EQ(warnings.size(), 1u) << warnings;
