@@ -141,10 +141,7 @@ mrpt::obs::CObservation::Ptr StereoFrontEndApp::convert(const mrpt::obs::CObserv
                                  (images.empty() ? "" : " (" + images + ")") + ": " +
                                  core::oneLineMessage(e));
     }
-    const auto& stats = front_end.lastFrameStats();
-    m_summary.frames++;
-    m_summary.rectified += stats.rectified_because.empty() ? 0 : 1;
-    m_summary.counts += stats;
+    m_summary.counts += front_end.lastFrameStats();
     return landmarks;
 }
 
@@ -179,7 +176,7 @@ void StereoFrontEndApp::run()
     core::ProgressReporter progress("stereo-frontend", 0, m_args.quiet);
 
     for (core::TRawlogEntry e; reader.next(e);) {
-        const size_t frames_before = m_summary.frames;
+        const size_t frames_before = m_summary.counts.frames;
         if (e.observation) {
             out.write(*convert(e.observation, e.index));
         } else if (e.actions || e.observations) {
@@ -195,18 +192,18 @@ void StereoFrontEndApp::run()
             out.write(*e.other);
             m_summary.other_entries++;
         }
-        if (m_summary.frames != frames_before) progress.update(m_summary.frames);
+        if (m_summary.counts.frames != frames_before) progress.update(m_summary.counts.frames);
     }
-    if (m_summary.frames == 0)
+    if (m_summary.counts.frames == 0)
         throw std::runtime_error(m_args.input +
                                  ": found no CObservationStereoImages; "
                                  "the rawlog has: " +
                                  reader.summary().describe());
     if (m_summary.counts.emitted == 0)
         throw std::runtime_error(
-            m_args.input + ": no landmarks in " + std::to_string(m_summary.frames) +
+            m_args.input + ": no landmarks in " + std::to_string(m_summary.counts.frames) +
             " stereo pairs: " + StereoFrontEnd::whyNoLandmarks(m_summary.counts, m_options));
-    progress.finish(m_summary.frames);
+    progress.finish(m_summary.counts.frames);
     m_summary.ms_per_frame = m_timer.stepStatistics().mean_ms;
     copyGroundTruth();
     out.commit();
@@ -219,14 +216,15 @@ std::string StereoFrontEndApp::summaryLine() const
     std::ostringstream line;
     line.setf(std::ios::fixed);
     line.precision(1);
-    line << "stereo-frontend: wrote " << m_args.out_prefix << ".rawlog: " << s.frames
+    line << "stereo-frontend: wrote " << m_args.out_prefix << ".rawlog: " << s.counts.frames
          << " stereo frames (";
     for (auto it = m_front_ends.begin(); it != m_front_ends.end(); ++it)
         line << (it == m_front_ends.begin() ? "" : ", ") << it->first;
     line << "), ";
-    if (s.rectified > 0) line << s.rectified << " of them rectified from their calibration, ";
-    line << double(s.counts.points) / s.frames << " points/frame, "
-         << double(s.counts.emitted) / s.frames << " landmarks/frame, " << s.ms_per_frame
+    if (s.counts.rectified > 0)
+        line << s.counts.rectified << " of them rectified from their calibration, ";
+    line << double(s.counts.points) / s.counts.frames << " points/frame, "
+         << double(s.counts.emitted) / s.counts.frames << " landmarks/frame, " << s.ms_per_frame
          << " ms/frame; " << s.other_entries << " other observations copied, "
          << s.ground_truth_files.size() << " ground-truth files copied";
     return line.str();

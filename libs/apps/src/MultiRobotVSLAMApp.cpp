@@ -118,9 +118,7 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
 
     size_t measurements = 0, stereoFrames = 0, landmarkObservations = 0;
     size_t robotReadings = 0, nonPositiveRanges = 0;
-    size_t frontEndFrames = 0;             ///< stereo pairs through the front-end
-    size_t rectifiedFrames = 0;            ///< of those, rectified from their calibration
-    StereoFrontEnd::TFrameStats frontEnd;  ///< their counts, summed
+    StereoFrontEnd::TFrameStats frontEnd;  ///< of the stereo pairs through the front-end
 
     void findGroundTruth();
     /** One robot: the step's odometry alone (the best movement estimate of a rawlog's action
@@ -354,8 +352,6 @@ void MultiRobotVSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
             .eraseFrom(sf);
         const auto& stats = frontEnds[k]->lastFrameStats();
         frontEnd += stats;
-        frontEndFrames++;
-        rectifiedFrames += stats.rectified_because.empty() ? 0 : 1;
         landmarks->sensorLabel = landmarksLabel.empty() ? stereo->sensorLabel : landmarksLabel;
         sf.insert(landmarks);
         stereo->imageLeft.unload();
@@ -520,11 +516,11 @@ void MultiRobotVSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
     if (steps == 0)
         throw std::runtime_error(rawlog + ": no steps (" + inputs +
                                  "); the rawlog has: " + contents.describe());
-    if (measurements == 0 && frontEndFrames > 0 && frontEnd.emitted == 0)
+    if (measurements == 0 && frontEnd.frames > 0 && frontEnd.emitted == 0)
         throw std::runtime_error(rawlog +
                                  ": no landmark measurements: the stereo front-end found "
                                  "none in " +
-                                 std::to_string(frontEndFrames) + " stereo pairs: " +
+                                 std::to_string(frontEnd.frames) + " stereo pairs: " +
                                  StereoFrontEnd::whyNoLandmarks(frontEnd, frontEndOptions));
     if (measurements == 0)
         throw std::runtime_error(rawlog + ": no landmark measurements (" + inputs +
@@ -659,12 +655,12 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     report.setCount("robots", static_cast<double>(app.robots.size()));
     report.setCount("steps", static_cast<double>(steps));
     report.setCount("stereo_frames", static_cast<double>(stereoFrames));
-    report.setCount("stereo_frames_rectified", static_cast<double>(rectifiedFrames));
-    if (rectifiedFrames > 0 && !args.quiet)
+    report.setCount("stereo_frames_rectified", static_cast<double>(frontEnd.rectified));
+    if (frontEnd.rectified > 0 && !args.quiet)
         std::printf(
             "multirobot-vslam: %zu stereo pairs rectified from their calibration (%s); "
             "the camera pose is the rectified left camera's\n",
-            rectifiedFrames, frontEnd.rectified_because.c_str());
+            frontEnd.rectified, frontEnd.rectified_because.c_str());
     report.setCount("landmark_observations", static_cast<double>(landmarkObservations));
     report.setCount("measurements", static_cast<double>(measurements));
     report.setCount("robot_readings", static_cast<double>(robotReadings));

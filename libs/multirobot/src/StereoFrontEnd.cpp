@@ -112,6 +112,8 @@ void StereoFrontEnd::reset() { m_points.clear(); }
 
 StereoFrontEnd::TFrameStats& StereoFrontEnd::TFrameStats::operator+=(const TFrameStats& frame)
 {
+    frames += frame.frames;
+    rectified += frame.rectified;
     corners += frame.corners;
     matched += frame.matched;
     nearest_match = std::min(nearest_match, frame.nearest_match);
@@ -164,6 +166,7 @@ std::vector<StereoFrontEnd::TPoint> StereoFrontEnd::detect(
     const cv::Mat gray = left.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
     const core::USurfDescriptor usurf(left);
     m_stats = {};
+    m_stats.frames = 1;
 
     // Step 1: Harris corners where the correlation patch and the U-SURF window both fit
     // (the descriptor needs x − 10.5 s ≥ −½, USurfDescriptor::fitsInImage)
@@ -239,6 +242,7 @@ mrpt::obs::CObservationVisualLandmarks::Ptr StereoFrontEnd::process(
 
     // Everything that can fail is done before the tracks change.
     std::vector<TPoint> current = detect(pair, geometry);
+    m_stats.rectified = why.empty() ? 0 : 1;
     m_stats.rectified_because = std::move(why);
     track(current);
     m_points = std::move(current);

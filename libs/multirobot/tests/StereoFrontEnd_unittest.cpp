@@ -400,6 +400,8 @@ TEST(StereoFrontEnd, AHeadThatIsNotRectifiedIsRectifiedWithItsPose)
     ASSERT_FALSE(mrpt_vslam::multirobot::StereoGeometry::whyNotRectified(obs).empty());
     StereoFrontEnd fe({});
     const auto out = fe.process(obs);
+    EXPECT_EQ(fe.lastFrameStats().rectified, 1u);
+    EXPECT_FALSE(fe.lastFrameStats().rectified_because.empty());
     const mrpt::poses::CPose3D stated(obs.cameraPose), used(out->refCameraPose);
     size_t n = 0;
     double sum2 = 0, max_rel = 0;
@@ -435,6 +437,8 @@ TEST(StereoFrontEnd, WhyNoLandmarksNamesTheStepThatLostThePoints)
                 << "frame " << frame;
         }
     }
+    EXPECT_EQ(sum.frames, 3u);
+    EXPECT_EQ(sum.rectified, 0u);
     EXPECT_EQ(sum.corners, corners);
     EXPECT_EQ(sum.emitted, emitted);
     EXPECT_GT(emitted, 0u);

@@ -116,8 +116,10 @@ class StereoFrontEnd {
 
     /** Counts of one frame (lastFrameStats()), or of several added with +=. */
     struct TFrameStats {
-        size_t corners = 0;  ///< step 1
-        size_t matched = 0;  ///< matched in the right image at a positive disparity (step 2)
+        size_t frames = 0;     ///< stereo pairs counted (1 for lastFrameStats())
+        size_t rectified = 0;  ///< of those, rectified here from their calibration
+        size_t corners = 0;    ///< step 1
+        size_t matched = 0;    ///< matched in the right image at a positive disparity (step 2)
         double nearest_match = std::numeric_limits<double>::infinity();  ///< [m] depth
         double farthest_match = 0;  ///< [m] depth of the farthest matched corner
         size_t stereo = 0;          ///< passed step 2 (matched, depth in range)
@@ -125,7 +127,7 @@ class StereoFrontEnd {
         size_t tracked = 0;         ///< continued a track of the previous frame
         size_t eligible = 0;        ///< track length >= min_track_length
         size_t emitted = 0;         ///< in the output (eligible, capped)
-        /// why the pair was rectified here (StereoRectifier), empty if it was not
+        /// why the (first) pair was rectified here (StereoRectifier), empty if none was
         std::string rectified_because;
 
         /** Adds the counts of `frame` and widens the depth range; keeps the first reason. */
