@@ -1,6 +1,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/math/wrap2pi.h>
+#include <mrpt_vslam/core/ConfigSectionWriter.h>
 #include <mrpt_vslam/core/FisheyeLookupTable.h>
 
 #include <algorithm>
@@ -50,12 +51,11 @@ void FisheyeLookupTable::TOptions::loadFromConfigFile(const mrpt::config::CConfi
 void FisheyeLookupTable::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
                                                     const std::string& section) const
 {
-    cfg.write(section, "lut_delta_phi_deg", mrpt::RAD2DEG(lut_delta_phi),
-              mrpt::config::MRPT_SAVE_NAME_PADDING(), mrpt::config::MRPT_SAVE_VALUE_PADDING(),
-              "[deg] azimuth step of the fisheye look-up table (0 = automatic, <= 0.5 px)");
-    cfg.write(section, "lut_delta_theta_deg", mrpt::RAD2DEG(lut_delta_theta),
-              mrpt::config::MRPT_SAVE_NAME_PADDING(), mrpt::config::MRPT_SAVE_VALUE_PADDING(),
-              "[deg] off-axis angle step of the look-up table (0 = automatic, <= 0.5 px)");
+    const ConfigSectionWriter put(cfg, section);
+    put("lut_delta_phi_deg", mrpt::RAD2DEG(lut_delta_phi),
+        "[deg] azimuth step of the fisheye look-up table (0 = automatic, <= 0.5 px)");
+    put("lut_delta_theta_deg", mrpt::RAD2DEG(lut_delta_theta),
+        "[deg] off-axis angle step of the look-up table (0 = automatic, <= 0.5 px)");
 }
 
 FisheyeLookupTable::FisheyeLookupTable(const PajdlaBaksteinCamera& camera, const TOptions& options)

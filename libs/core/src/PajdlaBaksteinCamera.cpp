@@ -1,6 +1,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/exceptions.h>
+#include <mrpt_vslam/core/ConfigSectionWriter.h>
 #include <mrpt_vslam/core/PajdlaBaksteinCamera.h>
 
 #include <cmath>
@@ -86,11 +87,7 @@ void PajdlaBaksteinCamera::loadFromConfigFile(const mrpt::config::CConfigFileBas
 void PajdlaBaksteinCamera::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
                                             const std::string& section) const
 {
-    // The member `c` (Eq. 1) clashes with MRPT_SAVE_CONFIG_VAR_COMMENT's implicit names.
-    const auto put = [&](const char* key, double value, const char* comment) {
-        cfg.write(section, key, value, mrpt::config::MRPT_SAVE_NAME_PADDING(),
-                  mrpt::config::MRPT_SAVE_VALUE_PADDING(), comment);
-    };
+    const ConfigSectionWriter put(cfg, section);
     put("a", a, "[px] tan-term gain of Eq. 1");
     put("b", b, "[-] tan-term angle divisor");
     put("c", c, "[px] sin-term gain");

@@ -1,6 +1,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
+#include <mrpt_vslam/core/ConfigSectionWriter.h>
 #include <mrpt_vslam/core/UnifiedSphereCamera.h>
 
 #include <algorithm>
@@ -115,10 +116,7 @@ void UnifiedSphereCamera::loadFromConfigFile(const mrpt::config::CConfigFileBase
 void UnifiedSphereCamera::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
                                            const std::string& section) const
 {
-    const auto put = [&](const char* key, double value, const char* comment) {
-        cfg.write(section, key, value, mrpt::config::MRPT_SAVE_NAME_PADDING(),
-                  mrpt::config::MRPT_SAVE_VALUE_PADDING(), comment);
-    };
+    const ConfigSectionWriter put(cfg, section);
     put("xi", xi, "[-] mirror parameter (0 pinhole, 1 parabolic)");
     put("fx", fx, "[px] generalised focal length gamma1 (columns)");
     put("fy", fy, "[px] generalised focal length gamma2 (rows)");

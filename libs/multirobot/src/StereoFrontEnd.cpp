@@ -1,6 +1,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/format.h>
 #include <mrpt/img/CImage.h>
+#include <mrpt_vslam/core/ConfigSectionWriter.h>
 #include <mrpt_vslam/core/EndsWith.h>
 #include <mrpt_vslam/multirobot/StereoFrontEnd.h>
 
@@ -39,10 +40,7 @@ void StereoFrontEnd::TOptions::loadFromConfigFile(const mrpt::config::CConfigFil
 void StereoFrontEnd::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
                                                 const std::string& section) const
 {
-    const auto put = [&](const char* key, const auto& value, const char* comment) {
-        cfg.write(section, key, value, mrpt::config::MRPT_SAVE_NAME_PADDING(),
-                  mrpt::config::MRPT_SAVE_VALUE_PADDING(), comment);
-    };
+    const core::ConfigSectionWriter put(cfg, section);
     put("max_corners", max_corners, "Harris corners kept per left image, strongest first");
     put("harris_quality", harris_quality, "minimum Harris response / strongest response");
     put("min_corner_distance", min_corner_distance, "[px] minimum distance between corners");

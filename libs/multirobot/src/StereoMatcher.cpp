@@ -1,5 +1,6 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/img/CImage.h>
+#include <mrpt_vslam/core/ConfigSectionWriter.h>
 #include <mrpt_vslam/multirobot/StereoMatcher.h>
 
 #include <algorithm>
@@ -25,10 +26,7 @@ void StereoMatcher::TOptions::loadFromConfigFile(const mrpt::config::CConfigFile
 void StereoMatcher::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
                                                const std::string& section) const
 {
-    const auto put = [&](const char* key, const auto& value, const char* comment) {
-        cfg.write(section, key, value, mrpt::config::MRPT_SAVE_NAME_PADDING(),
-                  mrpt::config::MRPT_SAVE_VALUE_PADDING(), comment);
-    };
+    const core::ConfigSectionWriter put(cfg, section);
     put("min_disparity", min_disparity, "[px] smallest disparity searched (>= 1)");
     put("max_disparity", max_disparity, "[px] largest disparity searched");
     put("ncc_window", ncc_window, "[px] side of the correlation patch (odd, 3 to 51)");

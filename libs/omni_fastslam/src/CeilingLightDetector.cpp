@@ -1,4 +1,5 @@
 #include <mrpt/config/CConfigFileBase.h>
+#include <mrpt_vslam/core/ConfigSectionWriter.h>
 #include <mrpt_vslam/core/ImageSize.h>
 #include <mrpt_vslam/omni_fastslam/CeilingLightDetector.h>
 
@@ -28,10 +29,7 @@ void CeilingLightDetector::TOptions::loadFromConfigFile(const mrpt::config::CCon
 void CeilingLightDetector::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
                                                       const std::string& section) const
 {
-    const auto put = [&](const char* key, double value, const char* comment) {
-        cfg.write(section, key, value, mrpt::config::MRPT_SAVE_NAME_PADDING(),
-                  mrpt::config::MRPT_SAVE_VALUE_PADDING(), comment);
-    };
+    const core::ConfigSectionWriter put(cfg, section);
     put("intensity_threshold", intensity_threshold, "[0-255] pixels above it belong to a light");
     put("min_blob_area", min_blob_area, "[px] smaller blobs are rejected as noise");
     put("max_blob_area", max_blob_area, "[px] larger blobs are rejected");
