@@ -99,7 +99,7 @@ TEST_F(ViewSLAMApp, ShortSequenceIsAccurateAndConsistentWithBothPolicies)
         EXPECT_EQ(runJson["warnings"], nlohmann::json::array()) << policy;
         for (const char* f :
              {"estimated_path.tum", "odometry_path.tum", "map.txt", "map_views.txt", "final_map.gz",
-              "final.3Dscene", "steps.txt", "observations.txt", "config.ini"})
+              "final.3Dscene", "steps.txt", "observations.txt", "config.ini", "options.ini"})
             EXPECT_TRUE(fs::exists(dir + "/" + f)) << f;
         // One line per frame after the two header lines.
         EXPECT_EQ(mrpt_vslam::test::lineCount(bytes(dir + "/steps.txt")), 42);

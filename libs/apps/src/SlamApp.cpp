@@ -312,6 +312,7 @@ void SlamApp::writeRunFolder(const core::OutputDirectory& out, const core::RunTi
     core::saveScene(scene, out.file("final.3Dscene"));
 
     cfg.writeEffectiveConfig(out.file("config.ini"));
+    cfg.writeOptionsInUse(out.file("options.ini"));
     describeRun(report, timer);
     const auto groundTruth = groundTruthName();
     std::optional<core::TEvalResult> evaluation;

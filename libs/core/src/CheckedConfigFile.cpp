@@ -1,3 +1,4 @@
+#include <mrpt/core/format.h>
 #include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/AtomicFile.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
@@ -11,6 +12,7 @@
 #include <regex>
 #include <sstream>
 #include <tuple>
+#include <utility>
 
 namespace mrpt_vslam::core {
 namespace {
@@ -169,7 +171,11 @@ std::string CheckedConfigFile::readString(const std::string& section, const std:
     const TValueKind kind = kindOfDefault(defaultStr);
     {
         std::lock_guard<std::mutex> lock(m_read_mutex);
-        m_read.emplace(keyId(section, name), TReadKey{section, name, kind});
+        TReadKey read;
+        read.section = section;
+        read.key = name;
+        read.kind = kind;
+        m_read.emplace(keyId(section, name), std::move(read));
     }
     std::string value;
     try {
@@ -192,6 +198,17 @@ std::string CheckedConfigFile::readString(const std::string& section, const std:
         m_valueError =
             m_name + ": [" + section + "] " + name + " = " + mrpt::system::trim(value) + ": " + why;
         throw UsageError(m_valueError);
+    }
+    {
+        const TKeyId id = keyId(section, name);
+        const bool configured = m_line_of_key.count(id) != 0 || m_overridden.count(id) != 0;
+        std::lock_guard<std::mutex> lock(m_read_mutex);
+        auto& read = m_read.at(id);
+        if (!read.has_value) {
+            read.configured = configured;
+            read.value = read.configured ? mrpt::system::trim(value) : defaultStr;
+            read.has_value = true;
+        }
     }
     return value;
 }
@@ -259,6 +276,58 @@ void CheckedConfigFile::writeEffectiveConfig(const std::string& file) const
 {
     AtomicFile out(file);
     out.stream() << effectiveText();
+    out.commit();
+}
+
+namespace {
+/// A real default in the shortest text that reads back to the same value: a double's
+/// (read_double's "%.16e") or a float's (read_float's "%.10e"); any other default as it is.
+std::string defaultText(const TReadKey& key)
+{
+    if (key.kind != TReadKey::Kind::Real) return key.value;
+    const double x = std::strtod(key.value.c_str(), nullptr);
+    if (!std::isfinite(x)) return key.value;
+    const size_t sign = key.value[0] == '-' ? 1 : 0;
+    const bool single = key.value.find('e') == sign + 12;  // "-d.dddddddddde±xx"
+    const auto same = [&](double y) {
+        return single ? static_cast<float>(y) == static_cast<float>(x) : y == x;
+    };
+    // no exponent for numbers that read well without one (180, not 1.8e+02)
+    const bool plain = x == 0 || (std::abs(x) >= 1e-4 && std::abs(x) < 1e15);
+    for (int digits = 1;; digits++) {
+        const std::string text = mrpt::format("%.*g", digits, x);
+        const bool readable = !plain || text.find('e') == std::string::npos;
+        if (digits == 17 || (readable && same(std::strtod(text.c_str(), nullptr)))) return text;
+    }
+}
+}  // namespace
+
+std::string CheckedConfigFile::optionsInUseText() const
+{
+    std::string text = "# Every key read from " + m_name +
+                       (m_overrides.empty() ? "" : " (with its --set overrides)") +
+                       ", with the value it was read with\n";
+    std::map<std::string, std::vector<TReadKey>> bySection;  // lower-case section: its keys
+    for (const auto& key : readKeys())
+        if (key.has_value) bySection[toLower(key.section)].push_back(key);
+    for (const auto& [id, keys] : bySection) {
+        text += "\n[" + keys.front().section + "]\n";
+        for (const auto& key : keys)
+            if (key.configured) text += key.key + " = " + key.value + "\n";
+        bool first = true;
+        for (const auto& key : keys) {
+            if (key.configured) continue;
+            if (std::exchange(first, false)) text += "# not set: the program's defaults\n";
+            text += key.key + " = " + defaultText(key) + "\n";
+        }
+    }
+    return text;
+}
+
+void CheckedConfigFile::writeOptionsInUse(const std::string& file) const
+{
+    AtomicFile out(file);
+    out.stream() << optionsInUseText();
     out.commit();
 }
 

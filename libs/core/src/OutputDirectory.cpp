@@ -26,9 +26,10 @@ std::string OutputDirectory::file(const std::string& name) const
 
 bool OutputDirectory::isRunFile(const std::string& name)
 {
-    static constexpr std::array kNames = {
-        "run.json",  "metrics.json",     "config.ini", "final.3Dscene", "final_map.gz",
-        "steps.txt", "observations.txt", "paths.png",  "errors.png",    "landmark_errors.png"};
+    static constexpr std::array kNames = {"run.json",    "metrics.json",       "config.ini",
+                                          "options.ini", "final.3Dscene",      "final_map.gz",
+                                          "steps.txt",   "observations.txt",   "paths.png",
+                                          "errors.png",  "landmark_errors.png"};
     for (const char* n : kNames)
         if (name == n) return true;
     // STEM.ext or STEM_<X>.ext

@@ -293,6 +293,44 @@ TEST(CheckedConfigFile, ReadKeysListsEveryKeyAskedForWithItsKind)
         EXPECT_EQ(std::make_tuple(keys[i].section, keys[i].key, keys[i].kind), expected[i]) << i;
 }
 
+// Every key read, with the value it was read with; read back as the configuration, the file
+// gives the same values whatever the program's defaults are.
+TEST(CheckedConfigFile, OptionsInUseGiveTheSameValuesAsTheConfiguration)
+{
+    const auto readAll = [](const CheckedConfigFile& cfg, double scale) {
+        std::ostringstream values;
+        values.precision(17);
+        values << cfg.read_double("S", "x", 0.5 * scale) << " "
+               << cfg.read_double("S", "sigma", 0.1 * scale) << " "
+               << cfg.read_double("S", "fov", 180 * scale) << " "
+               << cfg.read_double("S", "tiny", -2.5e-9 * scale) << " "
+               << cfg.read_float("S", "gain", 1.3f * static_cast<float>(scale)) << " "
+               << cfg.read_int("S", "count", 3 * static_cast<int>(scale)) << " "
+               << cfg.read_bool("T", "flag", scale == 1) << " "
+               << cfg.read_string("T", "label", scale == 1 ? "" : "other") << " "
+               << cfg.read_string("T", "name", "n") << " "
+               << cfg.read_double("T", "limit", scale * std::numeric_limits<double>::infinity());
+        return values.str();
+    };
+    CheckedConfigFile cfg;
+    cfg.loadText("[S]\nx = 2 // [m]\n[T]\nname = abc\n", "t.ini",
+                 {TConfigOverride::parse("S.count=7")});
+    const std::string values = readAll(cfg, 1);
+    cfg.read_double("s", "X", 9);  // the first read's value stands
+    EXPECT_EQ(cfg.optionsInUseText(),
+              "# Every key read from t.ini (with its --set overrides), with the value it was read "
+              "with\n"
+              "\n[S]\ncount = 7\nx = 2\n# not set: the program's defaults\nfov = 180\n"
+              "gain = 1.3\nsigma = 0.1\ntiny = -2.5e-09\n"
+              "\n[T]\nname = abc\n# not set: the program's defaults\nflag = 1\nlabel = \n"
+              "limit = inf\n");
+
+    CheckedConfigFile again;
+    again.loadText(cfg.optionsInUseText(), "options.ini");
+    EXPECT_EQ(readAll(again, 2), values);  // other defaults: the file sets every key
+    EXPECT_TRUE(again.unreadKeys().empty());
+}
+
 TEST(CheckedConfigFile, LinesThatAreNotKeysSectionsOrCommentsAreErrors)
 {
     CheckedConfigFile cfg;

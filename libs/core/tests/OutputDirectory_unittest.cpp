@@ -58,6 +58,7 @@ TEST(OutputDirectory, RunFilesAreTheNamesTheAppsWrite)
     for (const char* name : {"run.json",
                              "metrics.json",
                              "config.ini",
+                             "options.ini",
                              "final.3Dscene",
                              "final_map.gz",
                              "steps.txt",

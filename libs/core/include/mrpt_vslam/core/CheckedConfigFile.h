@@ -36,6 +36,11 @@ struct TReadKey {
     std::string section;  ///< as the program asked for it
     std::string key;
     Kind kind = Kind::Text;
+    /// the value of its first read that succeeded: the configuration's (`configured`) or the
+    /// default the program passed; empty while no read succeeded
+    std::string value;
+    bool configured = false;
+    bool has_value = false;
 };
 
 /** A key of the configuration that nothing read: probably a typo. */
@@ -105,6 +110,14 @@ class CheckedConfigFile : public mrpt::config::CConfigFileMemory {
     std::string effectiveText() const;
     /** Writes effectiveText() atomically to `file`. */
     void writeEffectiveConfig(const std::string& file) const;
+
+    /** Every key read so far with the value it was read with, as `.ini` text: per section, the
+     *  keys the configuration sets, then those at the program's defaults (after a comment line
+     *  saying so; real numbers in the shortest text that reads back to the same value). Used
+     *  as the configuration, it gives the program the same values. */
+    std::string optionsInUseText() const;
+    /** Writes optionsInUseText() atomically to `file`. */
+    void writeOptionsInUse(const std::string& file) const;
 
   protected:
     std::string readString(const std::string& section, const std::string& name,
