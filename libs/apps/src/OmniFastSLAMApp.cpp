@@ -12,6 +12,7 @@
 #include <mrpt_vslam/core/KLDSampling.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/PajdlaBaksteinCamera.h>
+#include <mrpt_vslam/core/PajdlaBaksteinFit.h>
 #include <mrpt_vslam/core/RawlogReader.h>
 #include <mrpt_vslam/core/RunOutputs.h>
 #include <mrpt_vslam/core/SingleRobotStart.h>
@@ -37,6 +38,9 @@ constexpr const char* kSmootherSection = "LightsPathSmoother";
 
 /// Where the light measurements come from (ini key `input`).
 enum class TInput { Auto, Bearings, Images };
+/// Where the camera model of the images comes from (ini key `camera_model`): the images' own
+/// calibration when they carry one (fitted as the model of [Camera]), or [Camera].
+enum class TCameraModel { Auto, Config };
 }  // namespace
 
 struct OmniFastSLAMApp::Impl : ParticleFilterApp {
@@ -57,6 +61,10 @@ struct OmniFastSLAMApp::Impl : ParticleFilterApp {
     COmniFastSLAM::TOptions filterOptions;
     core::TKLDParams kld;
     core::PajdlaBaksteinCamera camera;
+    TCameraModel cameraModel = TCameraModel::Auto;
+    /// With camera_model = auto and images that carry a calibration: the first one's, and the
+    /// model fitted to it (the detector's camera); every image must carry the same.
+    std::optional<std::pair<mrpt::img::TCamera, core::TPajdlaBaksteinFit>> imagesCalibration;
     CeilingLightDetector::TOptions detectorOptions;
     std::unique_ptr<CeilingLightDetector> detector;
     std::unique_ptr<COmniFastSLAM> filter;
@@ -75,6 +83,10 @@ struct OmniFastSLAMApp::Impl : ParticleFilterApp {
 
     /// Measurements from the frame's image when images are the input (Sec. III-A).
     void prepareFrame(mrpt::obs::CSensoryFrame& sf);
+    /// The camera model of `image` (camera_model): [Camera], or its calibration fitted.
+    const core::PajdlaBaksteinCamera& cameraOf(const mrpt::obs::CObservationImage& image);
+    /// run.json `camera_model` and its line: which model the detector used.
+    void reportCameraModel(core::RunReport& report) const;
     /// The scene of the best particle: map with ellipsoids and its path (final.3Dscene, --gui).
     void drawBestParticle(mrpt::opengl::COpenGLScene& scene) const;
 
@@ -110,6 +122,8 @@ void OmniFastSLAMApp::Impl::loadConfig()
         "input",
         {{"auto", TInput::Auto}, {"bearings", TInput::Bearings}, {"images", TInput::Images}});
     imageLabel = cfg.read_string(kAppSection, "image_label", imageLabel);
+    cameraModel = readChoice<TCameraModel>(
+        "camera_model", {{"auto", TCameraModel::Auto}, {"config", TCameraModel::Config}});
     robot = cfg.read_string(kAppSection, "robot", "");
     start.loadFromConfig(cfg, kAppSection);
 
@@ -180,9 +194,10 @@ void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
         .eraseFrom(sf);
     if (!image) return;
     imagesSearched++;
-    if (!detector) detector = std::make_unique<CeilingLightDetector>(camera, detectorOptions);
     mrpt::obs::CObservationBearingRange::Ptr bearings;
     try {
+        const auto& model = cameraOf(*image);
+        if (!detector) detector = std::make_unique<CeilingLightDetector>(model, detectorOptions);
         bearings = detector->detect(*image, filterOptions.bearings_label);
     } catch (const std::exception& e) {
         const std::string file = core::RawlogReader::describeExternalImage(image->image, rawlog);
@@ -192,6 +207,72 @@ void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
     }
     sf.insert(bearings);
     image->unload();
+}
+
+const core::PajdlaBaksteinCamera& OmniFastSLAMApp::Impl::cameraOf(
+    const mrpt::obs::CObservationImage& image)
+{
+    const mrpt::img::TCamera& calibration = image.cameraParams;
+    if (imagesCalibration) {
+        if (!(calibration == imagesCalibration->first))
+            throw std::runtime_error(
+                "its calibration (cameraParams) is not the first image's; set camera_model = "
+                "config to use [Camera] for every image");
+        return imagesCalibration->second.camera;
+    }
+    // a calibration has focal lengths; the image size alone (as vslam-sim writes it) is none
+    if (cameraModel == TCameraModel::Config || detector || !(calibration.fx() > 0)) return camera;
+    try {
+        imagesCalibration.emplace(calibration,
+                                  core::fitPajdlaBakstein(calibration, camera.max_theta));
+    } catch (const std::invalid_argument& e) {
+        throw std::runtime_error(std::string("its calibration (cameraParams) cannot be used: ") +
+                                 e.what() + "; set camera_model = config to use [Camera]");
+    }
+    return imagesCalibration->second.camera;
+}
+
+void OmniFastSLAMApp::Impl::reportCameraModel(core::RunReport& report) const
+{
+    if (!detector) return;  // no image searched
+    const core::PajdlaBaksteinCamera& model = detector->lookupTable().camera();
+    std::string json =
+        std::string("{\"source\": \"") + (imagesCalibration ? "images" : "config") + "\"";
+    for (const auto& [key, value] : {std::pair{"a", model.a},
+                                     {"b", model.b},
+                                     {"c", model.c},
+                                     {"d", model.d},
+                                     {"u0", model.u0},
+                                     {"v0", model.v0},
+                                     {"beta", model.beta},
+                                     {"max_theta_deg", mrpt::RAD2DEG(model.max_theta)}})
+        json += mrpt::format(", \"%s\": %.17g", key, value);
+    json += mrpt::format(", \"width\": %d, \"height\": %d", model.width, model.height);
+    if (!imagesCalibration) {
+        report.setResultJson("camera_model", json + "}");
+        if (!args.quiet) std::printf("omni-fastslam: camera model from the config ([Camera])\n");
+        return;
+    }
+    const auto& [calibration, fit] = *imagesCalibration;
+    const std::string distortion =
+        mrpt::typemeta::TEnumType<mrpt::img::DistortionModel>::value2name(calibration.distortion);
+    report.setResultJson(
+        "camera_model",
+        json + mrpt::format(", \"calibration\": \"%s\", \"fit_max_error_px\": "
+                            "%.4f, \"fit_max_error_deg\": %.4f}",
+                            distortion.c_str(), fit.max_error_px, fit.max_error_deg));
+    const std::string line = mrpt::format(
+        "camera model from the images' calibration (%s, fx %.1f px): the fisheye model a = %.6g, "
+        "b = %.6g, c = %.6g, d = %.6g, within %.2f px (%.2f deg) up to %.1f deg from the axis",
+        distortion.c_str(), calibration.fx(), model.a, model.b, model.c, model.d, fit.max_error_px,
+        fit.max_error_deg, mrpt::RAD2DEG(model.max_theta));
+    if (!args.quiet) std::printf("omni-fastslam: %s\n", line.c_str());
+    if (fit.max_error_px > detectorOptions.pixel_std)
+        report.addWarning(
+            line + mrpt::format(", more than [LightDetector] pixel_std = %g px: lower [Camera] "
+                                "max_theta_deg to the lens's field of view, or give its model "
+                                "in [Camera] with camera_model = config (doc/camera-model.md)",
+                                detectorOptions.pixel_std));
 }
 
 void OmniFastSLAMApp::Impl::drawBestParticle(mrpt::opengl::COpenGLScene& scene) const
@@ -338,6 +419,7 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     report.setCount("particles", filter->particlesCount());
     report.setCount("landmarks", (smoothed ? smoothed->map : best.map).landmarks().size());
     report.setCount("candidates", best.map.candidates().size());
+    reportCameraModel(report);
     // which camera pose the measurement model used: the config's, or the observations' own
     const auto& pose = best.map.sensorPoseInUse();
     const bool configured = best.map.sensorOptions.sensor_in_robot.has_value();
