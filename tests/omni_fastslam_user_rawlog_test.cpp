@@ -5,12 +5,12 @@
 #include <mrpt/core/bits_math.h>
 #include <mrpt/img/TCamera.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/test/KannalaBrandtCalibration.h>
 #include <mrpt_vslam/test/RewrittenRawlog.h>
 #include <mrpt_vslam/test/RunCommand.h>
 #include <mrpt_vslam/test/RunFiles.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
 
-#include <Eigen/Dense>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -244,30 +244,6 @@ TEST(OmniFastSLAMUserRawlog, SaysWhenTheCameraPoseIsOff)
     }
 }
 
-namespace {
-/// A Kannala-Brandt calibration of the Pajdla-Bakstein camera `a`, `b`, `c`, `d` (centre
-/// (320, 240), square pixels, 640 × 480): f and f·k1..f·k4 by linear least squares on r(θ) up
-/// to 89°, as a camera calibration would give them.
-mrpt::img::TCamera kannalaBrandtOf(double a, double b, double c, double d)
-{
-    constexpr int kSamples = 200;
-    Eigen::MatrixXd powers(kSamples, 5);
-    Eigen::VectorXd radius(kSamples);
-    for (int i = 0; i < kSamples; i++) {
-        const double theta = mrpt::DEG2RAD(89.0) * (i + 1) / kSamples;
-        for (int k = 0; k < 5; k++) powers(i, k) = std::pow(theta, 2 * k + 1);
-        radius[i] = a * std::tan(theta / b) + c * std::sin(theta / d);
-    }
-    const Eigen::VectorXd fk = powers.colPivHouseholderQr().solve(radius);
-    mrpt::img::TCamera camera;
-    camera.ncols = 640;
-    camera.nrows = 480;
-    camera.setIntrinsicParamsFromValues(fk[0], fk[0], 320, 240);
-    camera.setDistortionKannalaBrandt(fk[1] / fk[0], fk[2] / fk[0], fk[3] / fk[0], fk[4] / fk[0]);
-    return camera;
-}
-}  // namespace
-
 // Images of a fisheye other than the template's [Camera] (a = 120, c = 200, d = 1.6 instead of
 // 150, 180, 1.8), each carrying its calibration as Kannala-Brandt coefficients. The template,
 // no key changed, fits its model to the calibration and maps as with the right [Camera].
@@ -284,7 +260,10 @@ TEST(OmniFastSLAMUserRawlog, CameraModelComesFromTheImagesCalibration)
                                     lens + " -o '" + hall + "'",
                                 scratch.path() / "sim.log");
     ASSERT_EQ(sim.exit_code, 0) << sim.out;
-    const mrpt::img::TCamera calibration = kannalaBrandtOf(120, 2.5, 200, 1.6);
+    // (centre (320, 240), square pixels, 640 × 480, fitted up to 89°)
+    const mrpt::img::TCamera calibration = mrpt_vslam::test::kannalaBrandtCalibration(
+        [](double theta) { return 120 * std::tan(theta / 2.5) + 200 * std::sin(theta / 1.6); },
+        mrpt::DEG2RAD(89.0), 640, 480, 320, 240);
     // the images alone, as a camera driver records them: with their calibration
     const auto rewrite = [&](const std::string& name,
                              const std::function<void(size_t, mrpt::img::TCamera&)>& change) {

@@ -3,6 +3,7 @@
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <Eigen/Core>
+#include <cmath>
 #include <optional>
 
 namespace mrpt_vslam::core {
@@ -68,6 +69,12 @@ class UnifiedSphereCamera : public mrpt::config::CLoadableOptions {
 
     /// Whether (u, v) lies in [0, width − 1] × [0, height − 1].
     bool isInsideImage(const Eigen::Vector2d& uv) const;
+
+    /// ρ(θ) = sin θ / (cos θ + ξ): the normalised radius of a ray at θ from the axis.
+    static double normalizedRadius(double theta, double xi)
+    {
+        return std::sin(theta) / (std::cos(theta) + xi);
+    }
 
     /// [rad] θ_lim = acos(−min(ξ, 1/ξ)): the largest field of view the model can represent.
     double modelLimit() const;

@@ -1,0 +1,110 @@
+#include <mrpt_vslam/core/UnifiedSphereFit.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace mrpt_vslam::core {
+
+namespace {
+
+/// γ of the fit for a given ξ, and its largest error at the samples; infinite where the
+/// model's slope falls below half the calibration's at a sample (as fitPajdlaBakstein()).
+struct TGainFit {
+    double gamma = 0;
+    double cost = std::numeric_limits<double>::infinity();
+};
+
+TGainFit fitGain(const RadialCalibration::TSamples& s, double xi)
+{
+    const Eigen::ArrayXd cos = s.theta.array().cos();
+    const Eigen::ArrayXd shape = s.theta.array().unaryExpr(
+        [xi](double theta) { return UnifiedSphereCamera::normalizedRadius(theta, xi); });
+    const auto largestError = [&](double gamma) {
+        return (gamma * shape - s.radius.array()).abs().maxCoeff();
+    };
+    // The largest error is convex in γ: ternary search from the least-squares gain, whose
+    // largest error the minimum cannot exceed, so the minimum lies within a factor 2 of it.
+    const double ls = (shape * s.radius.array()).sum() / shape.square().sum();
+    double low = ls / 2, high = 2 * ls;
+    for (int k = 0; k < 100; k++) {
+        const double a = low + (high - low) / 3, b = high - (high - low) / 3;
+        if (largestError(a) < largestError(b))
+            high = b;
+        else
+            low = a;
+    }
+    const double gamma = (low + high) / 2;
+    TGainFit fit;
+    const Eigen::ArrayXd slope = gamma * (1 + xi * cos) / (cos + xi).square();
+    if (!(gamma > 0) || (slope < 0.5 * s.slope.array()).any()) return fit;
+    fit.gamma = gamma;
+    fit.cost = largestError(gamma);
+    return fit;
+}
+
+}  // namespace
+
+TUnifiedSphereFit fitUnifiedSphere(const mrpt::img::TCamera& calibration, double max_theta)
+{
+    const RadialCalibration radial(calibration);
+    const double theta_max = radial.fieldOfView(max_theta);
+    const RadialCalibration::TSamples samples = radial.samples(theta_max, 400);
+
+    // ξ as t = ξ / (1 + ξ) in [0, 1): one-to-one up to θ_max needs cos θ_max + ξ > 0 and
+    // 1 + ξ cos θ_max > 0 (UnifiedSphereCamera::modelLimit()), kept with a margin; beyond
+    // t = 0.999 (ξ = 999) the shape is sin θ to 1e-3.
+    const double c = std::cos(theta_max);
+    const double xi_low = std::max(0.0, -c) + 1e-6;
+    const double xi_high = c < 0 ? std::min(999.0, -1 / c - 1e-6) : 999.0;
+    const double t_low = xi_low / (1 + xi_low), t_high = xi_high / (1 + xi_high);
+    double best_t = t_low;
+    TGainFit best;
+    const auto tryPoint = [&](double t) {
+        if (t < t_low || t > t_high) return false;
+        const TGainFit fit = fitGain(samples, t / (1 - t));
+        if (!(fit.cost < best.cost)) return false;
+        best = fit;
+        best_t = t;
+        return true;
+    };
+    constexpr int kGrid = 400;
+    double step = (t_high - t_low) / (kGrid - 1);
+    for (int i = 0; i < kGrid; i++) tryPoint(t_low + i * step);
+    if (!std::isfinite(best.cost)) {
+        throw std::invalid_argument(
+            "no increasing unified sphere model fits the calibration's radius");
+    }
+    while (step > 1e-12) {
+        if (!tryPoint(best_t + step) && !tryPoint(best_t - step)) step /= 2;
+    }
+
+    TUnifiedSphereFit result;
+    UnifiedSphereCamera& camera = result.camera;
+    camera.xi = best_t / (1 - best_t);
+    camera.fx = best.gamma;
+    camera.fy = best.gamma * calibration.fy() / calibration.fx();
+    camera.cx = calibration.cx();
+    camera.cy = calibration.cy();
+    camera.skew = 0;
+    camera.width = static_cast<int>(calibration.ncols);
+    camera.height = static_cast<int>(calibration.nrows);
+    camera.max_theta = theta_max;
+    const auto error = radial.errorOf(
+        [&camera](double theta) {
+            return camera.fx * UnifiedSphereCamera::normalizedRadius(theta, camera.xi);
+        },
+        theta_max);
+    result.max_error_px = error.px;
+    result.max_error_deg = error.deg;
+    try {
+        camera.validate();
+    } catch (const std::exception& e) {
+        throw std::invalid_argument(std::string("the fitted model is not valid: ") + e.what());
+    }
+    return result;
+}
+
+}  // namespace mrpt_vslam::core
