@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "ImagesCameraModel.h"
 #include "ParticleFilterApp.h"
 
 namespace mrpt_vslam::apps {
@@ -38,9 +39,6 @@ constexpr const char* kSmootherSection = "LightsPathSmoother";
 
 /// Where the light measurements come from (ini key `input`).
 enum class TInput { Auto, Bearings, Images };
-/// Where the camera model of the images comes from (ini key `camera_model`): the images' own
-/// calibration when they carry one (fitted as the model of [Camera]), or [Camera].
-enum class TCameraModel { Auto, Config };
 }  // namespace
 
 struct OmniFastSLAMApp::Impl : ParticleFilterApp {
@@ -60,11 +58,8 @@ struct OmniFastSLAMApp::Impl : ParticleFilterApp {
     CCeilingLightsMap mapTemplate;
     COmniFastSLAM::TOptions filterOptions;
     core::TKLDParams kld;
-    core::PajdlaBaksteinCamera camera;
-    TCameraModel cameraModel = TCameraModel::Auto;
-    /// With camera_model = auto and images that carry a calibration: the first one's, and the
-    /// model fitted to it (the detector's camera); every image must carry the same.
-    std::optional<std::pair<mrpt::img::TCamera, core::TPajdlaBaksteinFit>> imagesCalibration;
+    /// the detector's camera: [Camera], or the images' calibration fitted (camera_model)
+    std::optional<ImagesCameraModel<core::PajdlaBaksteinCamera>> cameraModel;
     CeilingLightDetector::TOptions detectorOptions;
     std::unique_ptr<CeilingLightDetector> detector;
     std::unique_ptr<COmniFastSLAM> filter;
@@ -83,8 +78,6 @@ struct OmniFastSLAMApp::Impl : ParticleFilterApp {
 
     /// Measurements from the frame's image when images are the input (Sec. III-A).
     void prepareFrame(mrpt::obs::CSensoryFrame& sf);
-    /// The camera model of `image` (camera_model): [Camera], or its calibration fitted.
-    const core::PajdlaBaksteinCamera& cameraOf(const mrpt::obs::CObservationImage& image);
     /// run.json `camera_model` and its line: which model the detector used.
     void reportCameraModel(core::RunReport& report) const;
     /// The scene of the best particle: map with ellipsoids and its path (final.3Dscene, --gui).
@@ -122,8 +115,7 @@ void OmniFastSLAMApp::Impl::loadConfig()
         "input",
         {{"auto", TInput::Auto}, {"bearings", TInput::Bearings}, {"images", TInput::Images}});
     imageLabel = cfg.read_string(kAppSection, "image_label", imageLabel);
-    cameraModel = readChoice<TCameraModel>(
-        "camera_model", {{"auto", TCameraModel::Auto}, {"config", TCameraModel::Config}});
+    const bool cameraFromImages = readChoice<bool>("camera_model", kCameraModelChoices);
     robot = cfg.read_string(kAppSection, "robot", "");
     start.loadFromConfig(cfg, kAppSection);
 
@@ -138,7 +130,9 @@ void OmniFastSLAMApp::Impl::loadConfig()
         } catch (const std::invalid_argument& e) {
             throw usageError(std::string("[KLD_options] ") + e.what());
         }
-        camera.loadFromConfigFile(cfg, "Camera");
+        core::PajdlaBaksteinCamera config;
+        config.loadFromConfigFile(cfg, "Camera");
+        cameraModel.emplace(cameraFromImages, config, core::fitPajdlaBakstein);
         detectorOptions.loadFromConfigFile(cfg, "LightDetector");
     } catch (const core::UsageError&) {
         throw;
@@ -196,7 +190,7 @@ void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
     imagesSearched++;
     mrpt::obs::CObservationBearingRange::Ptr bearings;
     try {
-        const auto& model = cameraOf(*image);
+        const auto& model = cameraModel->of(image->cameraParams);
         if (!detector) detector = std::make_unique<CeilingLightDetector>(model, detectorOptions);
         bearings = detector->detect(*image, filterOptions.bearings_label);
     } catch (const std::exception& e) {
@@ -209,65 +203,20 @@ void OmniFastSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
     image->unload();
 }
 
-const core::PajdlaBaksteinCamera& OmniFastSLAMApp::Impl::cameraOf(
-    const mrpt::obs::CObservationImage& image)
-{
-    const mrpt::img::TCamera& calibration = image.cameraParams;
-    if (imagesCalibration) {
-        if (!(calibration == imagesCalibration->first))
-            throw std::runtime_error(
-                "its calibration (cameraParams) is not the first image's; set camera_model = "
-                "config to use [Camera] for every image");
-        return imagesCalibration->second.camera;
-    }
-    // a calibration has focal lengths; the image size alone (as vslam-sim writes it) is none
-    if (cameraModel == TCameraModel::Config || detector || !(calibration.fx() > 0)) return camera;
-    try {
-        imagesCalibration.emplace(calibration,
-                                  core::fitPajdlaBakstein(calibration, camera.max_theta));
-    } catch (const std::invalid_argument& e) {
-        throw std::runtime_error(std::string("its calibration (cameraParams) cannot be used: ") +
-                                 e.what() + "; set camera_model = config to use [Camera]");
-    }
-    return imagesCalibration->second.camera;
-}
-
 void OmniFastSLAMApp::Impl::reportCameraModel(core::RunReport& report) const
 {
-    if (!detector) return;  // no image searched
-    const core::PajdlaBaksteinCamera& model = detector->lookupTable().camera();
-    std::string json =
-        std::string("{\"source\": \"") + (imagesCalibration ? "images" : "config") + "\"";
-    for (const auto& [key, value] : {std::pair{"a", model.a},
-                                     {"b", model.b},
-                                     {"c", model.c},
-                                     {"d", model.d},
-                                     {"u0", model.u0},
-                                     {"v0", model.v0},
-                                     {"beta", model.beta},
-                                     {"max_theta_deg", mrpt::RAD2DEG(model.max_theta)}})
-        json += mrpt::format(", \"%s\": %.17g", key, value);
-    json += mrpt::format(", \"width\": %d, \"height\": %d", model.width, model.height);
-    if (!imagesCalibration) {
-        report.setResultJson("camera_model", json + "}");
-        if (!args.quiet) std::printf("omni-fastslam: camera model from the config ([Camera])\n");
-        return;
-    }
-    const auto& [calibration, fit] = *imagesCalibration;
-    const std::string distortion =
-        mrpt::typemeta::TEnumType<mrpt::img::DistortionModel>::value2name(calibration.distortion);
-    report.setResultJson(
-        "camera_model",
-        json + mrpt::format(", \"calibration\": \"%s\", \"fit_max_error_px\": "
-                            "%.4f, \"fit_max_error_deg\": %.4f}",
-                            distortion.c_str(), fit.max_error_px, fit.max_error_deg));
-    const std::string line = mrpt::format(
-        "camera model from the images' calibration (%s, fx %.1f px): the fisheye model a = %.6g, "
-        "b = %.6g, c = %.6g, d = %.6g, within %.2f px (%.2f deg) up to %.1f deg from the axis",
-        distortion.c_str(), calibration.fx(), model.a, model.b, model.c, model.d, fit.max_error_px,
-        fit.max_error_deg, mrpt::RAD2DEG(model.max_theta));
-    if (!args.quiet) std::printf("omni-fastslam: %s\n", line.c_str());
-    if (fit.max_error_px > detectorOptions.pixel_std)
+    if (!cameraModel->model()) return;  // no image searched
+    const core::PajdlaBaksteinCamera& model = *cameraModel->model();
+    const std::string line = cameraModel->report(report, kOmniFastSLAMId.name, "fisheye",
+                                                 {{"a", model.a},
+                                                  {"b", model.b},
+                                                  {"c", model.c},
+                                                  {"d", model.d},
+                                                  {"u0", model.u0},
+                                                  {"v0", model.v0},
+                                                  {"beta", model.beta}},
+                                                 args.quiet);
+    if (const auto* fit = cameraModel->fit(); fit && fit->max_error_px > detectorOptions.pixel_std)
         report.addWarning(
             line + mrpt::format(", more than [LightDetector] pixel_std = %g px: lower [Camera] "
                                 "max_theta_deg to the lens's field of view, or give its model "

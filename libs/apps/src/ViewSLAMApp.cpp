@@ -15,6 +15,7 @@
 #include <mrpt_vslam/core/RawlogReader.h>
 #include <mrpt_vslam/core/RunOutputs.h>
 #include <mrpt_vslam/core/SingleRobotStart.h>
+#include <mrpt_vslam/core/UnifiedSphereFit.h>
 #include <mrpt_vslam/viewmap/COmniViewSLAM.h>
 #include <mrpt_vslam/viewmap/ViewBearingPairing.h>
 
@@ -23,6 +24,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "ImagesCameraModel.h"
 #include "SlamApp.h"
 
 namespace mrpt_vslam::apps {
@@ -62,6 +64,8 @@ struct ViewSLAMApp::Impl : SlamApp {
     std::string imageLabel = "OMNICAM";
     core::SingleRobotStart start;
     std::unique_ptr<COmniViewSLAM> slam;
+    /// the images' camera: [Camera], or their calibration fitted (camera_model)
+    std::optional<ImagesCameraModel<core::UnifiedSphereCamera>> cameraModel;
     mrpt::poses::CPose2D odometry;  ///< dead reckoning from the start pose
     /// steps.txt and observations.txt (doc/view-slam.md), committed at the end of the run
     std::optional<core::AtomicFile> stepTable, observationTable;
@@ -72,6 +76,8 @@ struct ViewSLAMApp::Impl : SlamApp {
     viewmap::ViewBearingPairing viewBearings;  ///< for the camera pose check
 
     void draw(mrpt::opengl::COpenGLScene& scene, const core::TumTrajectory& path) const;
+    /// run.json `camera_model` and its line: which model the features were lifted with.
+    void reportCameraModel(core::RunReport& report) const;
 
     void loadConfig() override;
     void prepare() override;
@@ -105,6 +111,7 @@ std::vector<core::TReadKey> ViewSLAMApp::configKeys() const { return m_impl->con
 void ViewSLAMApp::Impl::loadConfig()
 {
     imageLabel = cfg.read_string(kAppSection, "image_label", imageLabel);
+    const bool cameraFromImages = readChoice<bool>("camera_model", kCameraModelChoices);
     start.loadFromConfig(cfg, kAppSection);
 
     try {
@@ -113,6 +120,7 @@ void ViewSLAMApp::Impl::loadConfig()
     } catch (const std::exception& e) {
         throw configError(e);
     }
+    cameraModel.emplace(cameraFromImages, slam->extractor().camera(), core::fitUnifiedSphere);
 }
 
 void ViewSLAMApp::Impl::prepare() { start.resolve(args, rawlog); }
@@ -123,6 +131,30 @@ void ViewSLAMApp::Impl::draw(mrpt::opengl::COpenGLScene& scene,
     scene.insert(mrpt::opengl::CGridPlaneXY::Create(-5, 25, -5, 15, 0, 1));
     scene.insert(slam->map().getVisualization());
     scene.insert(core::trajectoryAsLines(path, {0, 0.8f, 0}, "estimate"));
+}
+
+void ViewSLAMApp::Impl::reportCameraModel(core::RunReport& report) const
+{
+    if (!cameraModel->model()) return;  // no image
+    const core::UnifiedSphereCamera& model = *cameraModel->model();
+    const std::string line = cameraModel->report(report, kViewSLAMId.name, "unified sphere",
+                                                 {{"xi", model.xi},
+                                                  {"fx", model.fx},
+                                                  {"fy", model.fy},
+                                                  {"cx", model.cx},
+                                                  {"cy", model.cy},
+                                                  {"skew", model.skew}},
+                                                 args.quiet);
+    // both rays of a match carry the fit's error: beyond half the RANSAC threshold, a right
+    // match can fail it
+    const double threshold = mrpt::RAD2DEG(slam->observer().options().ransac.inlier_threshold);
+    if (const auto* fit = cameraModel->fit(); fit && fit->max_error_deg > threshold / 2)
+        report.addWarning(
+            line + mrpt::format(", more than half [ViewObserver] inlier_threshold_deg = %g deg: "
+                                "lower [Camera] max_theta_deg to the lens's field of view, or "
+                                "give its model in [Camera] with camera_model = config "
+                                "(doc/camera-model.md)",
+                                threshold));
 }
 
 void ViewSLAMApp::Impl::startRun(const core::OutputDirectory& out)
@@ -175,7 +207,10 @@ void ViewSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
                  ? ": image " + core::RawlogReader::describeExternalImage(image->image, rawlog)
                  : std::string()),
         [&] {
-            if (image) slam->useCameraPoseOf(image->cameraPose);
+            if (image) {
+                slam->useCameraPoseOf(image->cameraPose);
+                slam->setCamera(cameraModel->of(image->cameraParams));
+            }
             r = slam->processStep(
                 u.asTPose(), Q.asEigen(), image ? &image->image : nullptr, t,
                 externalImage ? image->image.getExternalStorageFile() : std::string());
@@ -272,6 +307,7 @@ void ViewSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
             "xi), the camera pose on the robot, [Features] and [ViewObserver] against the images "
             "(doc/view-slam.md, Limits)",
             accepted, framesWithImages, attempted, estimated));
+    reportCameraModel(report);
     // which camera pose the filter used: the config's, or the images' own
     const mrpt::poses::CPose3D rotation(
         mrpt::math::CMatrixDouble33(slam->extractor().cameraToRobot()), mrpt::math::TPoint3D());

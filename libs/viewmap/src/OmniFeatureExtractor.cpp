@@ -84,11 +84,17 @@ void OmniFeatureExtractor::TOptions::saveToConfigFile(mrpt::config::CConfigFileB
 OmniFeatureExtractor::OmniFeatureExtractor(const core::UnifiedSphereCamera& camera,
                                            const Eigen::Matrix3d& camera_to_robot,
                                            const TOptions& options)
-    : m_camera(camera), m_options(options), m_detector(options.detector)
+    : m_options(options), m_detector(options.detector)
 {
-    m_camera.validate();
+    setCamera(camera);
     m_options.validate();
     setCameraToRobot(camera_to_robot);
+}
+
+void OmniFeatureExtractor::setCamera(const core::UnifiedSphereCamera& camera)
+{
+    camera.validate();
+    m_camera = camera;
 }
 
 void OmniFeatureExtractor::setCameraToRobot(const Eigen::Matrix3d& camera_to_robot)

@@ -121,11 +121,15 @@ class COmniViewSLAM {
      *  observations are made from (ViewMapEKF::setCameraPosition()); its height plays no
      *  part. */
     void useCameraPoseOf(const mrpt::poses::CPose3D& camera_on_robot);
+    /** The camera model of the next images in place of [Camera]'s: an image's own calibration
+     *  fitted (core::fitUnifiedSphere()). \throw std::invalid_argument if it is not valid. */
+    void setCamera(const core::UnifiedSphereCamera& camera) { m_extractor.setCamera(camera); }
     /// Whether the config's [CameraOnRobot] sets the camera's pose.
     bool cameraOnRobotConfigured() const { return m_camera_on_robot_configured; }
     /// [m] The camera's horizontal position on the robot in use.
     const mrpt::math::TPoint2D& cameraPosition() const { return m_ekf.cameraPosition(); }
     const OmniFeatureExtractor& extractor() const { return m_extractor; }
+    const OmniViewObserver& observer() const { return m_observer; }
     /// Threads the feature extraction runs on (0: every core; default 1); the results do not
     /// depend on it.
     void setThreadCount(unsigned threads) { m_extractor.setThreadCount(threads); }

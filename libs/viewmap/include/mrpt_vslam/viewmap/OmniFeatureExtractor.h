@@ -118,6 +118,8 @@ class OmniFeatureExtractor {
 
     const TOptions& options() const { return m_options; }
     const core::UnifiedSphereCamera& camera() const { return m_camera; }
+    /// The model of the next images. \throw std::invalid_argument if it is not valid.
+    void setCamera(const core::UnifiedSphereCamera& camera);
     /// The rotation from the camera frame to the robot frame.
     const Eigen::Matrix3d& cameraToRobot() const { return m_camera_to_robot; }
     /// \throw std::invalid_argument if `camera_to_robot` is not a rotation matrix.
