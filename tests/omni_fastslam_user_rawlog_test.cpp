@@ -264,22 +264,13 @@ TEST(OmniFastSLAMUserRawlog, CameraModelComesFromTheImagesCalibration)
     const mrpt::img::TCamera calibration = mrpt_vslam::test::kannalaBrandtCalibration(
         [](double theta) { return 120 * std::tan(theta / 2.5) + 200 * std::sin(theta / 1.6); },
         mrpt::DEG2RAD(89.0), 640, 480, 320, 240);
-    // the images alone, as a camera driver records them: with their calibration
     const auto rewrite = [&](const std::string& name,
                              const std::function<void(size_t, mrpt::img::TCamera&)>& change) {
-        size_t image = 0;
-        mrpt_vslam::test::rewriteRawlog(hall + ".rawlog", scratch.file(name + ".rawlog"), false,
-                                        true, [&](mrpt::obs::CObservation& o) {
-                                            auto* img =
-                                                dynamic_cast<mrpt::obs::CObservationImage*>(&o);
-                                            if (!img) return false;
-                                            img->cameraParams = calibration;
-                                            change(image++, img->cameraParams);
-                                            return true;
-                                        });
+        mrpt_vslam::test::rewriteImagesWithCalibration(
+            hall + ".rawlog", scratch.file(name + ".rawlog"), calibration, change);
         return scratch.file(name + ".rawlog");
     };
-    const std::string rawlog = rewrite("calibrated", [](size_t, mrpt::img::TCamera&) {});
+    const std::string rawlog = rewrite("calibrated", {});
     const auto run = [&](const std::string& name, const std::string& rawlogFile,
                          const std::string& options) {
         const std::string out = scratch.file(name);

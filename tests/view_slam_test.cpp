@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/img/TCamera.h>
-#include <mrpt/obs/CObservationImage.h>
 #include <mrpt_vslam/core/UnifiedSphereCamera.h>
 #include <mrpt_vslam/test/KannalaBrandtCalibration.h>
 #include <mrpt_vslam/test/RewrittenRawlog.h>
@@ -158,23 +157,15 @@ TEST_F(ViewSLAMApp, CameraModelComesFromTheImagesCalibration)
             return 100 * mrpt_vslam::core::UnifiedSphereCamera::normalizedRadius(theta, 0.6);
         },
         mrpt::DEG2RAD(100.0), 640, 480, 327.5, 235.5);
-    // the images alone, as a camera driver records them: with their calibration
     const auto rewrite = [&](const std::string& name,
                              const std::function<void(size_t, mrpt::img::TCamera&)>& change) {
-        size_t image = 0;
-        mrpt_vslam::test::rewriteRawlog(
-            data + ".rawlog", out(name + ".rawlog"), false, true, [&](mrpt::obs::CObservation& o) {
-                auto* img = dynamic_cast<mrpt::obs::CObservationImage*>(&o);
-                if (!img) return false;
-                img->cameraParams = calibration;
-                change(image++, img->cameraParams);
-                return true;
-            });
+        mrpt_vslam::test::rewriteImagesWithCalibration(data + ".rawlog", out(name + ".rawlog"),
+                                                       calibration, change);
         return out(name + ".rawlog");
     };
     const std::string templ =
         MRPT_VSLAM_SOURCE_DIR "/share/mrpt-vslam/config/view-slam/template.ini";
-    const std::string rawlog = rewrite("calibrated", [](size_t, mrpt::img::TCamera&) {});
+    const std::string rawlog = rewrite("calibrated", {});
     const auto runOn = [&](const std::string& name, const std::string& rawlogFile,
                            const std::string& options) {
         return std::make_pair(out(name),

@@ -13,8 +13,7 @@ namespace mrpt_vslam::core {
 namespace {
 
 /// a, c of the least-squares fit for given b, d, and its sum of squared errors; infinite cost
-/// where the tan term diverges or the model's slope falls below half the calibration's at a
-/// sample (a flat model would turn a pixel's error into a large error in θ).
+/// where the tan term diverges or the model is not steep enough (TSamples::steepEnough()).
 struct TLinearFit {
     double a = 0;
     double c = 0;
@@ -31,7 +30,7 @@ TLinearFit fitGains(const RadialCalibration::TSamples& s, double b, double d)
     const Eigen::Vector2d gains = columns.completeOrthogonalDecomposition().solve(s.radius);
     const Eigen::ArrayXd slope = gains[0] / (b * (s.theta / b).array().cos().square()) +
                                  gains[1] / d * (s.theta / d).array().cos();
-    if ((slope < 0.5 * s.slope.array()).any()) return fit;
+    if (!s.steepEnough(slope)) return fit;
     fit.a = gains[0];
     fit.c = gains[1];
     fit.cost = (columns * gains - s.radius).squaredNorm();
@@ -84,8 +83,7 @@ TPajdlaBaksteinFit fitPajdlaBakstein(const mrpt::img::TCamera& calibration, doub
         if (!moved) step = {step[0] / 2, step[1] / 2};
     }
 
-    TPajdlaBaksteinFit result;
-    PajdlaBaksteinCamera& camera = result.camera;
+    PajdlaBaksteinCamera camera;
     camera.a = bestFit.a;
     camera.b = std::exp(best[0]);
     camera.c = bestFit.c;
@@ -93,19 +91,9 @@ TPajdlaBaksteinFit fitPajdlaBakstein(const mrpt::img::TCamera& calibration, doub
     camera.beta = calibration.fy() / calibration.fx();
     camera.u0 = calibration.cx();
     camera.v0 = calibration.cy() / camera.beta;
-    camera.width = static_cast<int>(calibration.ncols);
-    camera.height = static_cast<int>(calibration.nrows);
-    camera.max_theta = theta_max;
-    const auto error =
-        radial.errorOf([&camera](double theta) { return camera.radius(theta); }, theta_max);
-    result.max_error_px = error.px;
-    result.max_error_deg = error.deg;
-    try {
-        camera.validate();
-    } catch (const std::exception& e) {
-        throw std::invalid_argument(std::string("the fitted model is not valid: ") + e.what());
-    }
-    return result;
+    return radial.fitted(camera, theta_max, [](const PajdlaBaksteinCamera& model, double theta) {
+        return model.radius(theta);
+    });
 }
 
 }  // namespace mrpt_vslam::core

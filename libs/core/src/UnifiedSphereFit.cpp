@@ -10,8 +10,8 @@ namespace mrpt_vslam::core {
 
 namespace {
 
-/// γ of the fit for a given ξ, and its largest error at the samples; infinite where the
-/// model's slope falls below half the calibration's at a sample (as fitPajdlaBakstein()).
+/// γ of the fit for a given ξ, and its largest error at the samples; infinite where the model
+/// is not steep enough (TSamples::steepEnough()).
 struct TGainFit {
     double gamma = 0;
     double cost = std::numeric_limits<double>::infinity();
@@ -39,7 +39,7 @@ TGainFit fitGain(const RadialCalibration::TSamples& s, double xi)
     const double gamma = (low + high) / 2;
     TGainFit fit;
     const Eigen::ArrayXd slope = gamma * (1 + xi * cos) / (cos + xi).square();
-    if (!(gamma > 0) || (slope < 0.5 * s.slope.array()).any()) return fit;
+    if (!(gamma > 0) || !s.steepEnough(slope)) return fit;
     fit.gamma = gamma;
     fit.cost = largestError(gamma);
     return fit;
@@ -81,30 +81,16 @@ TUnifiedSphereFit fitUnifiedSphere(const mrpt::img::TCamera& calibration, double
         if (!tryPoint(best_t + step) && !tryPoint(best_t - step)) step /= 2;
     }
 
-    TUnifiedSphereFit result;
-    UnifiedSphereCamera& camera = result.camera;
+    UnifiedSphereCamera camera;
     camera.xi = best_t / (1 - best_t);
     camera.fx = best.gamma;
     camera.fy = best.gamma * calibration.fy() / calibration.fx();
     camera.cx = calibration.cx();
     camera.cy = calibration.cy();
     camera.skew = 0;
-    camera.width = static_cast<int>(calibration.ncols);
-    camera.height = static_cast<int>(calibration.nrows);
-    camera.max_theta = theta_max;
-    const auto error = radial.errorOf(
-        [&camera](double theta) {
-            return camera.fx * UnifiedSphereCamera::normalizedRadius(theta, camera.xi);
-        },
-        theta_max);
-    result.max_error_px = error.px;
-    result.max_error_deg = error.deg;
-    try {
-        camera.validate();
-    } catch (const std::exception& e) {
-        throw std::invalid_argument(std::string("the fitted model is not valid: ") + e.what());
-    }
-    return result;
+    return radial.fitted(camera, theta_max, [](const UnifiedSphereCamera& model, double theta) {
+        return model.fx * UnifiedSphereCamera::normalizedRadius(theta, model.xi);
+    });
 }
 
 }  // namespace mrpt_vslam::core

@@ -3,9 +3,20 @@
 #include <mrpt/img/TCamera.h>
 
 #include <Eigen/Core>
+#include <exception>
 #include <functional>
+#include <stdexcept>
+#include <string>
 
 namespace mrpt_vslam::core {
+
+/// A camera model fitted to a calibration, with its largest errors (RadialCalibration::TError).
+template <class Model>
+struct TCameraFit {
+    Model camera;
+    double max_error_px = 0;   ///< largest |r − fx ρ| over the field of view [px]
+    double max_error_deg = 0;  ///< the largest error in θ it makes [deg]
+};
 
 /** A camera calibration in MRPT's form (`mrpt::img::TCamera`, as `camera-calib` and the
  *  grabbers store it in each `CObservationImage`) as a radial model: a ray at angle θ from the
@@ -17,7 +28,7 @@ namespace mrpt_vslam::core {
  *    (1 + k4 t² + k5 t⁴ + k6 t⁶), t = tan θ.
  *  The project's camera models are radial too, with the same principal point and aspect
  *  fy / fx: fitPajdlaBakstein() and fitUnifiedSphere() fit their radius r(θ) to fx ρ(θ) over
- *  fieldOfView(), and errorOf() gives the fit's largest errors. */
+ *  fieldOfView(), and fitted() completes the model with its largest errors (errorOf()). */
 class RadialCalibration {
   public:
     /** \throw std::invalid_argument naming the problem: no focal lengths (fx, fy > 0), no image
@@ -38,6 +49,12 @@ class RadialCalibration {
     /// radius() and its slope dr/dθ at n angles evenly over (0, theta_max].
     struct TSamples {
         Eigen::VectorXd theta, radius, slope;
+        /// Whether a model's slopes at the samples are at least half these: a flatter model
+        /// would turn a pixel's error into a large error in θ.
+        bool steepEnough(const Eigen::ArrayXd& model_slope) const
+        {
+            return (model_slope >= 0.5 * slope.array()).all();
+        }
     };
     TSamples samples(double theta_max, int n) const;
 
@@ -49,16 +66,28 @@ class RadialCalibration {
     /// The errors of a model's radius r(θ) [px], increasing on [0, theta_max], over [0, theta_max].
     TError errorOf(const std::function<double(double)>& model_radius, double theta_max) const;
 
+    /** A model fitted to the calibration (`radius(camera, θ)`: its r(θ) [px]), with the image
+     *  size set to the calibration's and the field of view to `theta_max`, its errors
+     *  (errorOf()) and its check (`validate()`).
+     *  \throw std::invalid_argument if the model is not valid. */
+    template <class Model, class Radius>
+    TCameraFit<Model> fitted(Model camera, double theta_max, const Radius& radius) const
+    {
+        camera.width = static_cast<int>(m_calibration.ncols);
+        camera.height = static_cast<int>(m_calibration.nrows);
+        camera.max_theta = theta_max;
+        try {
+            camera.validate();
+        } catch (const std::exception& e) {
+            throw std::invalid_argument(std::string("the fitted model is not valid: ") + e.what());
+        }
+        const TError error =
+            errorOf([&camera, &radius](double theta) { return radius(camera, theta); }, theta_max);
+        return {camera, error.px, error.deg};
+    }
+
   private:
     mrpt::img::TCamera m_calibration;
-};
-
-/// A camera model fitted to a calibration, with its largest errors (RadialCalibration::TError).
-template <class Model>
-struct TCameraFit {
-    Model camera;
-    double max_error_px = 0;   ///< largest |r − fx ρ| over the field of view [px]
-    double max_error_deg = 0;  ///< the largest error in θ it makes [deg]
 };
 
 }  // namespace mrpt_vslam::core
