@@ -144,7 +144,8 @@ TEST_F(ViewSLAMApp, TemplateRunsOnBothFormatsWithoutLabels)
 // and maps as with the right [Camera]. Measured (120 frames, seed 1): ATE 0.119 m with the
 // right [Camera], 0.098 m from the images' calibration, 0.156 m with the template's [Camera]
 // (camera_model = config), whose gate refuses 102 of 288 estimated observations (the right
-// model's 2 of 192).
+// model's 2 of 192). The warnings name the model in use: [Camera], or the images' calibration
+// (one whose principal point is 8 px off).
 TEST_F(ViewSLAMApp, CameraModelComesFromTheImagesCalibration)
 {
     const std::string lens =
@@ -212,6 +213,20 @@ TEST_F(ViewSLAMApp, CameraModelComesFromTheImagesCalibration)
     EXPECT_EQ(wrongWarnings[0].get<std::string>().rfind("accepted observations between images", 0),
               0u)
         << wrongWarnings;
+    EXPECT_NE(wrongWarnings[0].get<std::string>().find("check [Camera] (its principal point"),
+              std::string::npos)
+        << wrongWarnings;
+    // a calibration whose principal point is 8 px off: the warning names it, not [Camera]
+    const std::string offCentre =
+        rewrite("off-centre", [](size_t, mrpt::img::TCamera& c) { c.cx(c.cx() + 8); });
+    const auto [off, offRun] = runOn("lens-off-centre", offCentre, "-q");
+    ASSERT_EQ(offRun.exit_code, 0) << offRun.out;
+    const auto offWarnings = json(off + "/run.json")["warnings"];
+    ASSERT_FALSE(offWarnings.empty());
+    EXPECT_NE(offWarnings[0].get<std::string>().find(
+                  "check the images' calibration (its principal point"),
+              std::string::npos)
+        << offWarnings;
 
     // an image whose calibration is not the first one's stops the run, naming its frame
     const std::string changed = rewrite("changed", [](size_t image, mrpt::img::TCamera& c) {

@@ -74,6 +74,8 @@ class ImagesCameraModel {
         if (m_images) return &m_images->second.camera;
         return m_decided ? &m_config : nullptr;
     }
+    /// What a warning tells the user to check: "[Camera]", or "the images' calibration".
+    std::string name() const { return m_images ? "the images' calibration" : "[Camera]"; }
     /// The fit, when the images' calibration is the model.
     const TFit* fit() const { return m_images ? &m_images->second : nullptr; }
 

@@ -323,11 +323,11 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
         if (10 * smoothed->outliers > smoothed->bearings)
             report.addWarning(mrpt::format(
                 "after smoothing, %zu of the %zu bearings lie beyond %g sigma of their lights "
-                "(about 1 in %.0f would with the camera right): check [Camera] and the camera "
-                "pose on the robot; filter_path%s.tum holds the filter's own path "
+                "(about 1 in %.0f would with the camera right): check %s and the camera pose "
+                "on the robot; filter_path%s.tum holds the filter's own path "
                 "(doc/omni-fastslam.md)",
                 smoothed->outliers, smoothed->bearings, smootherOptions.huber,
-                1 / smoothed->outlier_probability, suffix.c_str()));
+                1 / smoothed->outlier_probability, cameraModel->name().c_str(), suffix.c_str()));
         if (smoothed->lights_with_filter_covariance > 0)
             report.addWarning(mrpt::format(
                 "after smoothing, the least-squares covariance of %zu lights is not positive "
@@ -362,9 +362,9 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     if (2 * associated < measurements)
         report.addWarning(mrpt::format(
             "the best particle associated %zu of the %zu bearings with a light: the path is "
-            "almost the odometry's; check [Camera], [LightDetector] and the camera pose on the "
+            "almost the odometry's; check %s, [LightDetector] and the camera pose on the "
             "robot (doc/omni-fastslam.md)",
-            associated, measurements));
+            associated, measurements, cameraModel->name().c_str()));
     report.setCount("particles", filter->particlesCount());
     report.setCount("landmarks", (smoothed ? smoothed->map : best.map).landmarks().size());
     report.setCount("candidates", best.map.candidates().size());

@@ -303,10 +303,10 @@ void ViewSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
         report.addWarning(mrpt::format(
             "accepted observations between images: %zu in %zu frames (%zu attempted, %zu "
             "estimated; the simulated rooms accept about 98 %% of those estimated): the images "
-            "correct the odometry little or wrongly; check [Camera] (its principal point and "
-            "xi), the camera pose on the robot, [Features] and [ViewObserver] against the images "
+            "correct the odometry little or wrongly; check %s (its principal point and xi), the "
+            "camera pose on the robot, [Features] and [ViewObserver] against the images "
             "(doc/view-slam.md, Limits)",
-            accepted, framesWithImages, attempted, estimated));
+            accepted, framesWithImages, attempted, estimated, cameraModel->name().c_str()));
     reportCameraModel(report);
     // which camera pose the filter used: the config's, or the images' own
     const mrpt::poses::CPose3D rotation(
