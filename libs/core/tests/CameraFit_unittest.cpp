@@ -6,7 +6,7 @@
 #include <mrpt/img/TCamera.h>
 #include <mrpt_vslam/core/PajdlaBaksteinFit.h>
 #include <mrpt_vslam/core/UnifiedSphereFit.h>
-#include <mrpt_vslam/test/KannalaBrandtCalibration.h>
+#include <mrpt_vslam/test/CalibratedImages.h>
 
 #include <Eigen/Dense>
 #include <algorithm>

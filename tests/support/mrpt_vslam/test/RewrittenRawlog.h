@@ -1,6 +1,5 @@
 #pragma once
 
-#include <mrpt/img/TCamera.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CObservationImage.h>
 #include <mrpt/obs/CObservationOdometry.h>
@@ -72,24 +71,6 @@ inline void rewriteRawlog(const std::string& source, const std::string& rawlog,
         if (!inside) odo.odometry = pose;  // after the last frame: standing
         ar << odo;
     }
-}
-
-/** `source` with its images only, each carrying `calibration` as its `cameraParams`, as a camera
- *  driver records them (rewriteRawlog(): format #1, labels emptied); `change(k, c)` may alter
- *  the k-th image's. */
-inline void rewriteImagesWithCalibration(
-    const std::string& source, const std::string& rawlog, const mrpt::img::TCamera& calibration,
-    const std::function<void(size_t, mrpt::img::TCamera&)>& change = {})
-{
-    size_t image = 0;
-    rewriteRawlog(source, rawlog, false, true, [&](mrpt::obs::CObservation& o) {
-        auto* img = dynamic_cast<mrpt::obs::CObservationImage*>(&o);
-        if (!img) return false;
-        img->cameraParams = calibration;
-        if (change) change(image, img->cameraParams);
-        image++;
-        return true;
-    });
 }
 
 }  // namespace mrpt_vslam::test
