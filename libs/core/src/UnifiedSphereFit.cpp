@@ -25,11 +25,14 @@ TGainFit fitGain(const RadialCalibration::TSamples& s, double xi)
     const auto largestError = [&](double gamma) {
         return (gamma * shape - s.radius.array()).abs().maxCoeff();
     };
-    // The largest error is convex in γ: ternary search from the least-squares gain, whose
-    // largest error the minimum cannot exceed, so the minimum lies within a factor 2 of it.
+    // The largest error is convex in γ: ternary search. Its minimum E* is at most E of the
+    // least-squares gain, so at the sample of the largest shape s_k the best γ lies within
+    // (r_k ± E) / s_k.
     const double ls = (shape * s.radius.array()).sum() / shape.square().sum();
-    double low = ls / 2, high = 2 * ls;
-    for (int k = 0; k < 100; k++) {
+    Eigen::Index k;
+    const double s_k = shape.maxCoeff(&k), bound = largestError(ls);
+    double low = (s.radius[k] - bound) / s_k, high = (s.radius[k] + bound) / s_k;
+    for (int iteration = 0; iteration < 100; iteration++) {
         const double a = low + (high - low) / 3, b = high - (high - low) / 3;
         if (largestError(a) < largestError(b))
             high = b;

@@ -10,7 +10,7 @@
 
 namespace mrpt_vslam::core {
 
-/// A camera model fitted to a calibration, with its largest errors (RadialCalibration::TError).
+/// A camera model fitted to a calibration, with its largest errors (RadialCalibration::fitted()).
 template <class Model>
 struct TCameraFit {
     Model camera;
@@ -28,14 +28,13 @@ struct TCameraFit {
  *    (1 + k4 t² + k5 t⁴ + k6 t⁶), t = tan θ.
  *  The project's camera models are radial too, with the same principal point and aspect
  *  fy / fx: fitPajdlaBakstein() and fitUnifiedSphere() fit their radius r(θ) to fx ρ(θ) over
- *  fieldOfView(), and fitted() completes the model with its largest errors (errorOf()). */
+ *  fieldOfView(), and fitted() completes the model with its largest errors. */
 class RadialCalibration {
   public:
     /** \throw std::invalid_argument naming the problem: no focal lengths (fx, fy > 0), no image
      *  size, a value that is not finite, or tangential distortion (no radial model holds it). */
     explicit RadialCalibration(const mrpt::img::TCamera& calibration);
 
-    const mrpt::img::TCamera& calibration() const { return m_calibration; }
     /// ρ(θ) of the distortion model; NaN where it has none (the pinhole models at θ ≥ 90°).
     double normalizedRadius(double theta) const;
     /// [px] fx ρ(θ): the radius along the image's columns.
@@ -58,14 +57,6 @@ class RadialCalibration {
     };
     TSamples samples(double theta_max, int n) const;
 
-    /// A model's largest errors against the calibration.
-    struct TError {
-        double px = 0;  ///< largest |r − fx ρ| [px]
-        double deg = 0;  ///< largest error in θ it makes: θ' of r(θ') = fx ρ(θ), against θ [deg]
-    };
-    /// The errors of a model's radius r(θ) [px], increasing on [0, theta_max], over [0, theta_max].
-    TError errorOf(const std::function<double(double)>& model_radius, double theta_max) const;
-
     /** A model fitted to the calibration (`radius(camera, θ)`: its r(θ) [px]), with the image
      *  size set to the calibration's and the field of view to `theta_max`, its errors
      *  (errorOf()) and its check (`validate()`).
@@ -87,6 +78,14 @@ class RadialCalibration {
     }
 
   private:
+    /// A model's largest errors against the calibration.
+    struct TError {
+        double px = 0;  ///< largest |r − fx ρ| [px]
+        double deg = 0;  ///< largest error in θ it makes: θ' of r(θ') = fx ρ(θ), against θ [deg]
+    };
+    /// The errors of a model's radius r(θ) [px], increasing on [0, theta_max], over [0, theta_max].
+    TError errorOf(const std::function<double(double)>& model_radius, double theta_max) const;
+
     mrpt::img::TCamera m_calibration;
 };
 
