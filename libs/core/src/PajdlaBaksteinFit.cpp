@@ -1,3 +1,4 @@
+#include <mrpt_vslam/core/CompassSearch.h>
 #include <mrpt_vslam/core/PajdlaBaksteinFit.h>
 
 #include <Eigen/Dense>
@@ -45,7 +46,7 @@ TPajdlaBaksteinFit fitPajdlaBakstein(const mrpt::img::TCamera& calibration, doub
     const double theta_max = radial.fieldOfView(max_theta);
     const RadialCalibration::TSamples samples = radial.samples(theta_max, 400);
 
-    // (log b, log d): a grid, then a pattern search from its best point. Beyond 1e4 both
+    // (log b, log d): a grid, then a compass search from its best point. Beyond 1e4 both
     // terms are linear in θ to 1e-9 of r; below d = 0.05, sin(θ / d) turns more than 30 times
     // over the field of view.
     const double log_b_min = std::log(theta_max * 2 / M_PI * 1.001), log_max = std::log(1e4);
@@ -53,7 +54,7 @@ TPajdlaBaksteinFit fitPajdlaBakstein(const mrpt::img::TCamera& calibration, doub
     constexpr int kGrid = 80;
     const double step_b = (log_max - log_b_min) / (kGrid - 1);
     const double step_d = (log_max - log_d_min) / (kGrid - 1);
-    std::array<double, 2> best{}, step{step_b, step_d};
+    std::array<double, 2> best{};
     TLinearFit bestFit;
     const auto tryPoint = [&](double log_b, double log_d) {
         if (log_b < log_b_min || log_b > log_max || log_d < log_d_min || log_d > log_max)
@@ -71,17 +72,8 @@ TPajdlaBaksteinFit fitPajdlaBakstein(const mrpt::img::TCamera& calibration, doub
         throw std::invalid_argument(
             "no increasing Pajdla-Bakstein model fits the calibration's radius");
     }
-    while (std::max(step[0], step[1]) > 1e-9) {
-        bool moved = false;
-        for (int axis = 0; axis < 2; axis++) {
-            for (const double sign : {1.0, -1.0}) {
-                auto p = best;
-                p[axis] += sign * step[axis];
-                moved = tryPoint(p[0], p[1]) || moved;
-            }
-        }
-        if (!moved) step = {step[0] / 2, step[1] / 2};
-    }
+    compassSearch(best, {step_b, step_d}, 1e-9,
+                  [&](const std::array<double, 2>& p) { return tryPoint(p[0], p[1]); });
 
     PajdlaBaksteinCamera camera;
     camera.a = bestFit.a;

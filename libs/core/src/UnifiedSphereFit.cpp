@@ -1,6 +1,8 @@
+#include <mrpt_vslam/core/CompassSearch.h>
 #include <mrpt_vslam/core/UnifiedSphereFit.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -74,15 +76,14 @@ TUnifiedSphereFit fitUnifiedSphere(const mrpt::img::TCamera& calibration, double
         return true;
     };
     constexpr int kGrid = 400;
-    double step = (t_high - t_low) / (kGrid - 1);
+    const double step = (t_high - t_low) / (kGrid - 1);
     for (int i = 0; i < kGrid; i++) tryPoint(t_low + i * step);
     if (!std::isfinite(best.cost)) {
         throw std::invalid_argument(
             "no increasing unified sphere model fits the calibration's radius");
     }
-    while (step > 1e-12) {
-        if (!tryPoint(best_t + step) && !tryPoint(best_t - step)) step /= 2;
-    }
+    compassSearch<1>({best_t}, {step}, 1e-12,
+                     [&](const std::array<double, 1>& t) { return tryPoint(t[0]); });
 
     UnifiedSphereCamera camera;
     camera.xi = best_t / (1 - best_t);

@@ -12,7 +12,8 @@ using TPajdlaBaksteinFit = TCameraFit<PajdlaBaksteinCamera>;
  *  calibration (RadialCalibration) up to `max_theta` [rad]: u0 = cx, β = fy / fx,
  *  v0 = cy / β, and r(θ) = a tan(θ / b) + c sin(θ / d) is fitted to fx ρ(θ) over the
  *  calibration's field of view (RadialCalibration::fieldOfView()): for given (b, d), a and c
- *  are linear least squares; (b, d) are searched on a grid and refined.
+ *  are linear least squares; (b, d) are searched on a grid and refined by a
+ *  compass search (compassSearch()).
  *  \throw std::invalid_argument naming the problem, for a calibration that RadialCalibration
  *  refuses or whose radius stops increasing within 5° of the axis. */
 TPajdlaBaksteinFit fitPajdlaBakstein(const mrpt::img::TCamera& calibration, double max_theta);

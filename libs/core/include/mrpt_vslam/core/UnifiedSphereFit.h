@@ -13,9 +13,10 @@ using TUnifiedSphereFit = TCameraFit<UnifiedSphereCamera>;
  *  as the calibration's, and r(θ) = γ sin θ / (cos θ + ξ), fx = γ, fitted to fx ρ(θ) over the
  *  calibration's field of view (RadialCalibration::fieldOfView()) with the least largest
  *  error: for a given ξ, γ by a ternary search (the largest error is convex in γ); ξ on a
- *  grid and refined, among the values whose model is one-to-one over the field of view
- *  (UnifiedSphereCamera::modelLimit()). The model has one shape parameter, so the largest
- *  error rather than the mean is what a user must know: it bounds every pixel's.
+ *  grid and refined by a compass search (compassSearch()), among the values whose model is
+ *  one-to-one over the field of view (UnifiedSphereCamera::modelLimit()). The model has one
+ *  shape parameter, so the largest error rather than the mean is what a user must know: it
+ *  bounds every pixel's.
  *  \throw std::invalid_argument naming the problem, for a calibration that RadialCalibration
  *  refuses or whose radius stops increasing within 5° of the axis. */
 TUnifiedSphereFit fitUnifiedSphere(const mrpt::img::TCamera& calibration, double max_theta);
