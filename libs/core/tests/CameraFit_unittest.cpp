@@ -15,6 +15,7 @@
 #include <optional>
 #include <random>
 #include <stdexcept>
+#include <string>
 
 using mrpt_vslam::core::fitPajdlaBakstein;
 using mrpt_vslam::core::fitUnifiedSphere;
@@ -244,5 +245,24 @@ TEST(CameraFit, RefusesWhatNoRadialModelHolds)
     for (const auto& cam : {noFocal, noSize, tangential, folding}) {
         EXPECT_THROW(fitPajdlaBakstein(cam, 1.5), std::invalid_argument);
         EXPECT_THROW(fitUnifiedSphere(cam, 1.5), std::invalid_argument);
+    }
+}
+
+// A barrel pinhole whose radius flattens at the edge of its field of view (k1 = -0.2: ρ stops
+// increasing at 52°): the unified sphere model fits it, the Pajdla-Bakstein fit turns down before
+// that edge and is refused, in one line (the model's own MRPT exception without its banner and
+// call stack) that says why.
+TEST(CameraFit, RefusesAModelThatTurnsDownInOneLine)
+{
+    auto barrel = calibration(640, 480, 300, 300, 319.5, 239.5);
+    barrel.setDistortionPlumbBob(-0.2, 0, 0, 0, 0);
+    EXPECT_LT(fitUnifiedSphere(barrel, 1.5).max_error_px, 6);
+    try {
+        (void)fitPajdlaBakstein(barrel, 1.5);
+        ADD_FAILURE() << "fitted";
+    } catch (const std::invalid_argument& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+        EXPECT_NE(message.find("r(theta) is not increasing"), std::string::npos) << message;
     }
 }

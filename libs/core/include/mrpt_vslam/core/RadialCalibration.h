@@ -1,6 +1,7 @@
 #pragma once
 
 #include <mrpt/img/TCamera.h>
+#include <mrpt_vslam/core/ErrorMessage.h>
 
 #include <Eigen/Core>
 #include <exception>
@@ -70,7 +71,7 @@ class RadialCalibration {
         try {
             camera.validate();
         } catch (const std::exception& e) {
-            throw std::invalid_argument(std::string("the fitted model is not valid: ") + e.what());
+            throw std::invalid_argument("the fitted model is not valid: " + oneLineMessage(e));
         }
         const TError error =
             errorOf([&camera, &radius](double theta) { return radius(camera, theta); }, theta_max);
