@@ -6,15 +6,16 @@
 # out/fuzz/TARGET/crashes/. Prints libFuzzer's last status line (executions, coverage), writes
 # the run's figures as the target's row of doc/results/fuzz.md (or $RESULTS), and exits non-zero
 # if the target crashed.
-# Usage: scripts/fuzz.sh TARGET SECONDS     TARGET: rawlog, config, text_files or filter_step
+# Usage: scripts/fuzz.sh TARGET SECONDS     TARGET: rawlog, config, text_files,
+#        filter_step or camera_fit
 # Environment: BUILD_DIR (default build-fuzz), JOBS, OUT (default out/fuzz), RESULTS.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 TARGET="${1:-}"
 SECONDS_TO_RUN="${2:-}"
 case "$TARGET" in
-  rawlog | config | text_files | filter_step) ;;
-  *) echo "usage: scripts/fuzz.sh rawlog|config|text_files|filter_step SECONDS" >&2; exit 2 ;;
+  rawlog | config | text_files | filter_step | camera_fit) ;;
+  *) echo "usage: scripts/fuzz.sh rawlog|config|text_files|filter_step|camera_fit SECONDS" >&2; exit 2 ;;
 esac
 [[ "$SECONDS_TO_RUN" =~ ^[0-9]+$ ]] || { echo "fuzz.sh: SECONDS must be a whole number" >&2; exit 2; }
 
@@ -57,6 +58,8 @@ timeout=60
 # corrupt count that fills its memory bound in small blocks takes minutes: not a hang
 [ "$TARGET" = rawlog ] && max_len=300000 && timeout=700
 [ "$TARGET" = config ] && max_len=20000
+# a fit takes well under a second: a slow one is a hang
+[ "$TARGET" = camera_fit ] && timeout=10
 cd "$OUT"
 set +e
 "$BUILD_DIR/fuzz/fuzz_$TARGET" "$OUT/corpus" -max_total_time="$SECONDS_TO_RUN" \
