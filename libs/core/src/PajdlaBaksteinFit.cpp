@@ -69,8 +69,7 @@ TPajdlaBaksteinFit fitPajdlaBakstein(const mrpt::img::TCamera& calibration, doub
         for (int j = 0; j < kGrid; j++) tryPoint(log_b_min + i * step_b, log_d_min + j * step_d);
     }
     if (!std::isfinite(bestFit.cost)) {
-        throw std::invalid_argument(
-            "no increasing Pajdla-Bakstein model fits the calibration's radius");
+        throw samples.noneSteepEnough("Pajdla-Bakstein");
     }
     compassSearch(best, {step_b, step_d}, 1e-9,
                   [&](const std::array<double, 2>& p) { return tryPoint(p[0], p[1]); });

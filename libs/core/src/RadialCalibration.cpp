@@ -1,4 +1,5 @@
 #include <mrpt/core/bits_math.h>
+#include <mrpt/core/format.h>
 #include <mrpt_vslam/core/RadialCalibration.h>
 
 #include <algorithm>
@@ -83,6 +84,14 @@ RadialCalibration::TSamples RadialCalibration::samples(double theta_max, int n) 
         s.slope[i] = (radius(theta + h) - radius(theta - h)) / (2 * h);
     }
     return s;
+}
+
+std::invalid_argument RadialCalibration::TSamples::noneSteepEnough(const std::string& model) const
+{
+    return std::invalid_argument(mrpt::format(
+        "no %s model has half the slope of the calibration's radius everywhere up to %.1f deg "
+        "from the axis",
+        model.c_str(), mrpt::RAD2DEG(theta[theta.size() - 1])));
 }
 
 RadialCalibration::TError RadialCalibration::errorOf(

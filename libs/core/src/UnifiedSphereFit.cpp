@@ -79,8 +79,7 @@ TUnifiedSphereFit fitUnifiedSphere(const mrpt::img::TCamera& calibration, double
     const double step = (t_high - t_low) / (kGrid - 1);
     for (int i = 0; i < kGrid; i++) tryPoint(t_low + i * step);
     if (!std::isfinite(best.cost)) {
-        throw std::invalid_argument(
-            "no increasing unified sphere model fits the calibration's radius");
+        throw samples.noneSteepEnough("unified sphere");
     }
     compassSearch<1>({best_t}, {step}, 1e-12,
                      [&](const std::array<double, 1>& t) { return tryPoint(t[0]); });

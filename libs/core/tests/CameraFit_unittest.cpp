@@ -266,3 +266,21 @@ TEST(CameraFit, RefusesAModelThatTurnsDownInOneLine)
         EXPECT_NE(message.find("r(theta) is not increasing"), std::string::npos) << message;
     }
 }
+
+// A barrel whose polynomial steepens towards the image's corners (k1 = -0.3, k2 = 0.1 at
+// f = 300 px: the slope at 57° is twice that of any unified sphere model) is refused by that
+// fit, naming the angle; up to 50° it is fitted (measured 2.88 px at most).
+TEST(CameraFit, RefusesACalibrationNoModelFollowsSteeplyEnough)
+{
+    auto barrel = calibration(640, 480, 300, 300, 319.5, 239.5);
+    barrel.setDistortionPlumbBob(-0.3, 0.1, 0, 0, 0);
+    try {
+        (void)fitUnifiedSphere(barrel, 1.5);
+        ADD_FAILURE() << "fitted";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_STREQ(e.what(),
+                     "no unified sphere model has half the slope of the calibration's radius "
+                     "everywhere up to 57.2 deg from the axis");
+    }
+    EXPECT_LT(fitUnifiedSphere(barrel, mrpt::DEG2RAD(50.0)).max_error_px, 3);
+}

@@ -15,7 +15,8 @@ using TPajdlaBaksteinFit = TCameraFit<PajdlaBaksteinCamera>;
  *  are linear least squares; (b, d) are searched on a grid and refined by a
  *  compass search (compassSearch()).
  *  \throw std::invalid_argument naming the problem, for a calibration that RadialCalibration
- *  refuses or whose radius stops increasing within 5° of the axis. */
+ *  refuses, whose radius stops increasing within 5° of the axis, or that no model follows
+ *  with half its slope everywhere over the field of view (TSamples::noneSteepEnough()). */
 TPajdlaBaksteinFit fitPajdlaBakstein(const mrpt::img::TCamera& calibration, double max_theta);
 
 }  // namespace mrpt_vslam::core

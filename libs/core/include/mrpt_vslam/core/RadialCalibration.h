@@ -55,6 +55,8 @@ class RadialCalibration {
         {
             return (model_slope >= 0.5 * slope.array()).all();
         }
+        /// The error of a fit in which no candidate `model` was steepEnough().
+        std::invalid_argument noneSteepEnough(const std::string& model) const;
     };
     TSamples samples(double theta_max, int n) const;
 

@@ -18,7 +18,8 @@ using TUnifiedSphereFit = TCameraFit<UnifiedSphereCamera>;
  *  shape parameter, so the largest error rather than the mean is what a user must know: it
  *  bounds every pixel's.
  *  \throw std::invalid_argument naming the problem, for a calibration that RadialCalibration
- *  refuses or whose radius stops increasing within 5° of the axis. */
+ *  refuses, whose radius stops increasing within 5° of the axis, or that no model follows
+ *  with half its slope everywhere over the field of view (TSamples::noneSteepEnough()). */
 TUnifiedSphereFit fitUnifiedSphere(const mrpt::img::TCamera& calibration, double max_theta);
 
 }  // namespace mrpt_vslam::core
