@@ -58,8 +58,6 @@ timeout=60
 # corrupt count that fills its memory bound in small blocks takes minutes: not a hang
 [ "$TARGET" = rawlog ] && max_len=300000 && timeout=700
 [ "$TARGET" = config ] && max_len=20000
-# a fit takes well under a second: a slow one is a hang
-[ "$TARGET" = camera_fit ] && timeout=10
 cd "$OUT"
 set +e
 "$BUILD_DIR/fuzz/fuzz_$TARGET" "$OUT/corpus" -max_total_time="$SECONDS_TO_RUN" \
