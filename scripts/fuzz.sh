@@ -90,7 +90,8 @@ if [ ! -f "$RESULTS" ]; then
     echo "(out/fuzz/TARGET/corpus, started from the shipped data); executions and coverage are those of"
     echo "the run the row names. Coverage: libFuzzer's instrumented edges (cov) and features (ft) at the"
     echo "end of the run. The rawlog target forks a validating child per input (as the apps do), hence"
-    echo "its few executions per second."
+    echo "its few executions per second; camera_fit fits two camera models per input, about a second per"
+    echo "input under the instrumentation."
     echo
     echo "| target | run (UTC) | commit | seconds | executions | executions/s | cov | ft | corpus | outcome |"
     echo "|---|---|---|---|---|---|---|---|---|---|"
