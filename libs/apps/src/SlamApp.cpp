@@ -40,7 +40,7 @@ void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
     // A turn of 3° or more, or a move of 0.15 m or more, 5 σ or more from 0 (a move: 5 times
     // its largest σ), warns, where the path tells the two apart (turn confounding < 4; 33-58 on
     // the circles of tests/multirobot_vslam_test.cpp). Correct sensors give turns of up to 1.4°
-    // on the simulated teams (their odometry's heading drift), moves of 0.4-0.7 m at 1-3 σ on
+    // on the simulated teams (their odometry's heading drift), moves of 0.3-0.5 m at 1-2 σ on
     // MRCLAM (doc/results/sensor-pose-check.md). A pitch or roll of 1° or more at 5 σ warns
     // too: correct cameras give up to 0.4° on the simulated teams, and a forward camera pitched
     // by 2° more than stated can put a path several times as far from the truth. So does a

@@ -44,12 +44,13 @@ struct TLinearized {
 const Eigen::Matrix2d S = (Eigen::Matrix2d() << 0, -1, 1, 0).finished();
 
 /// A pair's linearization, with its covariance C = A + B Q Bᵀ in two parts: that of its
-/// readings (A) and the odometry's Jacobian (B), and what the scale's gradient needs: ∂r/∂k
-/// itself and ∂B/∂k (its θ column; the others are 0).
+/// readings (A) and the odometry's Jacobian (B), and what the gradient needs: ∂r/∂k itself and
+/// ∂b/∂x, b B's θ column (the others do not depend on x).
 struct TPairLinearized : TLinearized<2> {
     Eigen::Matrix2d A;
     Eigen::Matrix<double, 2, 3> B;
-    Eigen::Vector2d dr_dk, dB_dk;
+    Eigen::Vector2d dr_dk;
+    Eigen::Matrix<double, 2, 4> dB;
 };
 
 TPairLinearized linearize(const TReadingPair& p, const TUnknowns& x)
@@ -72,7 +73,9 @@ TPairLinearized linearize(const TReadingPair& p, const TUnknowns& x)
     l.B.leftCols<2>().setIdentity();
     l.B.col(2) = S * Ru * pj;
     l.dr_dk = Rd * p.z_i - Ru * Rd * p.z_j;
-    l.dB_dk = S * Ru * Rd * p.z_j;
+    l.dB.leftCols<2>() = S * Ru;
+    l.dB.col(2) = S * Ru * S * (pj - t);
+    l.dB.col(3) = S * Ru * Rd * p.z_j;
     l.A = k * k * (Rd * p.R_i * Rd.transpose() + Ru * Rd * p.R_j * Rd.transpose() * Ru.transpose());
     l.C = l.A + l.B * p.Q * l.B.transpose();
     return l;
@@ -204,20 +207,24 @@ TSensorPoseCorrection TSensorPoseCorrection::estimate(
                     Q * (Eigen::Matrix3d::Identity() + K * Q).partialPivLu().inverse();
                 H -= G.transpose() * N * G;
                 const Eigen::Vector3d eta = N * Gr;
-                // k's gradient is that of rᵀ C(k)⁻¹ r with C's own dependence on k,
-                // sᵀ ∂r/∂k − ½ sᵀ (∂C/∂k) s, where ∂C/∂k = 2 A / k + ∂(B Q Bᵀ)/∂k: the
-                // expected Jacobian's, v / k, would share the odometry's noise with r (a
-                // bias of several per cent where that noise is large); weighed by C(k) the
-                // readings' noise does not bias it either (errors in variables)
-                Eigen::Vector3d Bs = Eigen::Vector3d::Zero(), dBs = Eigen::Vector3d::Zero();
+                // The gradient is that of rᵀ C(x)⁻¹ r with C's own dependence on x,
+                // sᵀ ∂r/∂x − ½ sᵀ (∂C/∂x) s (errors in variables): the noise of the readings
+                // and of the odometry is in the Jacobian as well as in r (I − Ru holds the
+                // odometry's turn), and without the second term an odometry turn as noisy as
+                // the turns between readings pulls t towards the points read and k off by
+                // tens of per cent. ∂C/∂x = ∂A/∂x + ∂(B Q Bᵀ)/∂x, ∂A/∂θ = S A − A S,
+                // ∂A/∂k = 2 A / k; ∂r/∂θ = S (v + r), ∂r/∂k = dr_dk.
+                Eigen::Vector3d Bs = Eigen::Vector3d::Zero();
+                TUnknowns dBs = TUnknowns::Zero();
                 for (const auto& [l, W] : members) {
-                    const Eigen::Vector2d sp = W * (l.r - l.B * eta);
+                    const Eigen::Vector2d sp = W * (l.r - l.B * eta), As = W.inverse() * sp;
                     g.head<3>() += l.J.leftCols<3>().transpose() * sp;
-                    g[3] += l.dr_dk.dot(sp) - sp.dot(W.inverse() * sp) / x[3];
+                    g[2] += (S * l.r).dot(sp) + (S * sp).dot(As);
+                    g[3] += l.dr_dk.dot(sp) - sp.dot(As) / x[3];
                     Bs += l.B.transpose() * sp;
-                    dBs[2] += l.dB_dk.dot(sp);
+                    dBs += l.dB.transpose() * sp;
                 }
-                g[3] -= dBs.dot(Q * Bs);
+                g -= dBs * (Q * Bs)[2];
             }
             for (const auto& b : bearings) add(linearize(b, x));
             if (!fit_scale) {  // k = 1 held: its row and column out

@@ -110,7 +110,9 @@ struct TSensorPoseCorrection {
      *  1 (readings whose scale is not the sensor's: points placed at a map's estimated heights).
      *  The pairs of the same two steps share one odometry error: each such group is weighed
      *  with the joint covariance of its residuals, not as independent pairs, which would count
-     *  the odometry's information once per point read. */
+     *  the odometry's information once per point read. The pairs' gradient takes that
+     *  covariance's own dependence on (t, θ, k) (errors in variables: the odometry's turn is
+     *  in t's Jacobian), so that a noisy turn does not bias the estimate. */
     static TSensorPoseCorrection estimate(const std::vector<TReadingPair>& pairs,
                                           const std::vector<TEarlierPoseBearing>& bearings = {},
                                           double huber = 3, bool fit_scale = true);
