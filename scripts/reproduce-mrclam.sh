@@ -15,11 +15,14 @@
 #   4. robots 1-3 with known poses (the Vicon poses as odometry) and three gates D0: what the
 #      association alone makes of the readings;
 #   5. robots 1-3 with known correspondences (associate_by_identity): the filter's paths when
-#      the association is right.
+#      the association is right;
+#   6. robots 1, 2 and 3 each alone from the template (range-bearing.ini), imported as a user
+#      would, with their odometry and with the Vicon poses as odometry: the paths, the map and
+#      the check of the sensor's pose.
 # (omni-fastslam's planar mode on robot 1: scripts/reproduce-omni-fastslam.sh.)
 # Writes the tables to doc/results/real-data.md (or $RESULTS) and the plots of section 2 to
 # doc/results/real-data/; run folders under out/reproduce-mrclam/ (or $OUT). Builds first
-# (scripts/setup.sh). Takes about 25 min on two cores (M = 2000 as shipped).
+# (scripts/setup.sh). Takes about 28 min on two cores (M = 2000 as shipped).
 # Environment: MRPT_VSLAM_MRCLAM_DIR (required: the folder of dataset 7's .dat files, see
 # doc/real-data.md), SEEDS (default 1 2 3 4 5), SINGLE_SEEDS (the seeds of the filters alone in
 # section 2, default 1 to 15), OUT, RESULTS.
@@ -282,6 +285,57 @@ for seed in $SEEDS; do
   read -r -a w <<< "${res##*|}"
   echo "| $seed | ${v[0]} | ${v[2]} | ${v[4]} | $(awk '/^landmarks:/ {print $4 " | " $6}' \
     "$dir/summary.txt") | ${w[5]} |"
+done
+
+echo
+# --- 6. one robot from the template (range-bearing.ini) ------------------------------------------
+# as a user imports one robot (no command delay, the importer's default noise) and runs the
+# template; once more with the Vicon poses as odometry, to tell the readings from the odometry
+for n in 1 2 3; do
+  import "single-r$n" "$n" 0
+  import "single-known-r$n" "$n" 0 --odometry-from-ground-truth
+done
+echo "## 6. One robot from the template (range-bearing.ini)"
+echo
+echo "\`mrclam2rawlog DATASET --robots N --out rN.rawlog\` (no command delay, the importer's noise:"
+echo "0.20 m, 3.5 deg), then \`multirobot-vslam range-bearing.ini rN.rawlog --set"
+echo "MultiRobotVSLAM.robots=RN\`, the template as shipped; odometry \"Vicon\": the same import with"
+echo "\`--odometry-from-ground-truth\`. RMSE of the estimate, after SE(2) alignment, and of the"
+echo "odometry; output map landmarks matched one-to-one within 0.5 m; and the check of the sensor's"
+echo "pose (doc/multirobot.md, \"Checking the sensor poses\"): the move and turn of the camera and the"
+echo "scale of its readings found (σ), and whether the run warned. The camera is at the robot's"
+echo "centre (section 1: the readings against Vicon)."
+echo
+echo "| robot | odometry | seed | RMSE [m] | aligned [m] | odometry [m] | landmarks (matched) | move found [m] | turn found [deg] | range scale | warned |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
+for n in 1 2 3; do
+  for variant in odometry Vicon; do
+    rawlog="$OUT/data/single-r$n.rawlog"
+    [ "$variant" = Vicon ] && rawlog="$OUT/data/single-known-r$n.rawlog"
+    for seed in $SEEDS; do
+      echo "section 6, R$n, $variant, seed $seed" >&2
+      dir="$OUT/single-$variant-r$n-seed$seed"
+      "$BIN/multirobot-vslam" "$CONFIGS/multirobot-vslam/range-bearing.ini" "$rawlog" --out "$dir" \
+        --quiet --seed "$seed" --set "MultiRobotVSLAM.robots=R$n"
+      "$BIN/vslam-eval" "$dir" --ground-truth "${rawlog%.rawlog}" --landmark-cutoff 0.5 \
+        > "$dir/summary.txt"
+      python3 - "$dir" "R$n" "$variant" "$seed" <<'PY'
+import json, re, sys
+d, robot, variant, seed = sys.argv[1:]
+s = open(d + "/summary.txt").read()
+ate = lambda what: re.search(robot + " " + what + r": +ATE RMSE ([0-9.]+)", s).group(1)
+lm = re.search(r"landmarks: +\d+ true, (\d+) estimated: (\d+) matched", s)
+run = json.load(open(d + "/run.json"))
+c = next(iter(run["results"]["sensor_pose_check"].values()))
+scale = ("%.2f (%.2f)" % (c["range_scale"], c["std_range_scale"])
+         if c["range_scale"] is not None else "—")
+print("| %s | %s | %s | %s | %s | %s | %s (%s) | %+.2f, %+.2f (%.2f, %.2f) | %+.1f (%.1f) | %s | %s |" % (
+    robot, variant, seed, ate("estimate"), ate("estimate aligned"), ate("odometry"), lm.group(1),
+    lm.group(2), *c["dx_dy_m"], *c["std_dx_dy_m"], c["dyaw_deg"], c["std_dyaw_deg"], scale,
+    "yes" if run.get("warnings") else "no"))
+PY
+    done
+  done
 done
 
 } > "$RESULTS.body"
