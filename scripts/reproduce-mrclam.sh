@@ -326,13 +326,13 @@ s = open(d + "/summary.txt").read()
 ate = lambda what: re.search(robot + " " + what + r": +ATE RMSE ([0-9.]+)", s).group(1)
 lm = re.search(r"landmarks: +\d+ true, (\d+) estimated: (\d+) matched", s)
 run = json.load(open(d + "/run.json"))
-c = next(iter(run["results"]["sensor_pose_check"].values()))
+sensor, c = next(iter(run["results"]["sensor_pose_check"].items()))
 scale = ("%.2f (%.2f)" % (c["range_scale"], c["std_range_scale"])
          if c["range_scale"] is not None else "—")
 print("| %s | %s | %s | %s | %s | %s | %s (%s) | %+.2f, %+.2f (%.2f, %.2f) | %+.1f (%.1f) | %s | %s |" % (
     robot, variant, seed, ate("estimate"), ate("estimate aligned"), ate("odometry"), lm.group(1),
     lm.group(2), *c["dx_dy_m"], *c["std_dx_dy_m"], c["dyaw_deg"], c["std_dyaw_deg"], scale,
-    "yes" if run.get("warnings") else "no"))
+    "yes" if any(w.startswith(sensor + ":") for w in run.get("warnings", [])) else "no"))
 PY
     done
   done
