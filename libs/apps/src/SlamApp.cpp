@@ -51,6 +51,10 @@ void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
                      kHeight = 0.1, kScale = 0.05;
     constexpr size_t kHeightLandmarks = 10;
     report.setPartTiming("sensor_pose_check", seconds);
+    // a JSON number, or null where not finite (a fit on degenerate readings)
+    const auto number = [](double v, int decimals) {
+        return std::isfinite(v) ? mrpt::format("%.*f", decimals, v) : std::string("null");
+    };
     std::string json;
     // per sensor: its line, what it is warned of, and the sensors its heights are off from
     enum class TWarning { none, pose, scale, tilt };
@@ -67,14 +71,17 @@ void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
         const double turnConfounding = d.turnConfounding();
         const bool scaleTold = d.scaleTold();
         json += mrpt::format(
-            "%s\"%s\": {\"pairs\": %zu, \"pairs_beyond_3_sigma\": %zu, \"dx_dy_m\": [%.4f, %.4f], "
-            "\"std_dx_dy_m\": [%.4f, %.4f], \"dyaw_deg\": %.3f, \"std_dyaw_deg\": %.3f, "
-            "\"dyaw_confounding\": %.2f, \"range_scale\": %s, \"std_range_scale\": %s, "
-            "\"range_scale_confounding\": %.2f",
-            json.empty() ? "" : ", ", sensor.c_str(), d.pairs, d.outlier_pairs, t[0], t[1],
-            std::sqrt(d.cov(0, 0)), std::sqrt(d.cov(1, 1)), turnDeg, turnStdDeg, turnConfounding,
-            scaleTold ? mrpt::format("%.4f", d.scale).c_str() : "null",
-            scaleTold ? mrpt::format("%.4f", d.scale_std).c_str() : "null", d.scale_confounding);
+            "%s\"%s\": {\"pairs\": %zu, \"pairs_beyond_3_sigma\": %zu, \"dx_dy_m\": [%s, %s], "
+            "\"std_dx_dy_m\": [%s, %s], \"dyaw_deg\": %s, \"std_dyaw_deg\": %s, "
+            "\"dyaw_confounding\": %s, \"range_scale\": %s, \"std_range_scale\": %s, "
+            "\"range_scale_confounding\": %s",
+            json.empty() ? "" : ", ", sensor.c_str(), d.pairs, d.outlier_pairs,
+            number(t[0], 4).c_str(), number(t[1], 4).c_str(),
+            number(std::sqrt(d.cov(0, 0)), 4).c_str(), number(std::sqrt(d.cov(1, 1)), 4).c_str(),
+            number(turnDeg, 3).c_str(), number(turnStdDeg, 3).c_str(),
+            number(turnConfounding, 2).c_str(), (scaleTold ? number(d.scale, 4) : "null").c_str(),
+            (scaleTold ? number(d.scale_std, 4) : "null").c_str(),
+            number(d.scale_confounding, 2).c_str());
         const std::string scaleFit =
             scaleTold
                 ? mrpt::format(" read at %.3f (std %.3f) times their range", d.scale, d.scale_std)
@@ -107,10 +114,11 @@ void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
                                   stdDeg = tilt->cov.diagonal().cwiseSqrt() * (180 / M_PI);
             json += mrpt::format(
                 ", \"tilt_landmarks\": %zu, \"tilt_readings\": %zu, "
-                "\"tilt_readings_beyond_3_sigma\": %zu, \"dpitch_droll_deg\": [%.3f, %.3f], "
-                "\"std_dpitch_droll_deg\": [%.3f, %.3f]",
-                tilt->points, tilt->readings, tilt->outlier_readings, deg[0], deg[1], stdDeg[0],
-                stdDeg[1]);
+                "\"tilt_readings_beyond_3_sigma\": %zu, \"dpitch_droll_deg\": [%s, %s], "
+                "\"std_dpitch_droll_deg\": [%s, %s]",
+                tilt->points, tilt->readings, tilt->outlier_readings, number(deg[0], 3).c_str(),
+                number(deg[1], 3).c_str(), number(stdDeg[0], 3).c_str(),
+                number(stdDeg[1], 3).c_str());
             fit += mrpt::format(
                 "; the heights of its readings of %zu landmarks fit best with it pitched by %.1f "
                 "deg (std %.1f) and rolled by %.1f deg (std %.1f), %zu of %zu readings beyond 3 "
@@ -123,9 +131,10 @@ void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
         std::string heightJson;
         std::vector<std::string> offFrom;
         for (const auto& [other, h] : heights) {
-            heightJson += mrpt::format(
-                "%s\"%s\": {\"landmarks\": %zu, \"dz_m\": %.4f, \"std_dz_m\": %.4f}",
-                heightJson.empty() ? "" : ", ", other.c_str(), h.points, h.dz, h.std_dz);
+            heightJson +=
+                mrpt::format("%s\"%s\": {\"landmarks\": %zu, \"dz_m\": %s, \"std_dz_m\": %s}",
+                             heightJson.empty() ? "" : ", ", other.c_str(), h.points,
+                             number(h.dz, 4).c_str(), number(h.std_dz, 4).c_str());
             fit += mrpt::format(
                 "; the %zu landmarks it shares with %s lie %.2f m (std %.2f) %s in its readings",
                 h.points, other.c_str(), std::abs(h.dz), h.std_dz, h.dz >= 0 ? "higher" : "lower");

@@ -141,6 +141,7 @@ TSensorPoseCorrection TSensorPoseCorrection::estimate(
     const std::vector<TReadingPair>& pairs, const std::vector<TEarlierPoseBearing>& bearings,
     double huber, bool fit_scale)
 {
+    bool holdScale = !fit_scale;
     const TUnknowns priorMean(0, 0, 0, 1), priorInfo(1.0, 1.0, 1.0 / (M_PI * M_PI), 1.0);
     const auto rho = [&](double n) {
         return huber > 0 && n > huber ? 2 * huber * n - huber * huber : n * n;
@@ -168,6 +169,99 @@ TSensorPoseCorrection TSensorPoseCorrection::estimate(
     for (auto& [steps, members] : bySteps) groups.push_back(std::move(members));
     using Matrix34 = Eigen::Matrix<double, 3, 4>;
     using Matrix4 = Eigen::Matrix<double, 4, 4>;
+    // An iterate's IRLS weights of the pairs and bearings, and the bearings' variances
+    struct THeld {
+        std::vector<double> pair_w, bearing_w, bearing_C;
+    };
+    const auto held = [&](const TUnknowns& x) {
+        THeld h;
+        for (const auto& p : pairs)
+            h.pair_w.push_back(weight(linearize(p, x).whitened().first.norm()));
+        for (const auto& b : bearings) {
+            const TLinearized<1> l = linearize(b, x);
+            h.bearing_C.push_back(l.C(0, 0));
+            h.bearing_w.push_back(weight(std::abs(l.r[0]) / std::sqrt(l.C(0, 0))));
+        }
+        return h;
+    };
+    // F = rᵀ C⁻¹ r over the groups of pairs and the bearings plus the prior's, with `h`'s
+    // weights and bearing variances; H its Gauss-Newton Hessian and g its gradient, both / 2
+    struct TNormalEquations {
+        double F;
+        Matrix4 H;
+        TUnknowns g;
+    };
+    const auto normalEquations = [&](const TUnknowns& x, const THeld& h) {
+        const TUnknowns d = x - priorMean;
+        TNormalEquations n{d.dot(priorInfo.cwiseProduct(d)), priorInfo.asDiagonal(),
+                           priorInfo.cwiseProduct(d)};
+        // A group's residuals r_p = (readings' part, covariance A_p) − B_p η share one
+        // odometry error η ~ N(0, Q): its information is Σ J_pᵀ W_p J_p less
+        // Gᵀ Q (I + K Q)⁻¹ G (Woodbury), W_p = w_p A_p⁻¹, K = Σ B_pᵀ W_p B_p,
+        // G = Σ B_pᵀ W_p J_p. A pair alone (w = 1): (A + B Q Bᵀ)⁻¹. Its gradient is
+        // Σ J_pᵀ s_p with s = C⁻¹ r: s_p = W_p (r_p − B_p η̂), η̂ = N Σ B_pᵀ W_p r_p.
+        for (const auto& group : groups) {
+            Eigen::Matrix3d K = Eigen::Matrix3d::Zero();
+            Matrix34 G = Matrix34::Zero();
+            Eigen::Vector3d Gr = Eigen::Vector3d::Zero();
+            std::vector<std::pair<TPairLinearized, Eigen::Matrix2d>> members;
+            for (const size_t i : group) {
+                const TPairLinearized l = linearize(pairs[i], x);
+                const Eigen::Matrix2d W = h.pair_w[i] * l.A.inverse();
+                n.F += l.r.dot(W * l.r);
+                n.H += l.J.transpose() * W * l.J;
+                K += l.B.transpose() * W * l.B;
+                G += l.B.transpose() * W * l.J;
+                Gr += l.B.transpose() * W * l.r;
+                members.emplace_back(l, W);
+            }
+            const Eigen::Matrix3d& Q = pairs[group.front()].Q;
+            const Eigen::Matrix3d N =
+                Q * (Eigen::Matrix3d::Identity() + K * Q).partialPivLu().inverse();
+            const Eigen::Vector3d eta = N * Gr;
+            n.F -= Gr.dot(eta);
+            n.H -= G.transpose() * N * G;
+            // The gradient is that of rᵀ C(x)⁻¹ r with C's own dependence on x,
+            // sᵀ ∂r/∂x − ½ sᵀ (∂C/∂x) s (errors in variables): the noise of the readings
+            // and of the odometry is in the Jacobian as well as in r (I − Ru holds the
+            // odometry's turn), and without the second term an odometry turn as noisy as
+            // the turns between readings pulls t towards the points read and k off by
+            // tens of per cent. ∂C/∂x = ∂A/∂x + ∂(B Q Bᵀ)/∂x, ∂A/∂θ = S A − A S,
+            // ∂A/∂k = 2 A / k; ∂r/∂θ = S (v + r), ∂r/∂k = dr_dk.
+            Eigen::Vector3d Bs = Eigen::Vector3d::Zero();
+            TUnknowns dBs = TUnknowns::Zero();
+            for (const auto& [l, W] : members) {
+                const Eigen::Vector2d sp = W * (l.r - l.B * eta), As = W.inverse() * sp;
+                n.g.head<3>() += l.J.leftCols<3>().transpose() * sp;
+                n.g[2] += (S * l.r).dot(sp) + (S * sp).dot(As);
+                n.g[3] += l.dr_dk.dot(sp) - sp.dot(As) / x[3];
+                Bs += l.B.transpose() * sp;
+                dBs += l.dB.transpose() * sp;
+            }
+            n.g -= dBs * (Q * Bs)[2];
+        }
+        for (size_t j = 0; j < bearings.size(); j++) {
+            const TLinearized<1> l = linearize(bearings[j], x);
+            const double info = h.bearing_w[j] / h.bearing_C[j];
+            n.F += info * l.r[0] * l.r[0];
+            n.H += info * l.J.transpose() * l.J;
+            n.g += info * l.J.transpose() * l.r[0];
+        }
+        if (holdScale) {  // k = 1: its row and column out
+            n.H.row(3).setZero();
+            n.H.col(3).setZero();
+            n.H(3, 3) = 1;
+            n.g[3] = 0;
+        }
+        return n;
+    };
+    // On a path of one curvature (a circle) readings shrunk to the sensor (k → 0) at the
+    // centre of the turns explain every pair, which then says only that the odometry turns
+    // about that point: where the path does not tell k from δ at the stated pose, k is held.
+    const TUnknowns stated(0, 0, 0, 1);
+    const Matrix4 statedH = normalEquations(stated, held(stated)).H;
+    const double scaleConfounding = statedH.inverse()(3, 3) * statedH(3, 3);
+    holdScale = holdScale || scaleConfounding >= kToldScaleConfounding;
     // from four turns: a sensor mounted a quarter or half turn off is found too
     std::optional<TSensorPoseCorrection> best;
     double bestCost = 0;
@@ -175,67 +269,18 @@ TSensorPoseCorrection TSensorPoseCorrection::estimate(
         TUnknowns x(0, 0, start, 1);
         Matrix4 H;
         for (int iteration = 0; iteration < 20; iteration++) {
-            H = priorInfo.asDiagonal();
-            TUnknowns g = priorInfo.cwiseProduct(x - priorMean);
-            const auto add = [&](const auto& l) {
-                const auto [e, Je] = l.whitened();
-                const double w = weight(e.norm());
-                H += w * Je.transpose() * Je;
-                g += w * Je.transpose() * e;
-            };
-            // A group's residuals r_p = (readings' part, covariance A_p) − B_p η share one
-            // odometry error η ~ N(0, Q): its information is Σ J_pᵀ W_p J_p less
-            // Gᵀ Q (I + K Q)⁻¹ G (Woodbury), W_p = w_p A_p⁻¹, K = Σ B_pᵀ W_p B_p,
-            // G = Σ B_pᵀ W_p J_p. A pair alone (w = 1): (A + B Q Bᵀ)⁻¹. Its gradient is
-            // Σ J_pᵀ s_p with s = C⁻¹ r: s_p = W_p (r_p − B_p η̂), η̂ = N Σ B_pᵀ W_p r_p.
-            for (const auto& group : groups) {
-                Eigen::Matrix3d K = Eigen::Matrix3d::Zero();
-                Matrix34 G = Matrix34::Zero();
-                Eigen::Vector3d Gr = Eigen::Vector3d::Zero();
-                std::vector<std::pair<TPairLinearized, Eigen::Matrix2d>> members;
-                for (const size_t i : group) {
-                    const TPairLinearized l = linearize(pairs[i], x);
-                    const Eigen::Matrix2d W = weight(l.whitened().first.norm()) * l.A.inverse();
-                    H += l.J.transpose() * W * l.J;
-                    K += l.B.transpose() * W * l.B;
-                    G += l.B.transpose() * W * l.J;
-                    Gr += l.B.transpose() * W * l.r;
-                    members.emplace_back(l, W);
-                }
-                const Eigen::Matrix3d& Q = pairs[group.front()].Q;
-                const Eigen::Matrix3d N =
-                    Q * (Eigen::Matrix3d::Identity() + K * Q).partialPivLu().inverse();
-                H -= G.transpose() * N * G;
-                const Eigen::Vector3d eta = N * Gr;
-                // The gradient is that of rᵀ C(x)⁻¹ r with C's own dependence on x,
-                // sᵀ ∂r/∂x − ½ sᵀ (∂C/∂x) s (errors in variables): the noise of the readings
-                // and of the odometry is in the Jacobian as well as in r (I − Ru holds the
-                // odometry's turn), and without the second term an odometry turn as noisy as
-                // the turns between readings pulls t towards the points read and k off by
-                // tens of per cent. ∂C/∂x = ∂A/∂x + ∂(B Q Bᵀ)/∂x, ∂A/∂θ = S A − A S,
-                // ∂A/∂k = 2 A / k; ∂r/∂θ = S (v + r), ∂r/∂k = dr_dk.
-                Eigen::Vector3d Bs = Eigen::Vector3d::Zero();
-                TUnknowns dBs = TUnknowns::Zero();
-                for (const auto& [l, W] : members) {
-                    const Eigen::Vector2d sp = W * (l.r - l.B * eta), As = W.inverse() * sp;
-                    g.head<3>() += l.J.leftCols<3>().transpose() * sp;
-                    g[2] += (S * l.r).dot(sp) + (S * sp).dot(As);
-                    g[3] += l.dr_dk.dot(sp) - sp.dot(As) / x[3];
-                    Bs += l.B.transpose() * sp;
-                    dBs += l.dB.transpose() * sp;
-                }
-                g -= dBs * (Q * Bs)[2];
-            }
-            for (const auto& b : bearings) add(linearize(b, x));
-            if (!fit_scale) {  // k = 1 held: its row and column out
-                H.row(3).setZero();
-                H.col(3).setZero();
-                H(3, 3) = 1;
-                g[3] = 0;
-            }
-            const TUnknowns step = -H.ldlt().solve(g);
-            x += step;
-            if (step.cwiseAbs().maxCoeff() < 1e-9) break;
+            const THeld h = held(x);
+            const TNormalEquations n = normalEquations(x, h);
+            H = n.H;
+            const TUnknowns step = -H.ldlt().solve(n.g);
+            // the step halved until F falls (Armijo): where the path has one curvature H is
+            // nearly singular, and the full step would leave for where F is not quadratic
+            double a = 1;
+            while (a > 1e-4 &&
+                   !(normalEquations(x + a * step, h).F <= n.F + 2e-4 * a * n.g.dot(step)))
+                a /= 2;
+            x += a * step;
+            if (a * step.cwiseAbs().maxCoeff() < 1e-9) break;
         }
         TSensorPoseCorrection c;
         c.pairs = pairs.size() + bearings.size();
@@ -243,8 +288,8 @@ TSensorPoseCorrection TSensorPoseCorrection::estimate(
         c.scale = x[3];
         const Matrix4 cov = H.inverse();
         c.cov = cov.topLeftCorner<3, 3>();
-        c.scale_std = fit_scale ? std::sqrt(cov(3, 3)) : std::numeric_limits<double>::infinity();
-        c.scale_confounding = cov(3, 3) * H(3, 3);
+        c.scale_std = holdScale ? std::numeric_limits<double>::infinity() : std::sqrt(cov(3, 3));
+        c.scale_confounding = scaleConfounding;
         const double f = cost(c);
         if (best && f >= bestCost) continue;
         best = c;

@@ -320,6 +320,34 @@ TEST(SensorPoseCorrection, TurnConfoundingTellsCirclesFromVariedPaths)
     }
 }
 
+// On a circle readings shrunk to the sensor (k → 0) at the circle's centre explain every pair
+// (the odometry then turns about that point): with the scale asked for, the path does not tell
+// it from the move at the stated pose, so it is held at 1, and the fit stays on the ridge of
+// turns and moves that fit the readings (few pairs beyond 3 σ, every figure finite), the
+// odometry's noise stated 5 times as wide as drawn (a model made for poorer odometry). There
+// full Gauss-Newton steps from the stated pose left the ridge: 255 of 828 pairs beyond 3 σ.
+TEST(SensorPoseCorrection, CirclesHoldTheScaleAndStayOnTheRidge)
+{
+    std::mt19937 rng(17);
+    for (const double sigma_u : {0.01, 0.002}) {
+        auto pairs = readingPairs({0, 0, 0}, 0.05, sigma_u, rng, true);
+        for (auto& p : pairs) p.Q *= 25;  // stated 5 times as wide as drawn
+        const auto c = TSensorPoseCorrection::estimate(pairs);
+        std::printf(
+            "circle, odometry %.3f m: turn confounding %.0f, scale confounding %.0f, %zu "
+            "of %zu pairs beyond 3 sigma\n",
+            sigma_u, c.turnConfounding(), c.scale_confounding, c.outlier_pairs, c.pairs);
+        EXPECT_EQ(c.scale, 1.0) << sigma_u;
+        EXPECT_TRUE(std::isinf(c.scale_std)) << sigma_u;
+        EXPECT_GT(c.scale_confounding, TSensorPoseCorrection::kToldScaleConfounding) << sigma_u;
+        EXPECT_GT(c.turnConfounding(), 10) << sigma_u;
+        EXPECT_TRUE(c.delta.allFinite() && c.cov.allFinite()) << sigma_u;
+        EXPECT_LT(c.delta.head<2>().norm(), 5) << sigma_u;
+        EXPECT_LT(static_cast<double>(c.outlier_pairs), 0.03 * static_cast<double>(c.pairs))
+            << sigma_u;
+    }
+}
+
 // A reading pairs with the same point's reading before it when that is at most max_gap steps
 // back, through the odometry of the steps between them composed: mean a ⊕ b, covariance
 // J_a Q_a J_aᵀ + J_b Q_b J_bᵀ.

@@ -97,17 +97,22 @@ struct TSensorPoseCorrection {
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();    ///< its covariance (k unknown too)
     double scale = 1;                                 ///< [-] k
     double scale_std = 0;  ///< [-] its σ (δ unknown too); ∞ where k was not fitted
-    /// k's variance over its variance were δ known: about 1 where the path tells the scale
-    /// from a turn and move of the sensor, large on paths of one curvature (circles)
+    /// k's variance over its variance were δ known, at the stated pose (δ = 0, k = 1): about 1
+    /// where the path tells the scale from a turn and move of the sensor, large on paths of one
+    /// curvature (circles); from kToldScaleConfounding on, k is held at 1
     double scale_confounding = 1;
+    static constexpr double kToldScaleConfounding = 4;
     size_t pairs = 0;          ///< reading pairs and bearings
     size_t outlier_pairs = 0;  ///< whitened residual beyond the Huber threshold
 
     /** Weighted least squares over `pairs` and `bearings` (Gauss-Newton; Huber on each one's
      *  whitened residual norm at `huber` σ; a weak prior N((0, 0, 0, 1), diag(1 m², 1 m², π²,
      *  1)) on (t, θ, k) keeps t solvable when the robot never turns and k when it never moves),
-     *  from θ = 0, ±π/2 and π and k = 1: the least cost is kept. Without `fit_scale`, k stays
-     *  1 (readings whose scale is not the sensor's: points placed at a map's estimated heights).
+     *  from θ = 0, ±π/2 and π and k = 1, each step halved until the cost falls: the least cost
+     *  is kept. Without `fit_scale`, k stays 1 (readings whose scale is not the sensor's: points
+     *  placed at a map's estimated heights), and so it does where the path does not tell k
+     *  from δ (scale_confounding): on a circle, readings shrunk to the sensor (k → 0) at the
+     *  circle's centre would explain every pair.
      *  The pairs of the same two steps share one odometry error: each such group is weighed
      *  with the joint covariance of its residuals, not as independent pairs, which would count
      *  the odometry's information once per point read. The pairs' gradient takes that
@@ -118,7 +123,7 @@ struct TSensorPoseCorrection {
                                           double huber = 3, bool fit_scale = true);
     /// Whether the readings tell k: fitted, with σ under half its prior's (1) (bearings alone
     /// do not), on a path that tells it from δ (scale_confounding < 4).
-    bool scaleTold() const { return scale_std < 0.5 && scale_confounding < 4; }
+    bool scaleTold() const { return scale_std < 0.5 && scale_confounding < kToldScaleConfounding; }
     /// The whitened residual of `p` with this correction.
     Eigen::Vector2d whitenedResidual(const TReadingPair& p) const;
     /// The whitened residual of `b` with this correction.
