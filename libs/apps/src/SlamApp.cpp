@@ -51,10 +51,6 @@ void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
                      kHeight = 0.1, kScale = 0.05;
     constexpr size_t kHeightLandmarks = 10;
     report.setPartTiming("sensor_pose_check", seconds);
-    // a JSON number, or null where not finite (a fit on degenerate readings)
-    const auto number = [](double v, int decimals) {
-        return std::isfinite(v) ? mrpt::format("%.*f", decimals, v) : std::string("null");
-    };
     std::string json;
     // per sensor: its line, what it is warned of, and the sensors its heights are off from
     enum class TWarning { none, pose, scale, tilt };
@@ -76,12 +72,14 @@ void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
             "\"dyaw_confounding\": %s, \"range_scale\": %s, \"std_range_scale\": %s, "
             "\"range_scale_confounding\": %s",
             json.empty() ? "" : ", ", sensor.c_str(), d.pairs, d.outlier_pairs,
-            number(t[0], 4).c_str(), number(t[1], 4).c_str(),
-            number(std::sqrt(d.cov(0, 0)), 4).c_str(), number(std::sqrt(d.cov(1, 1)), 4).c_str(),
-            number(turnDeg, 3).c_str(), number(turnStdDeg, 3).c_str(),
-            number(turnConfounding, 2).c_str(), (scaleTold ? number(d.scale, 4) : "null").c_str(),
-            (scaleTold ? number(d.scale_std, 4) : "null").c_str(),
-            number(d.scale_confounding, 2).c_str());
+            core::jsonNumber(t[0], 4).c_str(), core::jsonNumber(t[1], 4).c_str(),
+            core::jsonNumber(std::sqrt(d.cov(0, 0)), 4).c_str(),
+            core::jsonNumber(std::sqrt(d.cov(1, 1)), 4).c_str(),
+            core::jsonNumber(turnDeg, 3).c_str(), core::jsonNumber(turnStdDeg, 3).c_str(),
+            core::jsonNumber(turnConfounding, 2).c_str(),
+            (scaleTold ? core::jsonNumber(d.scale, 4) : "null").c_str(),
+            (scaleTold ? core::jsonNumber(d.scale_std, 4) : "null").c_str(),
+            core::jsonNumber(d.scale_confounding, 2).c_str());
         const std::string scaleFit =
             scaleTold
                 ? mrpt::format(" read at %.3f (std %.3f) times their range", d.scale, d.scale_std)
@@ -116,9 +114,9 @@ void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
                 ", \"tilt_landmarks\": %zu, \"tilt_readings\": %zu, "
                 "\"tilt_readings_beyond_3_sigma\": %zu, \"dpitch_droll_deg\": [%s, %s], "
                 "\"std_dpitch_droll_deg\": [%s, %s]",
-                tilt->points, tilt->readings, tilt->outlier_readings, number(deg[0], 3).c_str(),
-                number(deg[1], 3).c_str(), number(stdDeg[0], 3).c_str(),
-                number(stdDeg[1], 3).c_str());
+                tilt->points, tilt->readings, tilt->outlier_readings,
+                core::jsonNumber(deg[0], 3).c_str(), core::jsonNumber(deg[1], 3).c_str(),
+                core::jsonNumber(stdDeg[0], 3).c_str(), core::jsonNumber(stdDeg[1], 3).c_str());
             fit += mrpt::format(
                 "; the heights of its readings of %zu landmarks fit best with it pitched by %.1f "
                 "deg (std %.1f) and rolled by %.1f deg (std %.1f), %zu of %zu readings beyond 3 "
@@ -131,10 +129,10 @@ void reportSensorPoseChecks(const char* app, const char* read, const char* doc,
         std::string heightJson;
         std::vector<std::string> offFrom;
         for (const auto& [other, h] : heights) {
-            heightJson +=
-                mrpt::format("%s\"%s\": {\"landmarks\": %zu, \"dz_m\": %s, \"std_dz_m\": %s}",
-                             heightJson.empty() ? "" : ", ", other.c_str(), h.points,
-                             number(h.dz, 4).c_str(), number(h.std_dz, 4).c_str());
+            heightJson += mrpt::format(
+                "%s\"%s\": {\"landmarks\": %zu, \"dz_m\": %s, \"std_dz_m\": %s}",
+                heightJson.empty() ? "" : ", ", other.c_str(), h.points,
+                core::jsonNumber(h.dz, 4).c_str(), core::jsonNumber(h.std_dz, 4).c_str());
             fit += mrpt::format(
                 "; the %zu landmarks it shares with %s lie %.2f m (std %.2f) %s in its readings",
                 h.points, other.c_str(), std::abs(h.dz), h.std_dz, h.dz >= 0 ? "higher" : "lower");

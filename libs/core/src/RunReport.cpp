@@ -3,6 +3,7 @@
 #include <mrpt_vslam/core/Version.h>
 
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -156,6 +157,14 @@ std::string RunReport::isoTimeUtc(std::chrono::system_clock::time_point t)
     char buf[32];
     std::strftime(buf, sizeof(buf), "%Y-%m-%dT%H:%M:%SZ", &utc);
     return buf;
+}
+
+std::string jsonNumber(double v, int decimals)
+{
+    if (!std::isfinite(v)) return "null";
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", decimals, v);
+    return text;
 }
 
 }  // namespace mrpt_vslam::core

@@ -80,4 +80,8 @@ class RunReport {
     std::unique_ptr<Impl> m_impl;
 };
 
+/** `v` with `decimals` decimals as a number of setResultJson() text, or null where it is not
+ *  finite, as the report writes its own numbers. */
+std::string jsonNumber(double v, int decimals);
+
 }  // namespace mrpt_vslam::core
