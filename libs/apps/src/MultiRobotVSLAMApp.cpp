@@ -270,7 +270,7 @@ void MultiRobotVSLAMApp::Impl::findGroundTruth()
                                                         filterOptions.robots.size() == 1);
         groundTruth.emplace_back();
         if (!mrpt::system::fileExists(tum)) continue;
-        groundTruth.back() = core::TumTrajectory::load(tum);
+        groundTruth.back() = core::TumTrajectory::loadGroundTruth(tum);
         found++;
     }
     if (found == 0 && !args.groundTruth.empty()) {

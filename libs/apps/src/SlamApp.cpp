@@ -222,6 +222,8 @@ void SlamApp::initialize()
     if (args.listen.empty() && !mrpt::system::fileExists(rawlog))
         throw std::runtime_error(rawlog + ": cannot open rawlog");
     prepare();
+    // a landmark file the results would be scored against stops the run before it starts
+    if (const auto groundTruth = groundTruthName()) trueLandmarks(*groundTruth);
     if (args.gui) m_window = std::make_unique<LiveView>(name);
 }
 
@@ -393,7 +395,7 @@ std::optional<core::LandmarkFile> SlamApp::trueLandmarks(const std::string& grou
 {
     const std::string file = groundTruthPrefix + ".landmarks.txt";
     if (!mrpt::system::fileExists(file)) return std::nullopt;
-    return core::LandmarkFile::load(file);
+    return core::LandmarkFile::loadTrueLandmarks(file);
 }
 
 void SlamApp::drawLandmarks(mrpt::opengl::COpenGLScene& scene, const core::LandmarkFile& file)

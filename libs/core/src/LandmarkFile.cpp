@@ -52,6 +52,13 @@ TLandmark landmarkFromValues(const std::vector<double>& v, int line_order, bool 
 
 }  // namespace
 
+LandmarkFile LandmarkFile::loadTrueLandmarks(const std::string& file)
+{
+    auto truth = load(file);
+    if (truth.empty()) throw std::runtime_error(file + ": no landmarks");
+    return truth;
+}
+
 LandmarkFile LandmarkFile::load(const std::string& file)
 {
     std::ifstream in(file);

@@ -11,7 +11,7 @@ namespace mrpt_vslam::core {
 
 namespace {
 TTrajectoryResult evaluatePath(const std::string& file, const TumTrajectory& ground_truth,
-                               const TEvalParams& params)
+                               const std::string& ground_truth_file, const TEvalParams& params)
 {
     TTrajectoryResult r;
     r.file = file;
@@ -26,7 +26,7 @@ TTrajectoryResult evaluatePath(const std::string& file, const TumTrajectory& gro
         opts.align_se2 = true;
         r.aligned = evaluateTrajectory(r.path, ground_truth, opts);
     } catch (const std::runtime_error& e) {
-        throw std::runtime_error(file + ": " + e.what());
+        throw std::runtime_error(file + " against " + ground_truth_file + ": " + e.what());
     }
     return r;
 }
@@ -38,16 +38,17 @@ TEvalResult evaluateRun(const TEvalInputs& inputs, const TEvalParams& params)
     for (const auto& files : inputs.robots) {
         TRobotResult robot;
         robot.files = files;
-        robot.ground_truth = TumTrajectory::load(files.ground_truth);
-        if (robot.ground_truth.empty()) throw std::runtime_error(files.ground_truth + ": no poses");
-        robot.estimate = evaluatePath(files.estimate, robot.ground_truth, params);
+        robot.ground_truth = TumTrajectory::loadGroundTruth(files.ground_truth);
+        robot.estimate =
+            evaluatePath(files.estimate, robot.ground_truth, files.ground_truth, params);
         if (!files.odometry.empty())
-            robot.odometry = evaluatePath(files.odometry, robot.ground_truth, params);
+            robot.odometry =
+                evaluatePath(files.odometry, robot.ground_truth, files.ground_truth, params);
         result.robots.push_back(std::move(robot));
     }
     if (!inputs.map_file.empty()) result.map = LandmarkFile::load(inputs.map_file);
     if (!inputs.landmarks_gt.empty())
-        result.true_landmarks = LandmarkFile::load(inputs.landmarks_gt);
+        result.true_landmarks = LandmarkFile::loadTrueLandmarks(inputs.landmarks_gt);
     if (result.map && result.true_landmarks && !result.map->is_view_map)
         result.landmarks = evaluateLandmarks(
             result.map->landmarks, result.true_landmarks->landmarks, params.landmark_cutoff);

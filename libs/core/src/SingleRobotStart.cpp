@@ -27,7 +27,7 @@ void SingleRobotStart::resolve(const AppArguments& args, const std::string& rawl
     groundTruthPrefix = args.groundTruthPrefix(rawlog);
     m_file = groundTruthFileOf(groundTruthPrefix, robot, false);
     if (mrpt::system::fileExists(m_file))
-        groundTruth = TumTrajectory::load(m_file);
+        groundTruth = TumTrajectory::loadGroundTruth(m_file);
     else if (!args.groundTruth.empty())
         throw std::runtime_error("--ground-truth " + args.groundTruth +
                                  ": no such file: " + m_file);
@@ -35,7 +35,7 @@ void SingleRobotStart::resolve(const AppArguments& args, const std::string& rawl
 
 const mrpt::math::TPose2D& SingleRobotStart::atFirstStep(double t, const mrpt::math::TPose2D& u)
 {
-    if (m_from_ground_truth && groundTruth && !groundTruth->empty())
+    if (m_from_ground_truth && groundTruth)
         pose = groundTruthPoseAtStart(*groundTruth, t, u, m_file,
                                       "[" + m_section + "] initial_pose_from_ground_truth");
     return pose;

@@ -19,6 +19,13 @@ void TumTrajectory::push_back(double t, const mrpt::math::TPose3D& pose)
     poses.push_back(pose);
 }
 
+TumTrajectory TumTrajectory::loadGroundTruth(const std::string& file)
+{
+    auto truth = load(file);
+    if (truth.empty()) throw std::runtime_error(file + ": no poses");
+    return truth;
+}
+
 TumTrajectory TumTrajectory::load(const std::string& file)
 {
     std::ifstream in(file);

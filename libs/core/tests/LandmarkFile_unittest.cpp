@@ -143,3 +143,17 @@ TEST(LandmarkFile, MissingFileNamesTheFile)
     fs::remove(path);
     EXPECT_EQ(loadError(path).rfind(path + ":", 0), 0u);
 }
+
+// A map may be empty; the true landmarks may not (a run scores its map against them).
+TEST(LandmarkFile, TrueLandmarksWithoutALandmarkAreAnError)
+{
+    const auto path = writeTemp("empty.txt", "# id x y z\n");
+    EXPECT_TRUE(LandmarkFile::load(path).empty());
+    try {
+        LandmarkFile::loadTrueLandmarks(path);
+        ADD_FAILURE() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()), path + ": no landmarks");
+    }
+    EXPECT_EQ(LandmarkFile::loadTrueLandmarks(writeTemp("one.txt", "7 1 2 3\n")).size(), 1u);
+}

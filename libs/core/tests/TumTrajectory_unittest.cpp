@@ -115,6 +115,20 @@ TEST(TumTrajectory, MissingFileNamesTheFile)
     EXPECT_EQ(msg.rfind(path + ":", 0), 0u) << msg;
 }
 
+// A trajectory may be empty; a ground truth may not (nothing to start from or to score against).
+TEST(TumTrajectory, AGroundTruthWithoutPosesIsAnError)
+{
+    const auto path = writeTemp("empty.tum", "# timestamp x y z qx qy qz qw\n");
+    EXPECT_TRUE(TumTrajectory::load(path).empty());
+    try {
+        TumTrajectory::loadGroundTruth(path);
+        ADD_FAILURE() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()), path + ": no poses");
+    }
+    EXPECT_EQ(TumTrajectory::loadGroundTruth(writeTemp("one.tum", "1 0 0 0 0 0 0 1\n")).size(), 1u);
+}
+
 TEST(TumTrajectory, NearestIndexWithinTolerance)
 {
     TumTrajectory traj;

@@ -38,6 +38,8 @@ class LandmarkFile {
      *  a missing file, a malformed line, a non-finite value, a column count other than 3, 4 or 10,
      *  a change of column count, a non-integer or repeated id, or a negative variance. */
     static LandmarkFile load(const std::string& file);
+    /// load() of true landmarks, which must hold one: throws "FILE: no landmarks" otherwise.
+    static LandmarkFile loadTrueLandmarks(const std::string& file);
 
     /** Writes atomically `id x y z` per line, or the 10-column layout when every element has a
      *  covariance, with a `#` header naming the columns. */

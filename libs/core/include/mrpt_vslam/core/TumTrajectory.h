@@ -24,6 +24,8 @@ class TumTrajectory {
     /** Reads a TUM file. Throws std::runtime_error "FILE:LINE: reason" on a missing file, a
      *  malformed line, a non-finite value, a non-unit quaternion or non-increasing timestamps. */
     static TumTrajectory load(const std::string& file);
+    /// load() of a ground truth, which must hold a pose: throws "FILE: no poses" otherwise.
+    static TumTrajectory loadGroundTruth(const std::string& file);
 
     /** Writes the file atomically (to FILE.tmp, then renamed), with an optional `#` header. */
     void save(const std::string& file, const std::string& header_comment = {}) const;
