@@ -121,10 +121,10 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
     StereoFrontEnd::TFrameStats frontEnd;  ///< of the stereo pairs through the front-end
 
     void findGroundTruth();
-    /** One robot: the step's odometry alone (the best movement estimate of a rawlog's action
-     *  collection), stamped with the frame's time when the rawlog's action has none. */
+    /// One robot: the step's odometry alone (the best movement estimate of a rawlog's action
+    /// collection).
     static mrpt::obs::CActionCollection::Ptr singleRobotAction(
-        const mrpt::obs::CActionCollection& actions, const mrpt::obs::CSensoryFrame& frame);
+        const mrpt::obs::CActionCollection& actions);
     /// Stereo images → landmarks where images are the input; counts the landmark inputs.
     void prepareFrame(mrpt::obs::CSensoryFrame& sf);
     /// Each sensor's pose on its robot as its first observation the filter reads gives it
@@ -361,19 +361,12 @@ void MultiRobotVSLAMApp::Impl::prepareFrame(mrpt::obs::CSensoryFrame& sf)
 }
 
 mrpt::obs::CActionCollection::Ptr MultiRobotVSLAMApp::Impl::singleRobotAction(
-    const mrpt::obs::CActionCollection& actions, const mrpt::obs::CSensoryFrame& frame)
+    const mrpt::obs::CActionCollection& actions)
 {
     const auto move = actions.getBestMovementEstimation();
     auto one = mrpt::obs::CActionCollection::Create();
     if (!move) return one;  // the filter names what is missing
-    mrpt::obs::CActionRobotMovement2D copy(*move);
-    if (copy.timestamp == INVALID_TIMESTAMP)
-        for (const auto& obs : frame)
-            if (obs && obs->timestamp != INVALID_TIMESTAMP) {
-                copy.timestamp = obs->timestamp;
-                break;
-            }
-    one->insert(copy);
+    one->insert(*move);
     return one;
 }
 
@@ -458,13 +451,13 @@ void MultiRobotVSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
                                     mrpt::obs::CSensoryFrame& frame, core::RunTimer& timer)
 {
     const auto& robots = app.robots;
-    if (robots.size() == 1) actions = singleRobotAction(*actions, frame);
+    if (robots.size() == 1) actions = singleRobotAction(*actions);
     prepareFrame(frame);
     recordSensorPoses(frame);
     const double t = stepTime(actions->begin()->get()->timestamp);
     if (steps == 0) {
         for (size_t k = 0; k < robots.size(); k++)
-            if (startFromGroundTruth && groundTruth[k] && !groundTruth[k]->empty()) {
+            if (startFromGroundTruth && groundTruth[k]) {
                 const auto move =
                     std::dynamic_pointer_cast<mrpt::obs::CActionRobotMovement2D>(actions->get(k));
                 // (no movement: the filter's step says so)

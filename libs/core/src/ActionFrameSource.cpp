@@ -275,6 +275,18 @@ mrpt::obs::CActionCollection::Ptr ActionFrameSource::standingStill() const
     return actions;
 }
 
+void ActionFrameSource::stampAtFrameTime(mrpt::obs::CActionCollection& actions,
+                                         const mrpt::obs::CSensoryFrame& frame) const
+{
+    mrpt::Clock::time_point time = INVALID_TIMESTAMP;
+    for (const bool stepsOnly : {true, false})  // an observation of the steps first
+        for (const auto& obs : frame)
+            if (time == INVALID_TIMESTAMP && obs && (!stepsOnly || makesStep(*obs)))
+                time = obs->timestamp;
+    for (auto& action : actions)
+        if (action && action->timestamp == INVALID_TIMESTAMP) action->timestamp = time;
+}
+
 mrpt::obs::CActionCollection::Ptr ActionFrameSource::afterCarried(
     const mrpt::obs::CActionCollection& later) const
 {
@@ -321,6 +333,7 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
                 actions = m_carried ? m_carried : standingStill();
                 m_carried.reset();
                 frame = e.observations;
+                stampAtFrameTime(*actions, *frame);
                 return true;
             }
             if (!e.actions->getBestMovementEstimation()) throw noOdometryError(*e.actions, e.index);
@@ -331,6 +344,7 @@ bool ActionFrameSource::next(mrpt::obs::CActionCollection::Ptr& actions,
                 continue;
             }
             frame = e.observations;
+            stampAtFrameTime(*actions, *frame);
             return true;
         }
         if (e.time_barrier) {  // nothing more at the pending frame's time
@@ -394,11 +408,19 @@ void ActionFrameSource::addToPending(const mrpt::obs::CObservation::Ptr& obs, si
         m_pending_time = obs->timestamp;
         m_pending_is_step = false;
     }
-    m_pending->insert(obs);
     if (makesStep(*obs)) {
+        for (const auto& held : *m_pending)
+            if (held->sensorLabel == obs->sensorLabel &&
+                held->GetRuntimeClass() == obs->GetRuntimeClass())
+                throw std::runtime_error(
+                    entryName(entry) + ": " + ObservationSelector::nameOf(*obs) +
+                    mrpt::format(" at %.6f s, the time of an earlier reading of the same "
+                                 "sensor: two readings of one sensor at one time",
+                                 mrpt::Clock::toDouble(obs->timestamp)));
         checkStepObservation(*obs, entry);
         m_pending_is_step = true;
     }
+    m_pending->insert(obs);
 }
 
 }  // namespace mrpt_vslam::core

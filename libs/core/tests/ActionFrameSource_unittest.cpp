@@ -4,6 +4,7 @@
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CActionRobotMovement3D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
+#include <mrpt/obs/CObservationImage.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose2D.h>
@@ -109,6 +110,23 @@ class ObservationList : public mrpt_vslam::core::RawlogEntrySource {
     std::string m_name = "list";
 };
 
+/// "N steps" that `list` makes, stepping on `steps`, or the error that stops it.
+std::string messageOf(ObservationList list, const ObservationSelector& steps,
+                      std::vector<std::string> odometry_labels = {})
+{
+    ActionFrameSource source(list, {steps}, CActionRobotMovement2D::TMotionModelOptions(),
+                             std::move(odometry_labels));
+    CActionCollection::Ptr acts;
+    CSensoryFrame::Ptr sf;
+    size_t n = 0;
+    try {
+        while (source.next(acts, sf)) n++;
+    } catch (const std::runtime_error& e) {
+        return std::string(e.what());
+    }
+    return std::to_string(n) + " steps";
+}
+
 CObservation::Ptr odometry(const std::string& label, double t, double x)
 {
     auto o = CObservationOdometry::Create();
@@ -209,6 +227,28 @@ TEST(ActionFrameSource, AFrameWithoutAnActionBeforeItStandsStill)
         EXPECT_NEAR(steps[i].move.mean.x(), x[i], 1e-12) << "step " << i;
         EXPECT_EQ(steps[i].still, still[i]) << "step " << i;
     }
+}
+
+// Such a step is at the time of its frame, and so is one whose action has no timestamp.
+TEST(ActionFrameSource, AStepWithoutATimeIsAtItsFramesTime)
+{
+    const auto stamped = [](double t) {
+        CSensoryFrame sf;
+        sf.insert(CObservationImage::Create());  // no step on images, no time
+        sf.insert(bearings("", t));
+        return sf;
+    };
+    RawlogReader reader(writeRawlog(
+        "stamped.rawlog", [&](auto& ar) { ar << stamped(1.5) << forward(1.0) << stamped(2.5); }));
+    ActionFrameSource source(reader, {ObservationSelector::of<CObservationBearingRange>("")},
+                             CActionRobotMovement2D::TMotionModelOptions());
+    CActionCollection::Ptr acts;
+    CSensoryFrame::Ptr sf;
+    ASSERT_TRUE(source.next(acts, sf));
+    EXPECT_TRUE(ActionFrameSource::standsStill(*acts->getBestMovementEstimation()));
+    EXPECT_EQ(acts->begin()->get()->timestamp, mrpt::Clock::fromDouble(1.5));
+    ASSERT_TRUE(source.next(acts, sf));  // an action without a timestamp, the same
+    EXPECT_EQ(acts->begin()->get()->timestamp, mrpt::Clock::fromDouble(2.5));
 }
 
 // An action collection with no planar odometry (3D odometry, as simul-landmarks writes for a
@@ -503,20 +543,6 @@ TEST(ActionFrameSource, ANonFiniteSensorOrOdometryPoseIsNamed)
 // (a camera model; one robot's odometry) refuses a second sensor instead of mixing the two.
 TEST(ActionFrameSource, ASecondSensorWhereTheRunReadsOneIsNamed)
 {
-    const auto messageOf = [](ObservationList list, const ObservationSelector& steps,
-                              std::vector<std::string> odometry_labels = {}) {
-        ActionFrameSource source(list, {steps}, CActionRobotMovement2D::TMotionModelOptions(),
-                                 std::move(odometry_labels));
-        CActionCollection::Ptr acts;
-        CSensoryFrame::Ptr sf;
-        size_t n = 0;
-        try {
-            while (source.next(acts, sf)) n++;
-        } catch (const std::runtime_error& e) {
-            return std::string(e.what());
-        }
-        return std::to_string(n) + " steps";
-    };
     const auto oneSensor = ObservationSelector::ofOneSensor<CObservationBearingRange>("", "KEY");
     ObservationList cameras;
     cameras.observations = {odometry("ODO", 1, 0), bearings("A", 1), odometry("ODO", 2, 1),
@@ -537,4 +563,23 @@ TEST(ActionFrameSource, ASecondSensorWhereTheRunReadsOneIsNamed)
               "'R1_ODOM'): the run reads one robot's odometry (doc/your-own-data.md)");
     EXPECT_EQ(messageOf(team, ObservationSelector::of<CObservationBearingRange>(""), {"R1_ODOM"}),
               "1 steps");
+}
+
+// In format #2 the observations of one time make one frame; two of one sensor there are a fault
+// of the data, named, rather than one of them passed over.
+TEST(ActionFrameSource, TwoReadingsOfOneSensorAtOneTimeAreNamed)
+{
+    const auto read = [](std::vector<CObservation::Ptr> observations) {
+        ObservationList list;
+        list.observations = std::move(observations);
+        return messageOf(list, ObservationSelector::of<CObservationBearingRange>(""));
+    };
+    EXPECT_EQ(read({odometry("", 1, 0), bearings("", 1), odometry("", 2, 1), bearings("", 2),
+                    bearings("", 2)}),
+              "list: entry 4: CObservationBearingRange at 2.000000 s, the time of an earlier "
+              "reading of the same sensor: two readings of one sensor at one time");
+    // two sensors at one time make one frame
+    EXPECT_EQ(read({odometry("", 1, 0), bearings("A", 1), bearings("B", 1), odometry("", 2, 1),
+                    bearings("A", 2)}),
+              "2 steps");
 }

@@ -139,7 +139,8 @@ class ActionFrameSource {
      *  (throws for a pose that is not finite); of a second sensor (no labels), the error thrown
      *  at the next step. */
     void readOdometry(const mrpt::obs::CObservationOdometry& odo, size_t entry);
-    /// A format-#2 observation other than odometry, into the pending frame.
+    /** A format-#2 observation other than odometry, into the pending frame; throws for an
+     *  observation of the steps whose sensor (label and class) the frame already holds. */
     void addToPending(const mrpt::obs::CObservation::Ptr& obs, size_t entry);
     /// Whether the oldest closed frame has its odometry.
     bool frontReady() const;
@@ -155,6 +156,11 @@ class ActionFrameSource {
     static mrpt::obs::CActionRobotMovement2D standingMove();
     /// One standingMove() per robot.
     mrpt::obs::CActionCollection::Ptr standingStill() const;
+    /** Format #1: the actions without a timestamp (a standing step's; some writers stamp none)
+     *  take that of `frame`, the step's: of its first observation of the steps, else of its
+     *  first. */
+    void stampAtFrameTime(mrpt::obs::CActionCollection& actions,
+                          const mrpt::obs::CSensoryFrame& frame) const;
     /// `later`'s odometry after m_carried's, robot by robot (CPosePDFGaussian composition).
     mrpt::obs::CActionCollection::Ptr afterCarried(const mrpt::obs::CActionCollection& later) const;
 
