@@ -210,7 +210,7 @@ void SlamApp::initialize()
                 throw usageError(std::string("a config of ") + other.name + " ([" + other.section +
                                  "]), not of " + name + " ([" + m_section + "])");
     rawlog = args.resolveRawlog(cfg, m_section);
-    seed = args.resolveSeed(static_cast<uint32_t>(cfg.read_int(m_section, "random_seed", 0)));
+    seed = args.resolveSeed(cfg, m_section);
     loadConfig();
     // [MotionModel]: MRPT's Gaussian model, used for observation-only rawlogs
     try {

@@ -1,5 +1,6 @@
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/system/filesystem.h>
+#include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/EvalInputs.h>
 #include <mrpt_vslam/core/ParallelFor.h>
@@ -133,10 +134,15 @@ std::string AppArguments::defaultOutDir(const std::string& appName, const std::s
            mrpt::system::extractFileName(configFile);  // name without directory and extension
 }
 
-uint32_t AppArguments::resolveSeed(uint32_t config_seed) const
+uint32_t AppArguments::resolveSeed(const CheckedConfigFile& cfg, const std::string& section) const
 {
+    const std::string text = mrpt::system::trim(cfg.read_string(section, "random_seed", "0"));
+    const auto configured = parseDecimal(text, std::numeric_limits<uint32_t>::max());
+    if (!configured)  // read always, so that a wrong value is named with --seed too
+        throw UsageError(cfg.name() + ": [" + section + "] random_seed = " + text +
+                         ": expected an integer from 0 to 4294967295");
     if (seed != 0) return seed;
-    return config_seed != 0 ? config_seed : 1;
+    return *configured != 0 ? static_cast<uint32_t>(*configured) : 1;
 }
 
 std::string AppArguments::resolveRawlog(const CheckedConfigFile& cfg,

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 #include <mrpt_vslam/core/AppArguments.h>
+#include <mrpt_vslam/core/CheckedConfigFile.h>
 #include <mrpt_vslam/core/UsageError.h>
 #include <mrpt_vslam/core/Version.h>
 
@@ -7,6 +8,7 @@
 #include <vector>
 
 using mrpt_vslam::core::AppArguments;
+using mrpt_vslam::core::CheckedConfigFile;
 using mrpt_vslam::core::UsageError;
 
 namespace {
@@ -128,11 +130,29 @@ TEST(AppArguments, MalformedThreadCountsAreRejected)
 
 TEST(AppArguments, SeedResolutionPrefersCommandLineThenConfigThenOne)
 {
+    // the seed `a` resolves with a config [App] of `line`
+    const auto seedOf = [](const AppArguments& a, const std::string& line) {
+        CheckedConfigFile cfg;
+        cfg.loadText("[App]\n" + line + "\n", "a.ini");
+        return a.resolveSeed(cfg, "App");
+    };
     auto a = parseArgs({"x", "a.ini"});
-    EXPECT_EQ(a.resolveSeed(0), 1u);
-    EXPECT_EQ(a.resolveSeed(7), 7u);
+    EXPECT_EQ(seedOf(a, ""), 1u);
+    EXPECT_EQ(seedOf(a, "random_seed = 0"), 1u);
+    EXPECT_EQ(seedOf(a, "random_seed = 7"), 7u);
+    EXPECT_EQ(seedOf(a, "random_seed = 4294967295"), 4294967295u);
     a = parseArgs({"x", "a.ini", "--seed", "9"});
-    EXPECT_EQ(a.resolveSeed(7), 9u);
+    EXPECT_EQ(seedOf(a, "random_seed = 7"), 9u);
+    // a seed the config cannot hold is named, not wrapped, with --seed too
+    for (const std::string bad : {"-3", "4294967296", "1.5", "abc"}) {
+        try {
+            seedOf(a, "random_seed = " + bad);
+            ADD_FAILURE() << bad << ": no error";
+        } catch (const UsageError& e) {
+            const std::string named = "a.ini: [App] random_seed = " + bad + ": ";
+            EXPECT_EQ(std::string(e.what()).substr(0, named.size()), named) << e.what();
+        }
+    }
 }
 
 TEST(AppArguments, DefaultOutDirUsesConfigStem)

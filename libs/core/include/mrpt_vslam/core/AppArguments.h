@@ -52,9 +52,10 @@ class AppArguments {
     /** `out/<appName>-<config file name without directory and extension>`. */
     static std::string defaultOutDir(const std::string& appName, const std::string& configFile);
 
-    /** The seed to use: `--seed` if given (non-zero), else `config_seed` if non-zero, else 1.
-     *  \param config_seed the config's `random_seed` key (0 if absent). */
-    uint32_t resolveSeed(uint32_t config_seed) const;
+    /** The seed to use: `--seed` if given (non-zero), else the config's `[section]
+     *  random_seed` if non-zero, else 1. Throws UsageError naming the config unless that key
+     *  (0 if absent) is an integer from 0 to 2³² − 1. */
+    uint32_t resolveSeed(const CheckedConfigFile& cfg, const std::string& section) const;
 
     /** The rawlog to read: RAWLOG if given, else the config's `[section] rawlog_file`; with
      *  `--listen`, its address.
