@@ -268,6 +268,35 @@ TEST(VslamEval, RunFolderWithoutGroundTruthIsAnError)
     EXPECT_FALSE(fs::exists(run / "metrics.json"));
 }
 
+// A folder whose run stopped (run.json: completed false) holds nothing to evaluate; an option
+// value out of its range is a usage error (exit 2).
+TEST(VslamEval, AFailedRunOrAnOptionOutOfRangeIsRefused)
+{
+    const auto run = scratch().path() / "failed";
+    fs::create_directories(run);
+    makePath().save((run.parent_path() / "failed.groundtruth.tum").string());
+    makePath().save((run / "estimated_path.tum").string());
+    const auto gt = " --ground-truth " + (run.parent_path() / "failed").string();
+    std::ofstream(run / "run.json")
+        << nlohmann::json{{"completed", false}, {"error", "bad rawlog"}};
+    const auto r = runEval(run.string() + gt);
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.stderr_text, "vslam-eval: error: " + (run / "run.json").string() +
+                                 ": the run did not complete (bad rawlog): nothing to evaluate\n");
+    EXPECT_FALSE(fs::exists(run / "metrics.json"));
+
+    std::ofstream(run / "run.json") << nlohmann::json{{"completed", true}};
+    EXPECT_EQ(runEval(run.string() + gt).exit_code, 0);
+    for (const std::string option :
+         {"--landmark-cutoff 0", "--time-tolerance -1", "--heading-threshold-deg -5"}) {
+        const auto bad = runEval(run.string() + gt + " " + option);
+        EXPECT_EQ(bad.exit_code, 2) << option;
+        EXPECT_NE(bad.stderr_text.find(option.substr(0, option.find(' ')) + ": must be"),
+                  std::string::npos)
+            << bad.stderr_text;
+    }
+}
+
 // vslam-plot: a table of two series with error bars becomes a PNG; a malformed line is a
 // one-line error naming file and line, and no image is left behind.
 TEST(VslamPlot, PlotsTablesAndRejectsMalformedOnes)

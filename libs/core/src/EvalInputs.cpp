@@ -13,11 +13,11 @@ namespace mrpt_vslam::core {
 namespace fs = std::filesystem;
 namespace {
 
-/// `--ground-truth` from the parameters, else from RUN_DIR/run.json; "" when neither has it.
-std::string groundTruthArgument(const TEvalParams& p)
+/** RUN_DIR/run.json, null when there is none. Throws for one that is not JSON or that says the
+ *  run did not complete: a failed run's folder holds no result to evaluate. */
+nlohmann::json runReportOf(const std::string& run_dir)
 {
-    if (!p.ground_truth.empty() || p.run_dir.empty()) return p.ground_truth;
-    const auto runJson = (fs::path(p.run_dir) / "run.json").string();
+    const auto runJson = (fs::path(run_dir) / "run.json").string();
     if (!fs::exists(runJson)) return {};
     std::ifstream in(runJson);
     nlohmann::json j;
@@ -26,6 +26,20 @@ std::string groundTruthArgument(const TEvalParams& p)
     } catch (const nlohmann::json::exception& e) {
         throw std::runtime_error(runJson + ": invalid JSON: " + e.what());
     }
+    if (j.contains("completed") && j["completed"] == false)
+        throw std::runtime_error(runJson + ": the run did not complete" +
+                                 (j.contains("error") && j["error"].is_string()
+                                      ? " (" + j["error"].get<std::string>() + ")"
+                                      : std::string()) +
+                                 ": nothing to evaluate");
+    return j;
+}
+
+/// `--ground-truth` from the parameters, else from the run's report `j`; "" when neither has it.
+std::string groundTruthArgument(const TEvalParams& p, const nlohmann::json& j)
+{
+    if (!p.ground_truth.empty() || p.run_dir.empty()) return p.ground_truth;
+    const auto runJson = (fs::path(p.run_dir) / "run.json").string();
     if (!j.contains("ground_truth") || j["ground_truth"].is_null()) return {};
     if (!j["ground_truth"].is_string())
         throw std::runtime_error(runJson + ": key \"ground_truth\" must be a string");
@@ -95,7 +109,8 @@ TEvalInputs resolveInputs(const TEvalParams& p)
             throw UsageError("give RUN_DIR or --estimate FILE (see vslam-eval --help)");
         in.robots = robotsInRunDir(p.run_dir);
     }
-    const auto gtArg = groundTruthArgument(p);
+    const auto gtArg =
+        groundTruthArgument(p, p.run_dir.empty() ? nlohmann::json() : runReportOf(p.run_dir));
     if (gtArg.empty())
         throw std::runtime_error((p.run_dir.empty() ? p.estimate_file : p.run_dir) +
                                  ": no ground truth: pass --ground-truth or set \"ground_truth\" "

@@ -2,6 +2,7 @@
 #include <mrpt/core/format.h>
 #include <mrpt_vslam/core/MetricsJson.h>
 #include <mrpt_vslam/core/RunEvaluation.h>
+#include <mrpt_vslam/core/UsageError.h>
 
 #include <cmath>
 #include <filesystem>
@@ -57,11 +58,11 @@ TEvalResult evaluateRun(const TEvalInputs& inputs, const TEvalParams& params)
 
 TEvalResult evaluateRunFolder(const TEvalParams& params)
 {
-    if (!(params.landmark_cutoff > 0)) throw std::runtime_error("--landmark-cutoff: must be > 0");
-    if (!(params.time_tolerance >= 0)) throw std::runtime_error("--time-tolerance: must be >= 0");
-    if (std::isnan(params.after)) throw std::runtime_error("--after: must be a time [s]");
+    if (!(params.landmark_cutoff > 0)) throw UsageError("--landmark-cutoff: must be > 0");
+    if (!(params.time_tolerance >= 0)) throw UsageError("--time-tolerance: must be >= 0");
+    if (std::isnan(params.after)) throw UsageError("--after: must be a time [s]");
     if (!(params.heading_threshold_deg > 0))
-        throw std::runtime_error("--heading-threshold-deg: must be > 0");
+        throw UsageError("--heading-threshold-deg: must be > 0");
     const auto inputs = resolveInputs(params);
     auto result = evaluateRun(inputs, params);
     std::error_code ec;

@@ -48,7 +48,8 @@ std::string groundTruthPrefixOf(const std::string& name);
 std::string groundTruthFileOf(const std::string& prefix, const std::string& robot, bool only_robot);
 
 /** Finds the files to evaluate from the parameters: estimates in the run folder, ground truth
- *  from `--ground-truth` or run.json. Throws std::runtime_error "FILE: problem", or UsageError
+ *  from `--ground-truth` or run.json. Throws std::runtime_error "FILE: problem" (also for a run
+ *  folder whose run.json says the run did not complete), or UsageError
  *  when neither a run folder nor an estimate is given, or an estimate without an output folder. */
 TEvalInputs resolveInputs(const TEvalParams& params);
 

@@ -39,7 +39,8 @@ struct TEvalResult {
  *  \throw std::runtime_error "FILE: problem" on unreadable or unmatched inputs. */
 TEvalResult evaluateRun(const TEvalInputs& inputs, const TEvalParams& params);
 
-/** resolveInputs(), evaluateRun() and writeMetricsJson() into `<out_dir>/metrics.json`. */
+/** resolveInputs(), evaluateRun() and writeMetricsJson() into `<out_dir>/metrics.json`.
+ *  Throws UsageError for a parameter out of its range. */
 TEvalResult evaluateRunFolder(const TEvalParams& params);
 
 /** `result` for people: one line per trajectory (estimate, SE(2)-aligned estimate, odometry) and
