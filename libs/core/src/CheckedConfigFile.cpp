@@ -2,6 +2,7 @@
 #include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/AtomicFile.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
+#include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/UsageError.h>
 
 #include <algorithm>
@@ -28,8 +29,9 @@ bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefi
 
 /** Line of the first appearance of each (lower-case section, key) in INI text, with the same
  *  rules as MRPT's reader: `[section]` headers, `key = value` lines, and comment (`;`, `#`,
- *  `//`) and preprocessor (`@define`) lines skipped. Keys before any header belong to "".
- *  Any other line is an error naming `name` and the line, and so is a key set twice in a section
+ *  `//`) and preprocessor (`@define`, MRPT 2.5's only directive) lines skipped. Keys before any
+ *  header belong to "". Any other line is an error naming `name` and the line (MRPT's reader
+ *  passes over another `@` directive without a word), and so is a key set twice in a section
  *  (MRPT's reader would take the last one without a word). */
 std::map<std::pair<std::string, std::string>, int> keyLines(const std::string& text,
                                                             const std::string& name)
@@ -40,9 +42,13 @@ std::map<std::pair<std::string, std::string>, int> keyLines(const std::string& t
     for (int line_no = 1; std::getline(in, raw); ++line_no) {
         if (!raw.empty() && raw.back() == '\r') raw.pop_back();  // Windows line endings
         const std::string line = mrpt::system::trim(raw);
-        if (line.empty() || line[0] == ';' || line[0] == '#' || line[0] == '@' ||
-            startsWith(line, "//"))
-            continue;
+        if (line.empty() || line[0] == ';' || line[0] == '#' || startsWith(line, "//")) continue;
+        if (line[0] == '@') {
+            if (startsWith(line, "@define ") || startsWith(line, "@define\t")) continue;
+            throw UsageError(name + ": line " + std::to_string(line_no) + ": " +
+                             line.substr(0, line.find_first_of(" \t")) +
+                             " is not a directive MRPT's configs know (@define NAME VALUE)");
+        }
         const auto close = line.find(']');
         if (line[0] == '[' && close != std::string::npos) {
             section_as_written = mrpt::system::trim(line.substr(1, close - 1));
@@ -152,7 +158,11 @@ void CheckedConfigFile::loadText(const std::string& text, const std::string& nam
     // the byte order mark some Windows editors start a UTF-8 file with is not part of line 1
     const std::string bom = "\xEF\xBB\xBF";
     const std::string content = text.rfind(bom, 0) == 0 ? text.substr(bom.size()) : text;
-    CConfigFileMemory::setContent(content);
+    try {  // MRPT's preprocessor: @define, ${NAME}, $eval{...}, $env{...}
+        CConfigFileMemory::setContent(content);
+    } catch (const std::exception& e) {
+        throw UsageError(name + ": " + oneLineMessage(e));
+    }
     m_name = name;
     m_overrides = overrides;
     m_line_of_key = keyLines(content, name);

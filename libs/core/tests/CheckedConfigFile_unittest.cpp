@@ -335,12 +335,31 @@ TEST(CheckedConfigFile, LinesThatAreNotKeysSectionsOrCommentsAreErrors)
 {
     CheckedConfigFile cfg;
     EXPECT_NO_THROW(cfg.loadText("; c\n# c\n// c\n@define A 1\n\n[S]\nk = v\nempty =\n", "t.ini"));
-    for (const char* text : {"[S]\nk = v\nthis is not ini\n", "[S\nk = v\n", "[S]\n= v\n"}) {
+    for (const char* text : {"[S]\nk = v\nthis is not ini\n", "[S\nk = v\n", "[S]\n= v\n",
+                             "@include other.ini\n[S]\nk = v\n"}) {
         try {
             cfg.loadText(text, "t.ini");
             ADD_FAILURE() << text;
         } catch (const UsageError& e) {
             EXPECT_NE(std::string(e.what()).find("t.ini: line "), std::string::npos) << e.what();
+        }
+    }
+}
+
+// MRPT's preprocessor reads ${NAME} of @define; an error of it names the file, as a usage error.
+TEST(CheckedConfigFile, PreprocessorErrorsNameTheFile)
+{
+    CheckedConfigFile cfg;
+    cfg.loadText("@define N 7\n[S]\nk = ${N}\n", "t.ini");
+    EXPECT_EQ(cfg.read_int("S", "k", 0), 7);
+    for (const char* text : {"[S]\nk = ${NOPE}\n", "[S]\nk = $eval{2+}\n"}) {
+        try {
+            cfg.loadText(text, "t.ini");
+            ADD_FAILURE() << text;
+        } catch (const UsageError& e) {
+            const std::string what = e.what();
+            EXPECT_EQ(what.rfind("t.ini: ", 0), 0u) << what;
+            EXPECT_EQ(what.find('\n'), std::string::npos) << what;
         }
     }
 }
