@@ -37,10 +37,9 @@ std::vector<TBearingMeasurement> CCeilingLightsMap::measurementsFromObservation(
             fail(std::string(name) + " = " + mrpt::format("%g", v) + ": must be finite and >= 0");
     for (const auto& s : obs.sensedData) {
         const std::string which = "measurement of landmark " + std::to_string(s.landmarkID);
-        // a NaN range is "not measured" (bearing-only data); the filter does not use ranges
-        if (!std::isfinite(s.yaw) || !std::isfinite(s.pitch) || std::isinf(s.range))
-            fail(which + " has a non-finite bearing, pitch or range");
-        if (s.range < 0) fail(which + " has a negative range");
+        // the filter does not use ranges: any value (NaN, −1, ...) says "not measured"
+        if (!std::isfinite(s.yaw) || !std::isfinite(s.pitch))
+            fail(which + " has a non-finite bearing or pitch");
         if (sensorOptions.measurement_model == TMeasurementModelKind::Spherical && !(s.pitch < 0))
             fail(which + " has pitch " + mrpt::format("%g", mrpt::RAD2DEG(s.pitch)) +
                  " deg, at or below the camera's horizon: an upward camera sees ceiling lights "

@@ -159,8 +159,8 @@ class CCeilingLightsMap : public mrpt::maps::CMetricMap {
     /** (φ, θ) and Q of each entry of an `OMNICAM_BEARINGS` observation (φ = yaw, θ = π/2 +
      *  pitch); Q from the per-measurement covariances, else sensor_std_yaw/pitch, else the
      *  sensorOptions defaults. \throw std::runtime_error naming the sensor label and landmark
-     *  for a non-finite bearing or pitch, an infinite or negative range (NaN: not measured), a
-     * non-finite or negative covariance or sensor_std_*: never silently wrong input. */
+     *  for a non-finite bearing or pitch (ranges are not used, any value is fine), a non-finite
+     *  or negative covariance or sensor_std_*: never silently wrong input. */
     std::vector<TBearingMeasurement> measurementsFromObservation(
         const mrpt::obs::CObservationBearingRange& obs) const;
     /// log P_new = −log 2π − ½ log|Q| − p_new_mahalanobis2 / 2 (Sec. IV); planar: the same
