@@ -404,6 +404,10 @@ TEST_F(ViewSLAMApp, BadInputGivesOneLineErrors)
         2, "gate_probability");
     expectError(kConfig + " /nonexistent/x.rawlog -q --out " + out("e4"), 1,
                 "/nonexistent/x.rawlog: cannot open rawlog");
+    // a folder is refused as early, before the run folder is made
+    expectError(kConfig + " " MRPT_VSLAM_SOURCE_DIR "/datasets -q --out " + out("e4b"), 1,
+                "/datasets: cannot open rawlog (a folder)");
+    EXPECT_FALSE(std::filesystem::exists(out("e4b")));
     // A rawlog without omnidirectional images.
     expectError(kConfig + " " MRPT_VSLAM_SOURCE_DIR "/datasets/office-team/team2.rawlog -q --out " +
                     out("e5"),

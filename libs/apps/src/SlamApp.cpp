@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <opencv2/core/version.hpp>
 #include <stdexcept>
@@ -219,6 +220,8 @@ void SlamApp::initialize()
         throw configError(e);
     }
     cfg.throwIfUnreadKeys();
+    if (args.listen.empty() && std::filesystem::is_directory(rawlog))
+        throw std::runtime_error(rawlog + ": cannot open rawlog (a folder)");
     if (args.listen.empty() && !mrpt::system::fileExists(rawlog))
         throw std::runtime_error(rawlog + ": cannot open rawlog");
     prepare();
