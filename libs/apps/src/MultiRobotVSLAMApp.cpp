@@ -642,7 +642,7 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
     drawTeam(scene, map, app.estimatedPaths);
     for (size_t k = 0; k < app.robots.size(); k++)
         drawOdometryAndGroundTruth(scene, app.odometryPaths[k], groundTruth[k], app.robots[k]);
-    const auto landmarks = trueLandmarks(groundTruthPrefix);
+    const auto& landmarks = trueLandmarks(groundTruthPrefix);
     if (landmarks) drawLandmarks(scene, *landmarks);
 
     report.setCount("robots", static_cast<double>(app.robots.size()));

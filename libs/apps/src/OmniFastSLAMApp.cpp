@@ -345,7 +345,7 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
                                {{"camera", *check, std::nullopt, {}}}, checking.elapsedSeconds(),
                                report, args.quiet);
     drawOdometryAndGroundTruth(scene, app.odometryPath, start.groundTruth);
-    if (const auto landmarks = trueLandmarks(start.groundTruthPrefix))
+    if (const auto& landmarks = trueLandmarks(start.groundTruthPrefix))
         drawLandmarks(scene, *landmarks);
 
     report.setCount("frames", steps);

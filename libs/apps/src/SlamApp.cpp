@@ -394,11 +394,16 @@ void SlamApp::drawOdometryAndGroundTruth(mrpt::opengl::COpenGLScene& scene,
         scene.insert(core::trajectoryAsLines(*groundTruth, {0, 0, 0}, "ground truth" + suffix));
 }
 
-std::optional<core::LandmarkFile> SlamApp::trueLandmarks(const std::string& groundTruthPrefix)
+const std::optional<core::LandmarkFile>& SlamApp::trueLandmarks(
+    const std::string& groundTruthPrefix)
 {
-    const std::string file = groundTruthPrefix + ".landmarks.txt";
-    if (!mrpt::system::fileExists(file)) return std::nullopt;
-    return core::LandmarkFile::loadTrueLandmarks(file);
+    if (!m_trueLandmarks || m_trueLandmarks->first != groundTruthPrefix) {
+        const std::string file = groundTruthPrefix + ".landmarks.txt";
+        std::optional<core::LandmarkFile> landmarks;
+        if (mrpt::system::fileExists(file)) landmarks = core::LandmarkFile::loadTrueLandmarks(file);
+        m_trueLandmarks.emplace(groundTruthPrefix, std::move(landmarks));
+    }
+    return m_trueLandmarks->second;
 }
 
 void SlamApp::drawLandmarks(mrpt::opengl::COpenGLScene& scene, const core::LandmarkFile& file)

@@ -149,8 +149,9 @@ class SlamApp {
                                            const core::TumTrajectory& odometry,
                                            const std::optional<core::TumTrajectory>& groundTruth,
                                            const std::string& robot = "");
-    /// The true landmarks `NAME.landmarks.txt` of the ground truth `NAME`, if the file exists.
-    static std::optional<core::LandmarkFile> trueLandmarks(const std::string& groundTruthPrefix);
+    /// The true landmarks `NAME.landmarks.txt` of the ground truth `NAME`, if the file exists
+    /// (read once: initialize() reads them, to refuse a broken file before the run).
+    const std::optional<core::LandmarkFile>& trueLandmarks(const std::string& groundTruthPrefix);
     /// Landmarks as black crosses.
     static void drawLandmarks(mrpt::opengl::COpenGLScene& scene, const core::LandmarkFile& file);
     /// @}
@@ -202,6 +203,8 @@ class SlamApp {
     core::ActionFrameSource::TOdometryTiming m_odometryTiming;
     std::unique_ptr<LiveView> m_window;                      ///< --gui
     std::optional<mrpt::Clock::time_point> m_lastStepStamp;  ///< stepTime() of the step before
+    /// trueLandmarks() read: the ground truth's `NAME` and its landmarks
+    std::optional<std::pair<std::string, std::optional<core::LandmarkFile>>> m_trueLandmarks;
 };
 
 }  // namespace mrpt_vslam::apps
