@@ -215,7 +215,6 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
     try {
         filterOptions.loadFromConfigFile(cfg, kAppSection);
         smootherOptions.loadFromConfigFile(cfg, kSmootherSection);
-        pf.m_options.loadFromConfigFile(cfg, "ParticleFilter");
         frontEndOptions.loadFromConfigFile(cfg, kFrontEndSection);
         mapTemplate = particleMapTemplate<CVisualLandmarksMap>("visualLandmarksMap_count");
     } catch (const core::UsageError&) {
@@ -248,7 +247,7 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
         throw usageError("[MultiRobotVSLAM] filter_runs > 1 needs [" +
                          std::string(kSmootherSection) +
                          "] smooth_paths = true (runs are compared by their smoothed cost)");
-    checkParticleFilterOptions(
+    loadParticleFilterOptions(
         "pfStandardProposal (Gil et al. 2010, Sec. 3.1) or pfOptimalProposal (FastSLAM 2.0 "
         "proposal per robot)");
     if (!odometryLabel.empty() && filterOptions.robots.size() != 1)

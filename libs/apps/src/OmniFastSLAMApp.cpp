@@ -122,7 +122,6 @@ void OmniFastSLAMApp::Impl::loadConfig()
     try {
         filterOptions.loadFromConfigFile(cfg, kAppSection);
         if (!robot.empty()) filterOptions.bearings_label = robot + "_RB";
-        pf.m_options.loadFromConfigFile(cfg, "ParticleFilter");
         kld.loadFromConfigFile(cfg, "KLD_options");
         smootherOptions.loadFromConfigFile(cfg, kSmootherSection);
         try {
@@ -139,7 +138,7 @@ void OmniFastSLAMApp::Impl::loadConfig()
     } catch (const std::exception& e) {
         throw configError(e);
     }
-    checkParticleFilterOptions(
+    loadParticleFilterOptions(
         "pfOptimalProposal (FastSLAM 2.0) or pfStandardProposal (FastSLAM 1.0)", true);
     mapTemplate = particleMapTemplate<CCeilingLightsMap>("ceilingLightsMap_count");
 }

@@ -1,5 +1,7 @@
 #include "ParticleFilterApp.h"
 
+#include <mrpt_vslam/core/ConfigEnum.h>
+
 #include <cmath>
 #include <string>
 
@@ -11,10 +13,28 @@ ParticleFilterApp::ParticleFilterApp(core::AppArguments args, std::string name, 
     pf.setVerbosityLevel(mrpt::system::LVL_ERROR);
 }
 
-void ParticleFilterApp::checkParticleFilterOptions(const std::string& proposals,
-                                                   bool adaptive) const
+void ParticleFilterApp::loadParticleFilterOptions(const std::string& proposals, bool adaptive)
 {
-    const auto& o = pf.m_options;
+    using PF = mrpt::bayes::CParticleFilter;
+    constexpr const char* kSection = "ParticleFilter";
+    auto& o = pf.m_options;
+    try {
+        // checked before MRPT's loader, which asks for the keys of the algorithm named and
+        // asserts on the range with its own words
+        const auto algorithm = core::readEnum(cfg, kSection, "PF_algorithm", o.PF_algorithm);
+        if (algorithm != PF::pfStandardProposal && algorithm != PF::pfOptimalProposal)
+            throw usageError("[ParticleFilter] PF_algorithm must be " + proposals);
+        core::readEnum(cfg, kSection, "resamplingMethod", o.resamplingMethod);
+        const double range =
+            cfg.read_double(kSection, "max_loglikelihood_dyn_range", o.max_loglikelihood_dyn_range);
+        if (!(range > 0 && std::isfinite(range)))
+            throw usageError("[ParticleFilter] max_loglikelihood_dyn_range must be finite and > 0");
+        o.loadFromConfigFile(cfg, kSection);
+    } catch (const core::UsageError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw configError(e);
+    }
     if (o.sampleSize < 1 || o.sampleSize > kMaxParticles)
         throw usageError("[ParticleFilter] sampleSize must be 1 to " +
                          std::to_string(kMaxParticles));
@@ -24,13 +44,8 @@ void ParticleFilterApp::checkParticleFilterOptions(const std::string& proposals,
             "[0, 1]");
     if (!(o.powFactor > 0 && o.powFactor <= 1))
         throw usageError("[ParticleFilter] powFactor must be in (0, 1]");
-    if (!(o.max_loglikelihood_dyn_range > 0 && std::isfinite(o.max_loglikelihood_dyn_range)))
-        throw usageError("[ParticleFilter] max_loglikelihood_dyn_range must be finite and > 0");
     if (o.adaptiveSampleSize && !adaptive)
         throw usageError("[ParticleFilter] adaptiveSampleSize is not supported (use 0)");
-    using PF = mrpt::bayes::CParticleFilter;
-    if (o.PF_algorithm != PF::pfStandardProposal && o.PF_algorithm != PF::pfOptimalProposal)
-        throw usageError("[ParticleFilter] PF_algorithm must be " + proposals);
 }
 
 void ParticleFilterApp::filterStep(const mrpt::obs::CActionCollection& actions,

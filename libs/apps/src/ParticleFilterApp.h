@@ -26,12 +26,13 @@ class ParticleFilterApp : public SlamApp {
 
     /// The most particles a run may ask for (each carries a map).
     static constexpr size_t kMaxParticles = 100000;
-    /** Throws a usage error unless 1 <= sampleSize <= kMaxParticles, BETA is in [0, 1],
-     *  powFactor in (0, 1], max_loglikelihood_dyn_range finite and > 0, adaptiveSampleSize is off
-     *  and PF_algorithm is pfStandardProposal or pfOptimalProposal; `proposals` names these two
-     *  for the app. */
+    /** Loads `[ParticleFilter]` into pf.m_options. Throws a usage error unless PF_algorithm is
+     *  pfStandardProposal or pfOptimalProposal (`proposals` names these two for the app),
+     *  resamplingMethod one of MRPT's, max_loglikelihood_dyn_range finite and > 0,
+     *  1 <= sampleSize <= kMaxParticles, BETA in [0, 1], powFactor in (0, 1] and
+     *  adaptiveSampleSize off. */
     /// \param adaptive whether the filter implements adaptiveSampleSize (KLD-sampling)
-    void checkParticleFilterOptions(const std::string& proposals, bool adaptive = false) const;
+    void loadParticleFilterOptions(const std::string& proposals, bool adaptive = false);
 
     /// The map every particle starts from: the only map of `[MappingApplication]`, defined by
     /// `countKey` = 1.

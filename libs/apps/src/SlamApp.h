@@ -10,6 +10,7 @@
 #include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
+#include <mrpt_vslam/core/ErrorMessage.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/OutputDirectory.h>
@@ -112,10 +113,10 @@ class SlamApp {
         const std::string given = cfg.read_string(m_section, key, choices.front().first);
         for (const auto& [choice, value] : choices)
             if (given == choice) return value;
-        std::string names;
-        for (size_t i = 0; i < choices.size(); i++)
-            names += (i == 0 ? "" : i + 1 < choices.size() ? ", " : " or ") + choices[i].first;
-        throw usageError(ownKey(key) + " must be " + names + ", not '" + given + "'");
+        std::vector<std::string> names;
+        for (const auto& choice : choices) names.push_back(choice.first);
+        throw usageError(ownKey(key) + " must be " + core::listOfChoices(names) + ", not '" +
+                         given + "'");
     }
 
     /** For endSteps() when the rawlog gave no step: "<rawlog>: no frames with odometry and

@@ -302,7 +302,23 @@ TEST(OmniFastSLAMApp, RejectsImpossibleValuesNamingTheKey)
         {"ParticleFilter.BETA=-1", "BETA (the N_eff/N threshold of resampling) must be in"},
         {"ParticleFilter.powFactor=nan", "[ParticleFilter] powFactor = nan: not a finite number"},
         {"ParticleFilter.powFactor=0", "powFactor must be in (0, 1]"},
-        {"ParticleFilter.PF_algorithm=bogus", "Invalid value 'bogus'"},
+        {"ParticleFilter.PF_algorithm=bogus",
+         "[ParticleFilter] PF_algorithm must be pfStandardProposal, "
+         "pfAuxiliaryPFStandard, pfOptimalProposal or pfAuxiliaryPFOptimal, not 'bogus'"},
+        {"ParticleFilter.PF_algorithm=pfAuxiliaryPFOptimal",
+         "[ParticleFilter] PF_algorithm must be pfOptimalProposal (FastSLAM 2.0) or "
+         "pfStandardProposal (FastSLAM 1.0)"},
+        {"ParticleFilter.resamplingMethod=9",
+         "[ParticleFilter] resamplingMethod must be "
+         "prMultinomial, prResidual, prStratified or prSystematic, not '9'"},
+        {"ParticleFilter.max_loglikelihood_dyn_range=-1",
+         "[ParticleFilter] max_loglikelihood_dyn_range must be finite and > 0"},
+        {"MappingApplication_ceilingLightsMap_00_insertOpts.association_method=7",
+         "[MappingApplication_ceilingLightsMap_00_insertOpts] association_method must be "
+         "hungarian or ml, not '7'"},
+        {"MappingApplication_ceilingLightsMap_00_creationOpts.measurement_model=Planar",
+         "[MappingApplication_ceilingLightsMap_00_creationOpts] measurement_model must be "
+         "spherical or planar, not 'Planar'"},
         {"ParticleFilter.adaptiveSampleSize=maybe",
          "adaptiveSampleSize = maybe: not a boolean (true, false) or an integer"},
         {"MotionModel.a1=inf", "[MotionModel] a1 = inf: not a finite number"},

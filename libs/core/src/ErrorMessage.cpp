@@ -25,4 +25,12 @@ std::string oneLineMessage(const std::exception& e)
     return first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
 }
 
+std::string listOfChoices(const std::vector<std::string>& names)
+{
+    std::string list;
+    for (size_t i = 0; i < names.size(); i++)
+        list += (i == 0 ? "" : i + 1 < names.size() ? ", " : " or ") + names[i];
+    return list;
+}
+
 }  // namespace mrpt_vslam::core

@@ -1,6 +1,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/exceptions.h>
+#include <mrpt_vslam/core/ConfigEnum.h>
 #include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
 
 #include <cmath>
@@ -19,8 +20,7 @@ void requireKey(bool ok, const std::string& section, const char* key, const char
 void CCeilingLightsMap::TSensorOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                                            const std::string& section)
 {
-    measurement_model =
-        cfg.read_enum<TMeasurementModelKind>(section, "measurement_model", measurement_model);
+    measurement_model = core::readEnum(cfg, section, "measurement_model", measurement_model);
     if (const std::string text = cfg.read_string(section, "sensor_in_robot", ""); !text.empty()) {
         mrpt::poses::CPose3D pose;
         bool parsed = true;
@@ -68,8 +68,7 @@ void CCeilingLightsMap::TSensorOptions::dumpToTextStream(std::ostream& out) cons
 void CCeilingLightsMap::TInsertionOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section)
 {
-    association_method =
-        cfg.read_enum<TAssociationMethod>(section, "association_method", association_method);
+    association_method = core::readEnum(cfg, section, "association_method", association_method);
     MRPT_LOAD_CONFIG_VAR(nz_min, uint64_t, cfg, section);
     MRPT_LOAD_CONFIG_VAR(ncross_valid, uint64_t, cfg, section);
     ang_min = mrpt::DEG2RAD(cfg.read_double(section, "ang_min_deg", mrpt::RAD2DEG(ang_min)));

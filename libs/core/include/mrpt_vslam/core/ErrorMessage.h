@@ -2,6 +2,7 @@
 
 #include <exception>
 #include <string>
+#include <vector>
 
 namespace mrpt_vslam::core {
 
@@ -9,5 +10,8 @@ namespace mrpt_vslam::core {
  *  location and a call stack; this keeps only their "Message:" text (the innermost one when
  *  nested). Other exceptions give what() with newlines replaced by spaces. */
 std::string oneLineMessage(const std::exception& e);
+
+/** Alternatives as a message lists them: "a", "a or b", "a, b or c". */
+std::string listOfChoices(const std::vector<std::string>& names);
 
 }  // namespace mrpt_vslam::core
