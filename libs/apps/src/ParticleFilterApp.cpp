@@ -1,6 +1,6 @@
 #include "ParticleFilterApp.h"
 
-#include <mrpt_vslam/core/ConfigEnum.h>
+#include <mrpt_vslam/core/ConfigChoice.h>
 
 #include <cmath>
 #include <string>

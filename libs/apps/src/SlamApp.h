@@ -10,7 +10,7 @@
 #include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/CheckedConfigFile.h>
-#include <mrpt_vslam/core/ErrorMessage.h>
+#include <mrpt_vslam/core/ConfigChoice.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/OutputDirectory.h>
@@ -105,18 +105,16 @@ class SlamApp {
      *  fit its key (CheckedConfigFile::valueError()) if that was the cause, else its message. */
     core::UsageError configError(const std::exception& e) const;
     /** The value of `key` of the app's section, one of `choices` (name, value); absent, the
-     *  first one. Any other name is a usage error that lists them. */
+     *  first one. Any other name is a usage error that lists them (core::readChoice()). */
     template <class T>
     T readChoice(const std::string& key,
                  const std::vector<std::pair<std::string, T>>& choices) const
     {
-        const std::string given = cfg.read_string(m_section, key, choices.front().first);
-        for (const auto& [choice, value] : choices)
-            if (given == choice) return value;
-        std::vector<std::string> names;
-        for (const auto& choice : choices) names.push_back(choice.first);
-        throw usageError(ownKey(key) + " must be " + core::listOfChoices(names) + ", not '" +
-                         given + "'");
+        try {
+            return core::readChoice(cfg, m_section, key, choices, choices.front().second);
+        } catch (const std::invalid_argument& e) {
+            throw usageError(e.what());
+        }
     }
 
     /** For endSteps() when the rawlog gave no step: "<rawlog>: no frames with odometry and

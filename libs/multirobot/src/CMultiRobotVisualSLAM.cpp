@@ -8,6 +8,7 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/system/string_utils.h>
 #include <mrpt_vslam/core/ActionFrameSource.h>
+#include <mrpt_vslam/core/ConfigChoice.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
 #include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/core/Prefetch.h>
@@ -100,12 +101,9 @@ void CMultiRobotVisualSLAM::TOptions::loadFromConfigFile(const mrpt::config::CCo
         }
     }
     MRPT_LOAD_CONFIG_VAR(max_observations_per_robot, uint64_t, cfg, section);
-    if (cfg.keyExists(section, "observation_selection")) {
-        const auto s = cfg.read_string(section, "observation_selection", "");
-        requireKey(s == "nearest" || s == "random", section, "observation_selection",
-                   "must be `nearest` or `random`");
-        observation_selection = s == "random" ? TSelection::Random : TSelection::Nearest;
-    }
+    observation_selection = core::readChoice(
+        cfg, section, "observation_selection",
+        {{"nearest", TSelection::Nearest}, {"random", TSelection::Random}}, observation_selection);
     motion_noise_floor.loadFromConfigFile(cfg, section);
     MRPT_LOAD_CONFIG_VAR(initial_std_xy, double, cfg, section);
     initial_std_phi = mrpt::DEG2RAD(

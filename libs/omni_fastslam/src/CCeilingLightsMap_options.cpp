@@ -1,7 +1,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/exceptions.h>
-#include <mrpt_vslam/core/ConfigEnum.h>
+#include <mrpt_vslam/core/ConfigChoice.h>
 #include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
 
 #include <cmath>

@@ -1,4 +1,5 @@
 #include <mrpt/config/CConfigFileBase.h>
+#include <mrpt_vslam/core/ConfigChoice.h>
 #include <mrpt_vslam/viewmap/ViewInitializationPolicy.h>
 
 #include <Eigen/LU>
@@ -54,14 +55,9 @@ void ViewInitializationPolicy::TOptions::validate() const
 void ViewInitializationPolicy::TOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section)
 {
-    const std::string kind = cfg.read_string(section, "policy", "information");
-    if (kind == "traditional")
-        policy = TKind::Traditional;
-    else if (kind == "information")
-        policy = TKind::Information;
-    else
-        throw std::invalid_argument(
-            "[" + section + "] policy must be traditional or information, not '" + kind + "'");
+    policy = core::readChoice(
+        cfg, section, "policy",
+        {{"traditional", TKind::Traditional}, {"information", TKind::Information}}, policy);
     MRPT_LOAD_CONFIG_VAR(min_view_spacing, double, cfg, section);
     MRPT_LOAD_CONFIG_VAR(min_inliers, int, cfg, section);
     MRPT_LOAD_CONFIG_VAR(max_view_distance, double, cfg, section);
