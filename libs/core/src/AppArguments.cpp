@@ -42,6 +42,17 @@ unsigned parseThreads(const std::string& text)
                      std::to_string(kMaxThreads));
 }
 
+/// A positional argument that may be left out, shown as [<NAME>] in the synopsis, where TCLAP
+/// shows <NAME> as for a required one.
+class OptionalPositional : public TCLAP::UnlabeledValueArg<std::string> {
+  public:
+    using TCLAP::UnlabeledValueArg<std::string>::UnlabeledValueArg;
+    std::string shortID(const std::string& value) const override
+    {
+        return "[" + TCLAP::UnlabeledValueArg<std::string>::shortID(value) + "]";
+    }
+};
+
 }  // namespace
 
 AppArguments AppArguments::parse(int argc, const char* const* argv, const std::string& appName,
@@ -55,8 +66,8 @@ AppArguments AppArguments::parse(int argc, const char* const* argv, const std::s
 
     TCLAP::UnlabeledValueArg<std::string> config("CONFIG", "Configuration file (.ini).", true, "",
                                                  "CONFIG.ini", cmd);
-    TCLAP::UnlabeledValueArg<std::string> rawlog(
-        "RAWLOG", "Dataset; if absent, the config's rawlog_file key.", false, "", "RAWLOG", cmd);
+    OptionalPositional rawlog("RAWLOG", "Dataset; if absent, the config's rawlog_file key.", false,
+                              "", "RAWLOG", cmd);
     TCLAP::ValueArg<std::string> out("", "out", "Output folder (default out/<app>-<config name>).",
                                      false, "", "DIR", cmd);
     TCLAP::ValueArg<std::string> seed(
