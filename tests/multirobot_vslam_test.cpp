@@ -858,12 +858,8 @@ TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
         {"ParticleFilter.BETA=nan", "[ParticleFilter] BETA = nan: not a finite number"},
         {"ParticleFilter.BETA=-0.5", "BETA (the N_eff/N threshold of resampling) must be in"},
         {"ParticleFilter.powFactor=0", "powFactor must be in (0, 1]"},
-        {"ParticleFilter.PF_algorithm=bogus",
-         "PF_algorithm must be pfStandardProposal, "
-         "pfAuxiliaryPFStandard, pfOptimalProposal or pfAuxiliaryPFOptimal, not 'bogus'"},
-        {"ParticleFilter.PF_algorithm=pfAuxiliaryPFOptimal",
-         "[ParticleFilter] PF_algorithm must be pfStandardProposal (Gil et al. 2010, Sec. 3.1) or "
-         "pfOptimalProposal"},
+        {"ParticleFilter.PF_algorithm=1",
+         "[ParticleFilter] PF_algorithm must be pfStandardProposal or pfOptimalProposal, not '1'"},
         {"ParticleFilter.resamplingMethod=prFoo",
          "[ParticleFilter] resamplingMethod must be "
          "prMultinomial, prResidual, prStratified or prSystematic, not 'prFoo'"},

@@ -16,6 +16,7 @@
 #include <mrpt_vslam/apps/OmniFastSLAMApp.h>
 #include <mrpt_vslam/core/AppArguments.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/core/ParticleFilterOptions.h>
 #include <mrpt_vslam/core/TumTrajectory.h>
 #include <mrpt_vslam/omni_fastslam/COmniFastSLAM.h>
 #include <mrpt_vslam/sim/DatasetWriter.h>
@@ -167,8 +168,8 @@ TRunResult runFilter(const TPlanarSequence& seq, uint32_t seed, bool hide_ids)
     auto map = shippedMap();
     map.sensorOptions.sigma_phi = 2 * kDeg;
     mrpt::bayes::CParticleFilter pf;
-    pf.m_options.loadFromConfigFile(mrpt::config::CConfigFileMemory(test::readBytes(kConfig)),
-                                    "ParticleFilter");
+    core::loadParticleFilterOptions(mrpt::config::CConfigFileMemory(test::readBytes(kConfig)),
+                                    "ParticleFilter", pf.m_options);
     omni_fastslam::COmniFastSLAM filter(map, pf.m_options.sampleSize, seed);
     filter.options.bearings_label = "R1_RB";
     filter.options.motion_noise_floor = {0.002, 0.1 * kDeg};

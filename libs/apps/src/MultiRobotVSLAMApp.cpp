@@ -247,9 +247,7 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
         throw usageError("[MultiRobotVSLAM] filter_runs > 1 needs [" +
                          std::string(kSmootherSection) +
                          "] smooth_paths = true (runs are compared by their smoothed cost)");
-    loadParticleFilterOptions(
-        "pfStandardProposal (Gil et al. 2010, Sec. 3.1) or pfOptimalProposal (FastSLAM 2.0 "
-        "proposal per robot)");
+    loadParticleFilterOptions();
     if (!odometryLabel.empty() && filterOptions.robots.size() != 1)
         throw usageError(
             "[MultiRobotVSLAM] odometry_label is for one robot; a team's odometry is "

@@ -138,8 +138,7 @@ void OmniFastSLAMApp::Impl::loadConfig()
     } catch (const std::exception& e) {
         throw configError(e);
     }
-    loadParticleFilterOptions(
-        "pfOptimalProposal (FastSLAM 2.0) or pfStandardProposal (FastSLAM 1.0)", true);
+    loadParticleFilterOptions(true);
     mapTemplate = particleMapTemplate<CCeilingLightsMap>("ceilingLightsMap_count");
 }
 

@@ -26,13 +26,11 @@ class ParticleFilterApp : public SlamApp {
 
     /// The most particles a run may ask for (each carries a map).
     static constexpr size_t kMaxParticles = 100000;
-    /** Loads `[ParticleFilter]` into pf.m_options. Throws a usage error unless PF_algorithm is
-     *  pfStandardProposal or pfOptimalProposal (`proposals` names these two for the app),
-     *  resamplingMethod one of MRPT's, max_loglikelihood_dyn_range finite and > 0,
-     *  1 <= sampleSize <= kMaxParticles, BETA in [0, 1], powFactor in (0, 1] and
-     *  adaptiveSampleSize off. */
+    /** Loads `[ParticleFilter]` into pf.m_options (core::loadParticleFilterOptions()). Throws a
+     *  usage error naming the config for what that refuses, and unless 1 <= sampleSize <=
+     *  kMaxParticles and, unless `adaptive`, adaptiveSampleSize is off. */
     /// \param adaptive whether the filter implements adaptiveSampleSize (KLD-sampling)
-    void loadParticleFilterOptions(const std::string& proposals, bool adaptive = false);
+    void loadParticleFilterOptions(bool adaptive = false);
 
     /// The map every particle starts from: the only map of `[MappingApplication]`, defined by
     /// `countKey` = 1.

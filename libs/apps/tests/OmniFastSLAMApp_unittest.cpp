@@ -303,11 +303,11 @@ TEST(OmniFastSLAMApp, RejectsImpossibleValuesNamingTheKey)
         {"ParticleFilter.powFactor=nan", "[ParticleFilter] powFactor = nan: not a finite number"},
         {"ParticleFilter.powFactor=0", "powFactor must be in (0, 1]"},
         {"ParticleFilter.PF_algorithm=bogus",
-         "[ParticleFilter] PF_algorithm must be pfStandardProposal, "
-         "pfAuxiliaryPFStandard, pfOptimalProposal or pfAuxiliaryPFOptimal, not 'bogus'"},
+         "[ParticleFilter] PF_algorithm must be pfStandardProposal or pfOptimalProposal, not "
+         "'bogus'"},
         {"ParticleFilter.PF_algorithm=pfAuxiliaryPFOptimal",
-         "[ParticleFilter] PF_algorithm must be pfOptimalProposal (FastSLAM 2.0) or "
-         "pfStandardProposal (FastSLAM 1.0)"},
+         "[ParticleFilter] PF_algorithm must be pfStandardProposal or pfOptimalProposal, not "
+         "'pfAuxiliaryPFOptimal'"},
         {"ParticleFilter.resamplingMethod=9",
          "[ParticleFilter] resamplingMethod must be "
          "prMultinomial, prResidual, prStratified or prSystematic, not '9'"},
