@@ -15,7 +15,7 @@ namespace mrpt_vslam::core {
  *  (other names of choices, not listed in messages); `current` when the key is absent (its
  *  name, the first choice with that value, is what the configuration records as the default).
  *  Any other value, an empty one too, throws std::invalid_argument "[section] key must be a, b
- *  or c, not 'x'". */
+ *  or c, not 'x'". \pre `current` is the value of one of `choices` */
 template <class T>
 T readChoice(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
              const std::string& key, const std::vector<std::pair<std::string, T>>& choices,
