@@ -4,6 +4,9 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace mrpt_vslam::core {
 
@@ -22,6 +25,8 @@ void loadParticleFilterOptions(const mrpt::config::CConfigFileBase& cfg, const s
          {"adaptiveSampleSize", "false"}});
     const auto key = [&](const char* name) { return "[" + section + "] " + name; };
 
+    // checked first: MRPT's loader asks an auxiliary filter for its own keys and asserts on a
+    // negative range, in its own words
     std::vector<std::pair<std::string, PF::TParticleFilterAlgorithm>> proposals, numbers;
     for (const auto proposal : {PF::pfStandardProposal, PF::pfOptimalProposal}) {
         proposals.emplace_back(TEnumType<PF::TParticleFilterAlgorithm>::value2name(proposal),
