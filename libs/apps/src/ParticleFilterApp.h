@@ -56,6 +56,10 @@ class ParticleFilterApp : public SlamApp {
             // (a count that is no number is left to the checked reader, which names the key)
             if (count && positive && !mrpt::system::strCmpI(key, countKey))
                 throw usageError(exactlyOne);
+            // MRPT reads a negative count as a huge one and defines maps without end
+            if (count && !n.empty() && n.front() == '-')
+                throw usageError(std::string("[") + kMapSection + "] " + key + " = " + n +
+                                 ": a count of maps must be 0 or more");
         }
         mrpt::maps::TSetOfMetricMapInitializers inits;
         try {

@@ -319,6 +319,8 @@ TEST(OmniFastSLAMApp, RejectsImpossibleValuesNamingTheKey)
         {"MappingApplication_ceilingLightsMap_00_creationOpts.measurement_model=Planar",
          "[MappingApplication_ceilingLightsMap_00_creationOpts] measurement_model must be "
          "spherical or planar, not 'Planar'"},
+        {"MappingApplication.COccupancyGridMap2D_count=-1",
+         "[MappingApplication] COccupancyGridMap2D_count = -1: a count of maps must be 0 or more"},
         {"ParticleFilter.adaptiveSampleSize=maybe",
          "adaptiveSampleSize = maybe: not a boolean (true, false) or an integer"},
         {"MotionModel.a1=inf", "[MotionModel] a1 = inf: not a finite number"},
