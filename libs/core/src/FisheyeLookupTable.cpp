@@ -1,5 +1,6 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
+#include <mrpt/core/format.h>
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt_vslam/core/ConfigSectionWriter.h>
 #include <mrpt_vslam/core/FisheyeLookupTable.h>
@@ -81,9 +82,19 @@ FisheyeLookupTable::FisheyeLookupTable(const PajdlaBaksteinCamera& camera, const
         }
         delta_theta = kAutoSpacingPx / (stretch * max_slope);
     }
+    const double n_phi = std::ceil(2 * M_PI / delta_phi);
+    const double n_theta = std::ceil(m_camera.max_theta / delta_theta);
+    if (!(n_phi * (n_theta + 1) <= kMaxSamples))
+        throw std::invalid_argument(
+            "FisheyeLookupTable: the camera model puts max_theta_deg " +
+            std::to_string(std::lround(m_camera.radius(m_camera.max_theta))) +
+            " px from the image centre and would take " +
+            mrpt::format("%.1e", n_phi * (n_theta + 1)) +
+            " samples (at most 5e8): check a, c, beta and max_theta_deg against the image size, "
+            "and the look-up table's steps");
     // Shrink the steps so they divide the sampled intervals evenly.
-    m_delta_phi = 2 * M_PI / std::ceil(2 * M_PI / delta_phi);
-    m_delta_theta = m_camera.max_theta / std::ceil(m_camera.max_theta / delta_theta);
+    m_delta_phi = 2 * M_PI / n_phi;
+    m_delta_theta = m_camera.max_theta / n_theta;
     build();
 }
 

@@ -269,3 +269,23 @@ TEST(FisheyeLookupTable, StepsFromIniAndValidation)
     nan_opts.lut_delta_phi = std::nan("");
     EXPECT_THROW(FisheyeLookupTable(PajdlaBaksteinCamera(), nan_opts), std::invalid_argument);
 }
+
+// A model that images the field of view far beyond the image (a, c or β off by orders of
+// magnitude), or steps far finer than a pixel, would take the table's build without end.
+TEST(FisheyeLookupTable, RefusesMoreSamplesThanAnyImageUses)
+{
+    const auto samplesOf = [](const FisheyeLookupTable& lut) {
+        return std::ceil(2 * M_PI / lut.deltaPhi()) *
+               (std::ceil(89 * M_PI / 180 / lut.deltaTheta()) + 1);
+    };
+    EXPECT_LT(300 * samplesOf(defaultTable()), FisheyeLookupTable::kMaxSamples);
+    PajdlaBaksteinCamera huge;
+    huge.a = 1e9;
+    EXPECT_THROW(FisheyeLookupTable{huge}, std::invalid_argument);
+    PajdlaBaksteinCamera stretched;
+    stretched.beta = 1e9;
+    EXPECT_THROW(FisheyeLookupTable{stretched}, std::invalid_argument);
+    FisheyeLookupTable::TOptions fine;
+    fine.lut_delta_phi = fine.lut_delta_theta = 1e-7;
+    EXPECT_THROW(FisheyeLookupTable(PajdlaBaksteinCamera(), fine), std::invalid_argument);
+}

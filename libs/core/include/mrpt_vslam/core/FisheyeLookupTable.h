@@ -68,8 +68,13 @@ class FisheyeLookupTable {
     };
 
     /** Builds the table for `camera` (validated first) with the steps of `options`.
-     *  \throw std::invalid_argument if a step is negative, NaN or larger than the sampled range. */
+     *  \throw std::invalid_argument if a step is negative, NaN or larger than the sampled range,
+     *  or if the steps would take more than kMaxSamples samples (a model that images the field of
+     *  view far beyond any image). */
     FisheyeLookupTable(const PajdlaBaksteinCamera& camera, const TOptions& options);
+    /// The most (φ, θ) samples a table is built from: over 300 times what the default camera
+    /// (640 × 480) takes with the automatic steps.
+    static constexpr double kMaxSamples = 5e8;
     /// Builds the table for `camera` with the automatic steps.
     explicit FisheyeLookupTable(const PajdlaBaksteinCamera& camera);
 
