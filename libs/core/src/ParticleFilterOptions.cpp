@@ -5,8 +5,6 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <utility>
-#include <vector>
 
 namespace mrpt_vslam::core {
 
@@ -27,13 +25,8 @@ void loadParticleFilterOptions(const mrpt::config::CConfigFileBase& cfg, const s
 
     // checked first: MRPT's loader asks an auxiliary filter for its own keys and asserts on a
     // negative range, in its own words
-    std::vector<std::pair<std::string, PF::TParticleFilterAlgorithm>> proposals, numbers;
-    for (const auto proposal : {PF::pfStandardProposal, PF::pfOptimalProposal}) {
-        proposals.emplace_back(TEnumType<PF::TParticleFilterAlgorithm>::value2name(proposal),
-                               proposal);
-        numbers.emplace_back(std::to_string(static_cast<int>(proposal)), proposal);
-    }
-    readChoice(withDefaults, section, "PF_algorithm", proposals, kProposal, numbers);
+    readEnum(withDefaults, section, "PF_algorithm", kProposal,
+             {PF::pfStandardProposal, PF::pfOptimalProposal});
     readEnum(withDefaults, section, "resamplingMethod", kResampling);
     const double range = withDefaults.read_double(section, "max_loglikelihood_dyn_range",
                                                   options.max_loglikelihood_dyn_range);

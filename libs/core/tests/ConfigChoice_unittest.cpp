@@ -65,6 +65,25 @@ TEST(ConfigChoice, AnyOtherValueOfAnEnumIsAnErrorListingItsNames)
     }
 }
 
+TEST(ConfigChoice, AnEnumNarrowedToSomeValuesTakesOnlyTheirNamesAndNumbers)
+{
+    const auto read = [](const std::string& value) {
+        return readEnum(config(value), "s", "k", PF::prSystematic,
+                        {PF::prSystematic, PF::prResidual});
+    };
+    EXPECT_EQ(read("prResidual"), PF::prResidual);
+    EXPECT_EQ(read("3"), PF::prSystematic);
+    for (const std::string value : {"prMultinomial", "0", "2"}) {
+        try {
+            read(value);
+            ADD_FAILURE() << value << " accepted";
+        } catch (const std::invalid_argument& e) {
+            EXPECT_EQ(std::string(e.what()),
+                      "[s] k must be prResidual or prSystematic, not '" + value + "'");
+        }
+    }
+}
+
 TEST(ConfigChoice, ListsOneTwoOrMoreChoices)
 {
     using mrpt_vslam::core::listOfChoices;

@@ -4,6 +4,7 @@
 #include <mrpt/typemeta/TEnumType.h>
 #include <mrpt_vslam/core/ErrorMessage.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -36,13 +37,16 @@ T readChoice(const mrpt::config::CConfigFileBase& cfg, const std::string& sectio
 
 /** readChoice() of an MRPT enum: one of ENUM's names (as its mrpt::typemeta::TEnumType spells
  *  them) or the number of one, as CConfigFileBase::read_enum() takes them, where read_enum()
- *  names no choice for a name it does not know and passes any number on as a value of ENUM. */
+ *  names no choice for a name it does not know and passes any number on as a value of ENUM.
+ *  `allowed` narrows the choices to those values (empty: all of ENUM's). */
 template <class ENUM>
 ENUM readEnum(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
-              const std::string& key, ENUM current)
+              const std::string& key, ENUM current, const std::vector<ENUM>& allowed = {})
 {
     std::vector<std::pair<std::string, ENUM>> names, numbers;
     for (const auto& [value, name] : mrpt::typemeta::TEnumType<ENUM>::getBimap()) {
+        if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), value) == allowed.end())
+            continue;
         names.emplace_back(name, value);
         numbers.emplace_back(std::to_string(static_cast<long long>(value)), value);
     }
