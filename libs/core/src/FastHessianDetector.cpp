@@ -1,6 +1,6 @@
 #include <mrpt/config/CConfigFileBase.h>
-#include <mrpt/core/format.h>
 #include <mrpt_vslam/core/FastHessianDetector.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/core/ParallelFor.h>
 
 #include <Eigen/Dense>
@@ -165,16 +165,12 @@ void findMaxima(const std::array<TOctaveView, 3>& v, int step, int width, int he
 
 void FastHessianDetector::TOptions::validate() const
 {
-    const auto require = [](bool ok, const char* key, double value, const char* requirement) {
-        if (!ok) {
-            throw std::invalid_argument(
-                mrpt::format("FastHessianDetector: %s = %g %s", key, value, requirement));
-        }
-    };
-    require(std::isfinite(hessian_threshold) && hessian_threshold >= 0, "hessian_threshold",
-            hessian_threshold, "must be >= 0");
-    require(octaves >= 1 && octaves <= 8, "octaves", octaves, "must be in [1, 8]");
-    require(initial_step >= 1, "initial_step", initial_step, "must be >= 1");
+    requireParameter(std::isfinite(hessian_threshold) && hessian_threshold >= 0,
+                     "FastHessianDetector", "hessian_threshold", hessian_threshold, "must be >= 0");
+    requireParameter(octaves >= 1 && octaves <= 8, "FastHessianDetector", "octaves", octaves,
+                     "must be in [1, 8]");
+    requireParameter(initial_step >= 1, "FastHessianDetector", "initial_step", initial_step,
+                     "must be >= 1");
 }
 
 void FastHessianDetector::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,

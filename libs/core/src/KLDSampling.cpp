@@ -2,6 +2,7 @@
 #include <mrpt/math/distributions.h>
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt_vslam/core/KLDSampling.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 
 #include <algorithm>
 #include <array>
@@ -37,21 +38,18 @@ void TKLDParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
 
 void validateKLDParams(const TKLDParams& p)
 {
-    const auto require = [](bool ok, const char* what) {
-        if (!ok) throw std::invalid_argument(what);
-    };
-    require(p.KLD_binSize_XY > 0 && std::isfinite(p.KLD_binSize_XY),
-            "KLD_binSize_XY must be finite and > 0");
-    require(p.KLD_binSize_PHI > 0 && std::isfinite(p.KLD_binSize_PHI),
-            "KLD_binSize_PHI must be finite and > 0");
-    require(p.KLD_epsilon > 0 && std::isfinite(p.KLD_epsilon),
-            "KLD_epsilon must be finite and > 0");
-    require(p.KLD_delta > 0 && p.KLD_delta < 1, "KLD_delta must be in (0, 1)");
-    require(p.KLD_minSampleSize >= 1, "KLD_minSampleSize must be >= 1");
-    require(p.KLD_maxSampleSize >= p.KLD_minSampleSize,
-            "KLD_maxSampleSize must be >= KLD_minSampleSize");
-    require(p.KLD_minSamplesPerBin >= 0 && std::isfinite(p.KLD_minSamplesPerBin),
-            "KLD_minSamplesPerBin must be finite and >= 0");
+    requireOption(p.KLD_binSize_XY > 0 && std::isfinite(p.KLD_binSize_XY), "KLD_binSize_XY",
+                  "must be finite and > 0");
+    requireOption(p.KLD_binSize_PHI > 0 && std::isfinite(p.KLD_binSize_PHI), "KLD_binSize_PHI",
+                  "must be finite and > 0");
+    requireOption(p.KLD_epsilon > 0 && std::isfinite(p.KLD_epsilon), "KLD_epsilon",
+                  "must be finite and > 0");
+    requireOption(p.KLD_delta > 0 && p.KLD_delta < 1, "KLD_delta", "must be in (0, 1)");
+    requireOption(p.KLD_minSampleSize >= 1, "KLD_minSampleSize", "must be >= 1");
+    requireOption(p.KLD_maxSampleSize >= p.KLD_minSampleSize, "KLD_maxSampleSize",
+                  "must be >= KLD_minSampleSize");
+    requireOption(p.KLD_minSamplesPerBin >= 0 && std::isfinite(p.KLD_minSamplesPerBin),
+                  "KLD_minSamplesPerBin", "must be finite and >= 0");
 }
 
 size_t kldSampleCount(size_t bins, const TKLDParams& p)

@@ -2,6 +2,7 @@
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt_vslam/core/OdometryGaussian.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/core/ParallelFor.h>
 
 #include <Eigen/Cholesky>
@@ -17,10 +18,9 @@ void TMotionNoiseFloor::loadFromConfigFile(const mrpt::config::CConfigFileBase& 
     std_xy = cfg.read_double(section, "min_motion_std_xy", std_xy);
     std_phi =
         mrpt::DEG2RAD(cfg.read_double(section, "min_motion_std_phi_deg", mrpt::RAD2DEG(std_phi)));
-    if (!(std_xy > 0) || !std::isfinite(std_xy))
-        throw std::invalid_argument("[" + section + "] min_motion_std_xy: must be > 0");
-    if (!(std_phi > 0) || !std::isfinite(std_phi))
-        throw std::invalid_argument("[" + section + "] min_motion_std_phi_deg: must be > 0");
+    requireKey(std_xy > 0 && std::isfinite(std_xy), section, "min_motion_std_xy", "must be > 0");
+    requireKey(std_phi > 0 && std::isfinite(std_phi), section, "min_motion_std_phi_deg",
+               "must be > 0");
 }
 
 void TMotionNoiseFloor::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,

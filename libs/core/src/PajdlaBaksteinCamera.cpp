@@ -1,7 +1,8 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
-#include <mrpt/core/exceptions.h>
+#include <mrpt/core/format.h>
 #include <mrpt_vslam/core/ConfigSectionWriter.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/core/PajdlaBaksteinCamera.h>
 
 #include <cmath>
@@ -53,18 +54,23 @@ Eigen::Vector2d PajdlaBaksteinCamera::anglesOfPoint(const mrpt::math::TPoint3D& 
 
 void PajdlaBaksteinCamera::validate() const
 {
-    ASSERTMSG_(b > 0 && d > 0, "PajdlaBaksteinCamera: b and d must be > 0");
-    ASSERTMSG_(beta > 0, "PajdlaBaksteinCamera: beta must be > 0");
-    ASSERTMSG_(width > 0 && height > 0, "PajdlaBaksteinCamera: width and height must be > 0");
-    ASSERTMSG_(max_theta > 0 && max_theta < M_PI,
-               "PajdlaBaksteinCamera: max_theta_deg must be in (0, 180)");
+    constexpr const char* kOwner = "PajdlaBaksteinCamera";
+    requireParameter(b > 0, kOwner, "b", b, "must be > 0");
+    requireParameter(d > 0, kOwner, "d", d, "must be > 0");
+    requireParameter(beta > 0, kOwner, "beta", beta, "must be > 0");
+    requireParameter(width > 0, kOwner, "width", width, "must be > 0");
+    requireParameter(height > 0, kOwner, "height", height, "must be > 0");
+    const double maxThetaDeg = mrpt::RAD2DEG(max_theta);
+    requireParameter(max_theta > 0 && max_theta < M_PI, kOwner, "max_theta_deg", maxThetaDeg,
+                     "must be in (0, 180)");
     // r(θ) must be strictly increasing on [0, max_theta] or the model is not invertible.
-    ASSERTMSG_(max_theta < b * M_PI / 2,
-               "PajdlaBaksteinCamera: max_theta_deg must be below b*90 deg (tan term diverges)");
+    requireParameter(
+        max_theta < b * M_PI / 2, kOwner, "max_theta_deg", maxThetaDeg,
+        mrpt::format("must be below b * 90 = %g (the tan term diverges there)", b * 90));
     constexpr int kSteps = 1000;
     for (int i = 0; i <= kSteps; i++) {
-        ASSERTMSG_(radiusDerivative(max_theta * i / kSteps) > 0,
-                   "PajdlaBaksteinCamera: r(theta) is not increasing up to max_theta_deg");
+        requireParameter(radiusDerivative(max_theta * i / kSteps) > 0, kOwner, "max_theta_deg",
+                         maxThetaDeg, "is past the angle where r(theta) stops increasing");
     }
 }
 

@@ -2,6 +2,7 @@
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 #include <mrpt_vslam/core/ConfigSectionWriter.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/core/UnifiedSphereCamera.h>
 
 #include <algorithm>
@@ -10,19 +11,6 @@
 #include <string>
 
 namespace mrpt_vslam::core {
-namespace {
-
-/// Throws the one-line error for `key` unless `ok`.
-void require(bool ok, const char* key, double value, const std::string& requirement)
-{
-    if (!ok) {
-        throw std::invalid_argument(
-            mrpt::format("UnifiedSphereCamera: %s = %g %s", key, value, requirement.c_str()));
-    }
-}
-
-}  // namespace
-
 std::optional<Eigen::Vector2d> UnifiedSphereCamera::project(const Eigen::Vector3d& ray) const
 {
     const double n = ray.norm();
@@ -84,18 +72,20 @@ double UnifiedSphereCamera::modelLimit() const
 
 void UnifiedSphereCamera::validate() const
 {
-    require(std::isfinite(xi) && xi >= 0, "xi", xi, "must be >= 0");
-    require(std::isfinite(fx) && fx > 0, "fx", fx, "must be > 0");
-    require(std::isfinite(fy) && fy > 0, "fy", fy, "must be > 0");
-    require(std::isfinite(cx), "cx", cx, "must be finite");
-    require(std::isfinite(cy), "cy", cy, "must be finite");
-    require(std::isfinite(skew), "skew", skew, "must be finite");
-    require(width > 0, "width", width, "must be > 0");
-    require(height > 0, "height", height, "must be > 0");
+    constexpr const char* kOwner = "UnifiedSphereCamera";
+    requireParameter(std::isfinite(xi) && xi >= 0, kOwner, "xi", xi, "must be >= 0");
+    requireParameter(std::isfinite(fx) && fx > 0, kOwner, "fx", fx, "must be > 0");
+    requireParameter(std::isfinite(fy) && fy > 0, kOwner, "fy", fy, "must be > 0");
+    requireParameter(std::isfinite(cx), kOwner, "cx", cx, "must be finite");
+    requireParameter(std::isfinite(cy), kOwner, "cy", cy, "must be finite");
+    requireParameter(std::isfinite(skew), kOwner, "skew", skew, "must be finite");
+    requireParameter(width > 0, kOwner, "width", width, "must be > 0");
+    requireParameter(height > 0, kOwner, "height", height, "must be > 0");
     const double limit = modelLimit();
-    require(max_theta > 0 && max_theta < limit, "max_theta_deg", mrpt::RAD2DEG(max_theta),
-            mrpt::format("must be in (0, %g) for xi = %g (the model is not one-to-one beyond)",
-                         mrpt::RAD2DEG(limit), xi));
+    requireParameter(
+        max_theta > 0 && max_theta < limit, kOwner, "max_theta_deg", mrpt::RAD2DEG(max_theta),
+        mrpt::format("must be in (0, %g) for xi = %g (the model is not one-to-one beyond)",
+                     mrpt::RAD2DEG(limit), xi));
 }
 
 void UnifiedSphereCamera::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,

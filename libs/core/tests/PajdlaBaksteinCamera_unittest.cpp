@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/core/bits_math.h>
+#include <mrpt/core/format.h>
 #include <mrpt/math/num_jacobian.h>
 #include <mrpt_vslam/core/PajdlaBaksteinCamera.h>
 
@@ -141,25 +142,36 @@ TEST(PajdlaBaksteinCamera, LoadsFromIniText)
     EXPECT_NEAR(reread.max_theta, cam.max_theta, 1e-7);
 }
 
-TEST(PajdlaBaksteinCamera, ValidateRejectsImpossibleParameters)
+TEST(PajdlaBaksteinCamera, ValidateRejectsImpossibleParametersNamingKeyAndValue)
 {
     EXPECT_NO_THROW(PajdlaBaksteinCamera().validate());
-    const auto expectInvalid = [](const char* key_values) {
+    const auto expectInvalid = [](const char* key_values, const std::string& message) {
         mrpt::config::CConfigFileMemory ini(std::string("[cam]\n") + key_values);
         PajdlaBaksteinCamera cam;
-        EXPECT_THROW(cam.loadFromConfigFile(ini, "cam"), std::exception) << key_values;
+        try {
+            cam.loadFromConfigFile(ini, "cam");
+            ADD_FAILURE() << key_values << " accepted";
+        } catch (const std::invalid_argument& e) {
+            EXPECT_EQ(std::string(e.what()), "PajdlaBaksteinCamera: " + message) << key_values;
+        }
     };
-    expectInvalid("b = 0\n");
-    expectInvalid("b = -2.5\n");
-    expectInvalid("d = 0\n");
-    expectInvalid("beta = 0\n");
-    expectInvalid("width = 0\n");
-    expectInvalid("max_theta_deg = 0\n");
-    expectInvalid("max_theta_deg = 180\n");
+    expectInvalid("b = 0\n", "b = 0 must be > 0");
+    expectInvalid("b = -2.5\n", "b = -2.5 must be > 0");
+    expectInvalid("d = 0\n", "d = 0 must be > 0");
+    expectInvalid("beta = 0\n", "beta = 0 must be > 0");
+    expectInvalid("width = 0\n", "width = 0 must be > 0");
+    expectInvalid("height = -1\n", "height = -1 must be > 0");
+    expectInvalid("max_theta_deg = 0\n", "max_theta_deg = 0 must be in (0, 180)");
+    expectInvalid("max_theta_deg = 180\n", "max_theta_deg = 180 must be in (0, 180)");
     // tan(θ/b) diverges at θ = b·90 deg = 45 deg for b = 0.5.
-    expectInvalid("b = 0.5\nmax_theta_deg = 60\n");
+    expectInvalid("b = 0.5\nmax_theta_deg = 60\n",
+                  "max_theta_deg = 60 must be below b * 90 = 45 (the tan term diverges there)");
     // dr/dθ(0) = a/b + c/d = 60 − 200 < 0: r decreases near the axis.
-    expectInvalid("c = -360\n");
+    const PajdlaBaksteinCamera defaults;
+    expectInvalid("c = -360\n", mrpt::format("max_theta_deg = %g is past the angle where "
+                                             "r(theta) stops increasing",
+                                             mrpt::RAD2DEG(defaults.max_theta)));
     // Increasing at 0 but turning back before max_theta (sin term past its peak at θ = d·90°).
-    expectInvalid("a = 5\nc = 300\nd = 0.8\n");
+    expectInvalid("a = 5\nc = 300\nd = 0.8\nmax_theta_deg = 100\n",
+                  "max_theta_deg = 100 is past the angle where r(theta) stops increasing");
 }

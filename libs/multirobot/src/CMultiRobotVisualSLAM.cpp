@@ -10,6 +10,7 @@
 #include <mrpt_vslam/core/ActionFrameSource.h>
 #include <mrpt_vslam/core/ConfigChoice.h>
 #include <mrpt_vslam/core/ObservationSelector.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/core/Prefetch.h>
 #include <mrpt_vslam/multirobot/CMultiRobotVisualSLAM.h>
@@ -24,11 +25,9 @@ namespace mrpt_vslam::multirobot {
 
 using mrpt::math::TPose2D;
 
+using core::requireKey;
+
 namespace {
-void requireKey(bool ok, const std::string& section, const char* key, const char* what)
-{
-    if (!ok) throw std::invalid_argument("[" + section + "] " + key + ": " + what);
-}
 /** `<prefix>_std_range` [m], `<prefix>_std_bearing_deg`, `<prefix>_std_pitch_deg` (each > 0,
  *  or absent: the observation's own σ), `<prefix>_std_height` [m] (> 0). */
 void loadNoise(const mrpt::config::CConfigFileBase& cfg, const std::string& section,

@@ -1,5 +1,5 @@
 #include <mrpt/config/CConfigFileBase.h>
-#include <mrpt/core/exceptions.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/multirobot/CVisualLandmarksMap.h>
 
 #include <cmath>
@@ -7,13 +7,7 @@
 
 namespace mrpt_vslam::multirobot {
 
-namespace {
-/// Throws naming the section and key unless `ok`.
-void requireKey(bool ok, const std::string& section, const char* key, const char* what)
-{
-    if (!ok) THROW_EXCEPTION_FMT("[%s] %s: %s", section.c_str(), key, what);
-}
-}  // namespace
+using core::requireKey;
 
 void CVisualLandmarksMap::TInsertionOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section)

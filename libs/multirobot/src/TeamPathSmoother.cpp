@@ -1,4 +1,5 @@
 #include <mrpt/config/CConfigFileBase.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/multirobot/PlanarPoseLandmarkGraph.h>
 #include <mrpt_vslam/multirobot/TeamPathSmoother.h>
 
@@ -34,13 +35,9 @@ void addLandmarksOf(const CVisualLandmarksMap& from, CVisualLandmarksMap& to, F 
             to.sharedDescriptorPool()->setLandmarkOfIdentity(it->second, added);
     });
 }
-
-void requireKey(bool ok, const std::string& section, const char* key, const char* what)
-{
-    if (!ok) throw std::invalid_argument("[" + section + "] " + key + ": " + what);
-}
-
 }  // namespace
+
+using core::requireKey;
 
 void TeamPathSmoother::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                                     const std::string& section)

@@ -1,7 +1,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
-#include <mrpt/core/exceptions.h>
 #include <mrpt_vslam/core/ConfigChoice.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
 
 #include <cmath>
@@ -9,13 +9,7 @@
 
 namespace mrpt_vslam::omni_fastslam {
 
-namespace {
-/// Throws naming the section and key unless `ok`.
-void requireKey(bool ok, const std::string& section, const char* key, const char* what)
-{
-    if (!ok) THROW_EXCEPTION_FMT("[%s] %s: %s", section.c_str(), key, what);
-}
-}  // namespace
+using core::requireKey;
 
 void CCeilingLightsMap::TSensorOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                                            const std::string& section)

@@ -2,6 +2,7 @@
 #include <mrpt/core/bits_math.h>
 #include <mrpt/img/CImage.h>
 #include <mrpt/poses/CPose3D.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/viewmap/COmniViewSLAM.h>
 
 #include <algorithm>
@@ -10,12 +11,9 @@
 
 namespace mrpt_vslam::viewmap {
 
-namespace {
-void require(bool ok, const char* key, const char* what)
-{
-    if (!ok) throw std::invalid_argument(std::string(key) + " " + what);
-}
+using core::requireOption;
 
+namespace {
 Eigen::Matrix3d initialCovariance(const COmniViewSLAM::TOptions& o)
 {
     const double s2 = o.initial_sigma_xy * o.initial_sigma_xy;
@@ -25,16 +23,17 @@ Eigen::Matrix3d initialCovariance(const COmniViewSLAM::TOptions& o)
 
 void COmniViewSLAM::TOptions::validate() const
 {
-    require(candidate_distance > 0 && std::isfinite(candidate_distance), "candidate_distance",
-            "must be finite and > 0");
-    require(max_candidates >= 1, "max_candidates", "must be >= 1");
-    require(min_baseline > 0 && min_baseline < candidate_distance, "min_baseline",
-            "must be > 0 and < candidate_distance");
-    require(gate_probability > 0 && gate_probability < 1, "gate_probability", "must be in (0, 1)");
-    require(initial_sigma_xy > 0 && std::isfinite(initial_sigma_xy), "initial_sigma_xy",
-            "must be finite and > 0");
-    require(initial_sigma_yaw > 0 && std::isfinite(initial_sigma_yaw), "initial_sigma_yaw_deg",
-            "must be finite and > 0");
+    requireOption(candidate_distance > 0 && std::isfinite(candidate_distance), "candidate_distance",
+                  "must be finite and > 0");
+    requireOption(max_candidates >= 1, "max_candidates", "must be >= 1");
+    requireOption(min_baseline > 0 && min_baseline < candidate_distance, "min_baseline",
+                  "must be > 0 and < candidate_distance");
+    requireOption(gate_probability > 0 && gate_probability < 1, "gate_probability",
+                  "must be in (0, 1)");
+    requireOption(initial_sigma_xy > 0 && std::isfinite(initial_sigma_xy), "initial_sigma_xy",
+                  "must be finite and > 0");
+    requireOption(initial_sigma_yaw > 0 && std::isfinite(initial_sigma_yaw),
+                  "initial_sigma_yaw_deg", "must be finite and > 0");
 }
 
 void COmniViewSLAM::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,

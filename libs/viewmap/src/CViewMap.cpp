@@ -7,6 +7,7 @@
 #include <mrpt/opengl/CText.h>
 #include <mrpt_vslam/core/AtomicFile.h>
 #include <mrpt_vslam/core/LandmarkFile.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/viewmap/CViewMap.h>
 
 #include <cmath>
@@ -22,16 +23,12 @@ IMPLEMENTS_SERIALIZABLE(CViewMap, mrpt::maps::CMetricMap, mrpt_vslam::viewmap)
 
 namespace mrpt_vslam::viewmap {
 
+using core::requireKey;
+
 namespace {
 
 /// Relative asymmetry allowed in a covariance (the EKF keeps its P symmetric up to rounding).
 constexpr double kSymmetryTolerance = 1e-12;
-
-/// Throws std::invalid_argument naming the section and key unless `ok`.
-void requireKey(bool ok, const std::string& section, const char* key, const char* what)
-{
-    if (!ok) throw std::invalid_argument("[" + section + "] " + key + ": " + what);
-}
 
 void requireFinitePose(const mrpt::math::TPose2D& p, const std::string& what)
 {

@@ -1,6 +1,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/random/RandomGenerators.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/viewmap/FeatureExistenceModel.h>
 
 #include <algorithm>
@@ -10,19 +11,14 @@
 
 namespace mrpt_vslam::viewmap {
 
-namespace {
-void require(bool ok, const char* key, const char* what)
-{
-    if (!ok) throw std::invalid_argument(std::string(key) + " " + what);
-}
-}  // namespace
+using core::requireOption;
 
 void FeatureExistenceModel::TOptions::validate() const
 {
-    require(max_points >= 3, "max_points", "must be >= 3");
-    require(refit_every >= 1, "refit_every", "must be >= 1");
-    require(confidence_sigmas >= 0 && std::isfinite(confidence_sigmas), "confidence_sigmas",
-            "must be finite and >= 0");
+    requireOption(max_points >= 3, "max_points", "must be >= 3");
+    requireOption(refit_every >= 1, "refit_every", "must be >= 1");
+    requireOption(confidence_sigmas >= 0 && std::isfinite(confidence_sigmas), "confidence_sigmas",
+                  "must be finite and >= 0");
 }
 
 void FeatureExistenceModel::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,

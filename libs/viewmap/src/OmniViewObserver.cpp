@@ -1,8 +1,8 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
-#include <mrpt/core/format.h>
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/random/RandomGenerators.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/viewmap/OmniViewObserver.h>
 
 #include <Eigen/LU>
@@ -13,6 +13,9 @@
 #include <stdexcept>
 
 namespace mrpt_vslam::viewmap {
+
+using core::requireParameter;
+
 namespace {
 
 /// [rad] step of the central differences of the residuals.
@@ -110,16 +113,10 @@ void OmniViewObserver::TOptions::validate() const
 {
     matching.validate();
     ransac.validate();
-    const auto require = [](bool ok, const char* key, double value) {
-        if (!ok) {
-            throw std::invalid_argument(
-                mrpt::format("OmniViewObserver: %s = %g must be in [0, 90)", key, value));
-        }
-    };
-    require(min_sigma_phi >= 0 && min_sigma_phi < M_PI / 2, "min_sigma_phi_deg",
-            mrpt::RAD2DEG(min_sigma_phi));
-    require(min_sigma_beta >= 0 && min_sigma_beta < M_PI / 2, "min_sigma_beta_deg",
-            mrpt::RAD2DEG(min_sigma_beta));
+    requireParameter(min_sigma_phi >= 0 && min_sigma_phi < M_PI / 2, "OmniViewObserver",
+                     "min_sigma_phi_deg", mrpt::RAD2DEG(min_sigma_phi), "must be in [0, 90)");
+    requireParameter(min_sigma_beta >= 0 && min_sigma_beta < M_PI / 2, "OmniViewObserver",
+                     "min_sigma_beta_deg", mrpt::RAD2DEG(min_sigma_beta), "must be in [0, 90)");
 }
 
 void OmniViewObserver::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,

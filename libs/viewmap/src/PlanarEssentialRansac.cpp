@@ -1,8 +1,8 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
-#include <mrpt/core/format.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt_vslam/core/Median.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/viewmap/PlanarEssentialRansac.h>
 
 #include <Eigen/Geometry>
@@ -12,6 +12,9 @@
 #include <stdexcept>
 
 namespace mrpt_vslam::viewmap {
+
+using core::requireParameter;
+
 namespace {
 
 constexpr size_t kSampleSize = 4;  // matches per minimal sample
@@ -96,20 +99,16 @@ double requiredIterations(double inlier_ratio, double confidence)
 
 void PlanarEssentialRansac::TOptions::validate() const
 {
-    const auto require = [](bool ok, const char* key, double value, const char* requirement) {
-        if (!ok) {
-            throw std::invalid_argument(
-                mrpt::format("PlanarEssentialRansac: %s = %g %s", key, value, requirement));
-        }
-    };
-    require(inlier_threshold > 0 && inlier_threshold < M_PI / 2, "inlier_threshold_deg",
-            mrpt::RAD2DEG(inlier_threshold), "must be in (0, 90)");
-    require(confidence > 0 && confidence < 1, "confidence", confidence, "must be in (0, 1)");
-    require(max_iterations >= 1 && max_iterations <= 100000, "max_iterations", max_iterations,
-            "must be 1 to 100000");
-    require(min_inliers >= int(kSampleSize), "min_inliers", min_inliers, "must be >= 4");
-    require(min_parallax >= 0 && min_parallax < M_PI, "min_parallax_deg",
-            mrpt::RAD2DEG(min_parallax), "must be in [0, 180)");
+    requireParameter(inlier_threshold > 0 && inlier_threshold < M_PI / 2, "PlanarEssentialRansac",
+                     "inlier_threshold_deg", mrpt::RAD2DEG(inlier_threshold), "must be in (0, 90)");
+    requireParameter(confidence > 0 && confidence < 1, "PlanarEssentialRansac", "confidence",
+                     confidence, "must be in (0, 1)");
+    requireParameter(max_iterations >= 1 && max_iterations <= 100000, "PlanarEssentialRansac",
+                     "max_iterations", max_iterations, "must be 1 to 100000");
+    requireParameter(min_inliers >= int(kSampleSize), "PlanarEssentialRansac", "min_inliers",
+                     min_inliers, "must be >= 4");
+    requireParameter(min_parallax >= 0 && min_parallax < M_PI, "PlanarEssentialRansac",
+                     "min_parallax_deg", mrpt::RAD2DEG(min_parallax), "must be in [0, 180)");
 }
 
 void PlanarEssentialRansac::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,

@@ -2,6 +2,7 @@
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 #include <mrpt/math/wrap2pi.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/viewmap/ViewFeatureMatcher.h>
 
 #include <Eigen/Eigenvalues>
@@ -12,6 +13,9 @@
 #include <stdexcept>
 
 namespace mrpt_vslam::viewmap {
+
+using core::requireParameter;
+
 namespace {
 
 /// The 12 edges of the 3 × 3 grid of samples (sample 3·i + j): from kEdgeFrom[e] to kEdgeTo[e].
@@ -363,19 +367,15 @@ bool PredictedSearchArea::contains(const Eigen::Vector3d& p_v, const Eigen::Vect
 
 void ViewFeatureMatcher::TOptions::validate() const
 {
-    const auto require = [](bool ok, const char* key, double value, const char* requirement) {
-        if (!ok) {
-            throw std::invalid_argument(
-                mrpt::format("ViewFeatureMatcher: %s = %g %s", key, value, requirement));
-        }
-    };
-    require(search_sigmas >= 0 && std::isfinite(search_sigmas), "search_sigmas", search_sigmas,
-            "must be >= 0");
-    require(area_tolerance > 0 && area_tolerance < M_PI / 2, "area_tolerance_deg",
-            mrpt::RAD2DEG(area_tolerance), "must be in (0, 90)");
-    require(max_ratio > 0 && max_ratio <= 1, "max_ratio", max_ratio, "must be in (0, 1]");
-    require(max_descriptor_distance > 0 && std::isfinite(max_descriptor_distance),
-            "max_descriptor_distance", max_descriptor_distance, "must be > 0");
+    requireParameter(search_sigmas >= 0 && std::isfinite(search_sigmas), "ViewFeatureMatcher",
+                     "search_sigmas", search_sigmas, "must be >= 0");
+    requireParameter(area_tolerance > 0 && area_tolerance < M_PI / 2, "ViewFeatureMatcher",
+                     "area_tolerance_deg", mrpt::RAD2DEG(area_tolerance), "must be in (0, 90)");
+    requireParameter(max_ratio > 0 && max_ratio <= 1, "ViewFeatureMatcher", "max_ratio", max_ratio,
+                     "must be in (0, 1]");
+    requireParameter(max_descriptor_distance > 0 && std::isfinite(max_descriptor_distance),
+                     "ViewFeatureMatcher", "max_descriptor_distance", max_descriptor_distance,
+                     "must be > 0");
 }
 
 void ViewFeatureMatcher::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,

@@ -1,5 +1,6 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt_vslam/core/ConfigChoice.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/viewmap/ViewInitializationPolicy.h>
 
 #include <Eigen/LU>
@@ -8,12 +9,7 @@
 
 namespace mrpt_vslam::viewmap {
 
-namespace {
-void require(bool ok, const char* key, const char* what)
-{
-    if (!ok) throw std::invalid_argument(std::string(key) + " " + what);
-}
-}  // namespace
+using core::requireOption;
 
 const char* TViewDecision::reasonName(TReason r)
 {
@@ -38,17 +34,17 @@ const char* TViewDecision::reasonName(TReason r)
 
 void ViewInitializationPolicy::TOptions::validate() const
 {
-    require(min_view_spacing >= 0 && std::isfinite(min_view_spacing), "min_view_spacing",
-            "must be finite and >= 0");
-    require(min_inliers >= 1, "min_inliers", "must be >= 1");
-    require(max_view_distance > min_view_spacing && std::isfinite(max_view_distance),
-            "max_view_distance", "must be finite and > min_view_spacing");
-    require(information_deficit >= 0 && std::isfinite(information_deficit), "information_deficit",
-            "must be finite and >= 0");
-    require(deficit_frames >= 1, "deficit_frames", "must be >= 1");
-    require(trend_frames >= 1, "trend_frames", "must be >= 1");
-    require(min_sure_points >= 0 && std::isfinite(min_sure_points), "min_sure_points",
-            "must be finite and >= 0");
+    requireOption(min_view_spacing >= 0 && std::isfinite(min_view_spacing), "min_view_spacing",
+                  "must be finite and >= 0");
+    requireOption(min_inliers >= 1, "min_inliers", "must be >= 1");
+    requireOption(max_view_distance > min_view_spacing && std::isfinite(max_view_distance),
+                  "max_view_distance", "must be finite and > min_view_spacing");
+    requireOption(information_deficit >= 0 && std::isfinite(information_deficit),
+                  "information_deficit", "must be finite and >= 0");
+    requireOption(deficit_frames >= 1, "deficit_frames", "must be >= 1");
+    requireOption(trend_frames >= 1, "trend_frames", "must be >= 1");
+    requireOption(min_sure_points >= 0 && std::isfinite(min_sure_points), "min_sure_points",
+                  "must be finite and >= 0");
     existence.validate();
 }
 
