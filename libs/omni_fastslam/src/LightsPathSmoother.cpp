@@ -1,5 +1,6 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/math/wrap2pi.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/omni_fastslam/LightsPathSmoother.h>
 
 #include <Eigen/Cholesky>
@@ -14,26 +15,25 @@
 
 namespace mrpt_vslam::omni_fastslam {
 
+using core::requireKey;
 using mrpt::math::TPose2D;
 
 void LightsPathSmoother::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                                       const std::string& section)
 {
-    const auto require = [&](bool ok, const char* key, const char* what) {
-        if (!ok) throw std::invalid_argument("[" + section + "] " + key + ": " + what);
-    };
     MRPT_LOAD_CONFIG_VAR(smooth_path, bool, cfg, section);
     const int iterations =
         cfg.read_int(section, "max_iterations", static_cast<int>(max_iterations));
-    require(iterations >= 1 && iterations <= 1000, "max_iterations", "must be 1 to 1000");
+    requireKey(iterations >= 1 && iterations <= 1000, section, "max_iterations",
+               "must be 1 to 1000");
     max_iterations = static_cast<unsigned int>(iterations);
     const int round_count = cfg.read_int(section, "rounds", static_cast<int>(rounds));
-    require(round_count >= 1 && round_count <= 100, "rounds", "must be 1 to 100");
+    requireKey(round_count >= 1 && round_count <= 100, section, "rounds", "must be 1 to 100");
     rounds = static_cast<unsigned int>(round_count);
     MRPT_LOAD_CONFIG_VAR(huber, double, cfg, section);
-    require(huber >= 0, "huber", "must be >= 0 (0: no Huber)");
+    requireKey(huber >= 0, section, "huber", "must be >= 0 (0: no Huber)");
     MRPT_LOAD_CONFIG_VAR(merge_distance, double, cfg, section);
-    require(merge_distance >= 0, "merge_distance", "must be >= 0 (0: no merging)");
+    requireKey(merge_distance >= 0, section, "merge_distance", "must be >= 0 (0: no merging)");
 }
 
 void LightsPathSmoother::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,

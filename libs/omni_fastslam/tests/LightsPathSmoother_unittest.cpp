@@ -3,6 +3,7 @@
 // and lights are those of the ground truth within a few centimetres and decimetres.
 #include <gtest/gtest.h>
 #include <mrpt/bayes/CParticleFilter.h>
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/random/RandomGenerators.h>
@@ -167,4 +168,23 @@ TEST(LightsPathSmoother, KeepsLightsBeyondTheNearestReadingRange)
     };
     EXPECT_NEAR(nearest(0), 0.8, 0.01);
     EXPECT_GT(nearest(1), 0.97);
+}
+
+TEST(LightsPathSmoother, RefusesImpossibleOptionsNamingTheKey)
+{
+    const auto errorOf = [](const std::string& lines) -> std::string {
+        mrpt::config::CConfigFileMemory ini("[S]\n" + lines);
+        LightsPathSmoother::TOptions options;
+        try {
+            options.loadFromConfigFile(ini, "S");
+        } catch (const std::invalid_argument& e) {
+            return e.what();
+        }
+        return "";
+    };
+    EXPECT_EQ(errorOf(""), "") << "the defaults are valid";
+    EXPECT_EQ(errorOf("max_iterations = 0"), "[S] max_iterations: must be 1 to 1000");
+    EXPECT_EQ(errorOf("rounds = 101"), "[S] rounds: must be 1 to 100");
+    EXPECT_EQ(errorOf("huber = nan"), "[S] huber: must be >= 0 (0: no Huber)");
+    EXPECT_EQ(errorOf("merge_distance = -1"), "[S] merge_distance: must be >= 0 (0: no merging)");
 }
