@@ -165,12 +165,11 @@ void findMaxima(const std::array<TOctaveView, 3>& v, int step, int width, int he
 
 void FastHessianDetector::TOptions::validate() const
 {
-    requireParameter(std::isfinite(hessian_threshold) && hessian_threshold >= 0,
-                     "FastHessianDetector", "hessian_threshold", hessian_threshold, "must be >= 0");
-    requireParameter(octaves >= 1 && octaves <= 8, "FastHessianDetector", "octaves", octaves,
-                     "must be in [1, 8]");
-    requireParameter(initial_step >= 1, "FastHessianDetector", "initial_step", initial_step,
-                     "must be >= 1");
+    constexpr const char* kOwner = "FastHessianDetector";
+    requireParameter(std::isfinite(hessian_threshold) && hessian_threshold >= 0, kOwner,
+                     "hessian_threshold", hessian_threshold, "must be >= 0");
+    requireParameter(octaves >= 1 && octaves <= 8, kOwner, "octaves", octaves, "must be in [1, 8]");
+    requireParameter(initial_step >= 1, kOwner, "initial_step", initial_step, "must be >= 1");
 }
 
 void FastHessianDetector::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,

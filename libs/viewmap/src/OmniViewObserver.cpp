@@ -111,12 +111,13 @@ std::vector<size_t> studentizedInliers(const TViewObservation& z, const Eigen::M
 
 void OmniViewObserver::TOptions::validate() const
 {
+    constexpr const char* kOwner = "OmniViewObserver";
     matching.validate();
     ransac.validate();
-    requireParameter(min_sigma_phi >= 0 && min_sigma_phi < M_PI / 2, "OmniViewObserver",
-                     "min_sigma_phi_deg", mrpt::RAD2DEG(min_sigma_phi), "must be in [0, 90)");
-    requireParameter(min_sigma_beta >= 0 && min_sigma_beta < M_PI / 2, "OmniViewObserver",
-                     "min_sigma_beta_deg", mrpt::RAD2DEG(min_sigma_beta), "must be in [0, 90)");
+    requireParameter(min_sigma_phi >= 0 && min_sigma_phi < M_PI / 2, kOwner, "min_sigma_phi_deg",
+                     mrpt::RAD2DEG(min_sigma_phi), "must be in [0, 90)");
+    requireParameter(min_sigma_beta >= 0 && min_sigma_beta < M_PI / 2, kOwner, "min_sigma_beta_deg",
+                     mrpt::RAD2DEG(min_sigma_beta), "must be in [0, 90)");
 }
 
 void OmniViewObserver::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,

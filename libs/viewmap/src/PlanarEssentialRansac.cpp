@@ -99,16 +99,17 @@ double requiredIterations(double inlier_ratio, double confidence)
 
 void PlanarEssentialRansac::TOptions::validate() const
 {
-    requireParameter(inlier_threshold > 0 && inlier_threshold < M_PI / 2, "PlanarEssentialRansac",
+    constexpr const char* kOwner = "PlanarEssentialRansac";
+    requireParameter(inlier_threshold > 0 && inlier_threshold < M_PI / 2, kOwner,
                      "inlier_threshold_deg", mrpt::RAD2DEG(inlier_threshold), "must be in (0, 90)");
-    requireParameter(confidence > 0 && confidence < 1, "PlanarEssentialRansac", "confidence",
-                     confidence, "must be in (0, 1)");
-    requireParameter(max_iterations >= 1 && max_iterations <= 100000, "PlanarEssentialRansac",
-                     "max_iterations", max_iterations, "must be 1 to 100000");
-    requireParameter(min_inliers >= int(kSampleSize), "PlanarEssentialRansac", "min_inliers",
-                     min_inliers, "must be >= 4");
-    requireParameter(min_parallax >= 0 && min_parallax < M_PI, "PlanarEssentialRansac",
-                     "min_parallax_deg", mrpt::RAD2DEG(min_parallax), "must be in [0, 180)");
+    requireParameter(confidence > 0 && confidence < 1, kOwner, "confidence", confidence,
+                     "must be in (0, 1)");
+    requireParameter(max_iterations >= 1 && max_iterations <= 100000, kOwner, "max_iterations",
+                     max_iterations, "must be 1 to 100000");
+    requireParameter(min_inliers >= int(kSampleSize), kOwner, "min_inliers", min_inliers,
+                     "must be >= 4");
+    requireParameter(min_parallax >= 0 && min_parallax < M_PI, kOwner, "min_parallax_deg",
+                     mrpt::RAD2DEG(min_parallax), "must be in [0, 180)");
 }
 
 void PlanarEssentialRansac::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,

@@ -367,15 +367,15 @@ bool PredictedSearchArea::contains(const Eigen::Vector3d& p_v, const Eigen::Vect
 
 void ViewFeatureMatcher::TOptions::validate() const
 {
-    requireParameter(search_sigmas >= 0 && std::isfinite(search_sigmas), "ViewFeatureMatcher",
-                     "search_sigmas", search_sigmas, "must be >= 0");
-    requireParameter(area_tolerance > 0 && area_tolerance < M_PI / 2, "ViewFeatureMatcher",
-                     "area_tolerance_deg", mrpt::RAD2DEG(area_tolerance), "must be in (0, 90)");
-    requireParameter(max_ratio > 0 && max_ratio <= 1, "ViewFeatureMatcher", "max_ratio", max_ratio,
+    constexpr const char* kOwner = "ViewFeatureMatcher";
+    requireParameter(search_sigmas >= 0 && std::isfinite(search_sigmas), kOwner, "search_sigmas",
+                     search_sigmas, "must be >= 0");
+    requireParameter(area_tolerance > 0 && area_tolerance < M_PI / 2, kOwner, "area_tolerance_deg",
+                     mrpt::RAD2DEG(area_tolerance), "must be in (0, 90)");
+    requireParameter(max_ratio > 0 && max_ratio <= 1, kOwner, "max_ratio", max_ratio,
                      "must be in (0, 1]");
-    requireParameter(max_descriptor_distance > 0 && std::isfinite(max_descriptor_distance),
-                     "ViewFeatureMatcher", "max_descriptor_distance", max_descriptor_distance,
-                     "must be > 0");
+    requireParameter(max_descriptor_distance > 0 && std::isfinite(max_descriptor_distance), kOwner,
+                     "max_descriptor_distance", max_descriptor_distance, "must be > 0");
 }
 
 void ViewFeatureMatcher::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
