@@ -5,6 +5,7 @@
 #include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/core/PajdlaBaksteinCamera.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace mrpt_vslam::core {
@@ -19,6 +20,16 @@ double PajdlaBaksteinCamera::radiusDerivative(double theta) const
 {
     const double ct = std::cos(theta / b);
     return a / (b * ct * ct) + (c / d) * std::cos(theta / d);
+}
+
+double PajdlaBaksteinCamera::increasingUpTo(double theta_max) const
+{
+    constexpr int kSteps = 1000;
+    for (int i = 0; i <= kSteps; i++) {
+        if (!(radiusDerivative(theta_max * i / kSteps) > 0))
+            return theta_max * std::max(i - 1, 0) / kSteps;
+    }
+    return theta_max;
 }
 
 Eigen::Vector2d PajdlaBaksteinCamera::project(double phi, double theta) const
@@ -67,11 +78,8 @@ void PajdlaBaksteinCamera::validate() const
     requireParameter(
         max_theta < b * M_PI / 2, kOwner, "max_theta_deg", maxThetaDeg,
         mrpt::format("must be below b * 90 = %g (the tan term diverges there)", b * 90));
-    constexpr int kSteps = 1000;
-    for (int i = 0; i <= kSteps; i++) {
-        requireParameter(radiusDerivative(max_theta * i / kSteps) > 0, kOwner, "max_theta_deg",
-                         maxThetaDeg, "is past the angle where r(theta) stops increasing");
-    }
+    requireParameter(increasingUpTo(max_theta) == max_theta, kOwner, "max_theta_deg", maxThetaDeg,
+                     "is past the angle where r(theta) stops increasing");
 }
 
 void PajdlaBaksteinCamera::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,

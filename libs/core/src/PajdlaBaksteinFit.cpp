@@ -38,12 +38,9 @@ TLinearFit fitGains(const RadialCalibration::TSamples& s, double b, double d)
     return fit;
 }
 
-}  // namespace
-
-TPajdlaBaksteinFit fitPajdlaBakstein(const mrpt::img::TCamera& calibration, double max_theta)
+/// The model whose r(θ) fits the calibration best over (0, theta_max] (fitPajdlaBakstein()).
+PajdlaBaksteinCamera fitOver(const RadialCalibration& radial, double theta_max)
 {
-    const RadialCalibration radial(calibration);
-    const double theta_max = radial.fieldOfView(max_theta);
     const RadialCalibration::TSamples samples = radial.samples(theta_max, 400);
 
     // (log b, log d): a grid, then a compass search from its best point. Beyond 1e4 both
@@ -79,6 +76,29 @@ TPajdlaBaksteinFit fitPajdlaBakstein(const mrpt::img::TCamera& calibration, doub
     camera.b = std::exp(best[0]);
     camera.c = bestFit.c;
     camera.d = std::exp(best[1]);
+    return camera;
+}
+
+}  // namespace
+
+TPajdlaBaksteinFit fitPajdlaBakstein(const mrpt::img::TCamera& calibration, double max_theta)
+{
+    const RadialCalibration radial(calibration);
+    double theta_max = radial.fieldOfView(max_theta);
+    PajdlaBaksteinCamera camera = fitOver(radial, theta_max);
+    // Where the calibration's radius flattens at the edge of the field of view (a barrel
+    // pinhole), the best fit can turn down just before that edge: the field of view is then
+    // narrowed to where the fit still increases, a few times and by half at most (a model that
+    // turns down sooner is refused by fitted()).
+    constexpr int kNarrowings = 5;
+    constexpr double kMargin = 0.98;
+    const double smallest = 0.5 * theta_max;
+    for (int i = 0; i < kNarrowings; i++) {
+        const double increasing = camera.increasingUpTo(theta_max);
+        if (increasing == theta_max || kMargin * increasing < smallest) break;
+        theta_max = kMargin * increasing;
+        camera = fitOver(radial, theta_max);
+    }
     camera.beta = calibration.fy() / calibration.fx();
     camera.u0 = calibration.cx();
     camera.v0 = calibration.cy() / camera.beta;

@@ -44,6 +44,9 @@ class PajdlaBaksteinCamera : public mrpt::config::CLoadableOptions {
     double radius(double theta) const;
     /// dr/dθ [px/rad].
     double radiusDerivative(double theta) const;
+    /** [rad] The largest angle up to `theta_max` to which r(θ) increases: dr/dθ > 0 at 1001
+     *  angles evenly over [0, that angle], as validate() checks it up to max_theta. */
+    double increasingUpTo(double theta_max) const;
 
     /// Eq. 1: ray angles (φ, θ) [rad] → pixel (u, v) [px]. Does not check the image bounds.
     Eigen::Vector2d project(double phi, double theta) const;
