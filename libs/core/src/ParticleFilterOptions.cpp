@@ -1,9 +1,9 @@
 #include <mrpt_vslam/core/ConfigChoice.h>
 #include <mrpt_vslam/core/ConfigFileWithDefaults.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/core/ParticleFilterOptions.h>
 
 #include <cmath>
-#include <stdexcept>
 #include <string>
 
 namespace mrpt_vslam::core {
@@ -21,6 +21,7 @@ void loadParticleFilterOptions(const mrpt::config::CConfigFileBase& cfg, const s
          {"resamplingMethod", TEnumType<PF::TParticleResamplingAlgorithm>::value2name(kResampling)},
          {"BETA", "0.5"},
          {"adaptiveSampleSize", "false"}});
+    // the key with its section in front, as requireOption() leaves it to the reader
     const auto key = [&](const char* name) { return "[" + section + "] " + name; };
 
     // checked first: MRPT's loader asks an auxiliary filter for its own keys and asserts on a
@@ -30,15 +31,14 @@ void loadParticleFilterOptions(const mrpt::config::CConfigFileBase& cfg, const s
     readEnum(withDefaults, section, "resamplingMethod", kResampling);
     const double range = withDefaults.read_double(section, "max_loglikelihood_dyn_range",
                                                   options.max_loglikelihood_dyn_range);
-    if (!(range > 0 && std::isfinite(range)))
-        throw std::invalid_argument(key("max_loglikelihood_dyn_range") + " must be finite and > 0");
+    requireOption(range > 0 && std::isfinite(range), key("max_loglikelihood_dyn_range"),
+                  "must be finite and > 0");
 
     options.loadFromConfigFile(withDefaults, section);
-    if (!(options.BETA >= 0 && options.BETA <= 1))
-        throw std::invalid_argument(key("BETA") +
-                                    " (the N_eff/N threshold of resampling) must be in [0, 1]");
-    if (!(options.powFactor > 0 && options.powFactor <= 1))
-        throw std::invalid_argument(key("powFactor") + " must be in (0, 1]");
+    requireOption(options.BETA >= 0 && options.BETA <= 1, key("BETA"),
+                  "(the N_eff/N threshold of resampling) must be in [0, 1]");
+    requireOption(options.powFactor > 0 && options.powFactor <= 1, key("powFactor"),
+                  "must be in (0, 1]");
 }
 
 }  // namespace mrpt_vslam::core
