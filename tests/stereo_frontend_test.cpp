@@ -299,8 +299,8 @@ TEST_F(StereoFrontendApp, ConfigurationErrorsExitWith2)
         {"[StereoFrontEnd]\nmax_corner = 100\n",
          "unknown key [StereoFrontEnd] max_corner (line 2)"},
         {"[StereoFrontEnd]\nmin_depth = 2\nmax_depth = 1\n",
-         "[StereoFrontEnd] max_depth must be finite and > min_depth"},
-        {"[StereoFrontEnd]\nncc_window = 10\n", "[StereoFrontEnd] ncc_window must be odd"}};
+         "[StereoFrontEnd] max_depth: must be finite and > min_depth"},
+        {"[StereoFrontEnd]\nncc_window = 10\n", "[StereoFrontEnd] ncc_window: must be odd"}};
     int n = 0;
     for (const auto& [text, message] : cases) {
         const std::string cfg = s_scratch->write("bad" + std::to_string(n++) + ".ini", text);

@@ -3,6 +3,7 @@
 #include <mrpt/img/CImage.h>
 #include <mrpt_vslam/core/ConfigSectionWriter.h>
 #include <mrpt_vslam/core/EndsWith.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/multirobot/StereoFrontEnd.h>
 
 #include <algorithm>
@@ -64,33 +65,32 @@ void StereoFrontEnd::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c
 
 void StereoFrontEnd::TOptions::validate(const std::string& section) const
 {
-    const auto fail = [&](const std::string& key, const std::string& rule) {
-        throw std::invalid_argument("[" + section + "] " + key + " " + rule);
+    using core::requireKey;
+    const auto positive = [&](double v, std::string_view key) {
+        requireKey(v > 0 && std::isfinite(v), section, key, "must be > 0");
     };
-    if (max_corners < 1) fail("max_corners", "must be >= 1");
-    if (!(harris_quality > 0 && harris_quality < 1)) fail("harris_quality", "must be in (0, 1)");
-    if (!(min_corner_distance >= 0 && std::isfinite(min_corner_distance)))
-        fail("min_corner_distance", "must be >= 0");
-    if (harris_block_size < 2) fail("harris_block_size", "must be >= 2");
-    if (!(harris_k > 0 && harris_k < 0.25)) fail("harris_k", "must be in (0, 0.25)");
+    requireKey(max_corners >= 1, section, "max_corners", "must be >= 1");
+    requireKey(harris_quality > 0 && harris_quality < 1, section, "harris_quality",
+               "must be in (0, 1)");
+    requireKey(min_corner_distance >= 0 && std::isfinite(min_corner_distance), section,
+               "min_corner_distance", "must be >= 0");
+    requireKey(harris_block_size >= 2, section, "harris_block_size", "must be >= 2");
+    requireKey(harris_k > 0 && harris_k < 0.25, section, "harris_k", "must be in (0, 0.25)");
     matching.validate(section);
-    if (!(min_depth > 0)) fail("min_depth", "must be > 0");
-    if (!(max_depth > min_depth && std::isfinite(max_depth)))
-        fail("max_depth", "must be finite and > min_depth");
-    if (!(usurf_scale > 0 && std::isfinite(usurf_scale))) fail("usurf_scale", "must be > 0");
-    if (!(pixel_noise.sigma_disparity > 0 && std::isfinite(pixel_noise.sigma_disparity)))
-        fail("sigma_disparity", "must be > 0");
-    if (!(pixel_noise.sigma_row > 0 && std::isfinite(pixel_noise.sigma_row)))
-        fail("sigma_row", "must be > 0");
-    if (!(pixel_noise.sigma_col > 0 && std::isfinite(pixel_noise.sigma_col)))
-        fail("sigma_col", "must be > 0");
-    if (!(track_search_radius > 0 && std::isfinite(track_search_radius)))
-        fail("track_search_radius", "must be > 0");
-    if (!(track_ratio > 0 && track_ratio <= 1)) fail("track_ratio", "must be in (0, 1]");
-    if (!(track_max_descriptor_distance > 0 && track_max_descriptor_distance <= 2))
-        fail("track_max_descriptor_distance", "must be in (0, 2]");
-    if (min_track_length < 1) fail("min_track_length", "must be >= 1");
-    if (max_landmarks_per_frame < 0) fail("max_landmarks_per_frame", "must be >= 0 (0 = no limit)");
+    requireKey(min_depth > 0, section, "min_depth", "must be > 0");
+    requireKey(max_depth > min_depth && std::isfinite(max_depth), section, "max_depth",
+               "must be finite and > min_depth");
+    positive(usurf_scale, "usurf_scale");
+    positive(pixel_noise.sigma_disparity, "sigma_disparity");
+    positive(pixel_noise.sigma_row, "sigma_row");
+    positive(pixel_noise.sigma_col, "sigma_col");
+    positive(track_search_radius, "track_search_radius");
+    requireKey(track_ratio > 0 && track_ratio <= 1, section, "track_ratio", "must be in (0, 1]");
+    requireKey(track_max_descriptor_distance > 0 && track_max_descriptor_distance <= 2, section,
+               "track_max_descriptor_distance", "must be in (0, 2]");
+    requireKey(min_track_length >= 1, section, "min_track_length", "must be >= 1");
+    requireKey(max_landmarks_per_frame >= 0, section, "max_landmarks_per_frame",
+               "must be >= 0 (0 = no limit)");
 }
 
 StereoFrontEnd::StereoFrontEnd(const TOptions& options) : m_options(options)

@@ -1,6 +1,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/img/CImage.h>
 #include <mrpt_vslam/core/ConfigSectionWriter.h>
+#include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/multirobot/StereoMatcher.h>
 
 #include <algorithm>
@@ -37,17 +38,15 @@ void StereoMatcher::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& cf
 
 void StereoMatcher::TOptions::validate(const std::string& section) const
 {
-    const auto fail = [&](const std::string& key, const std::string& rule) {
-        throw std::invalid_argument("[" + section + "] " + key + " " + rule);
-    };
-    if (min_disparity < 1) fail("min_disparity", "must be >= 1");
-    if (max_disparity < min_disparity + 2)
-        fail("max_disparity", "must be >= min_disparity + 2 (a peak needs two neighbours)");
-    if (ncc_window < 3 || ncc_window > 51 || ncc_window % 2 == 0)
-        fail("ncc_window", "must be odd, from 3 to 51");
-    if (!(min_ncc > -1 && min_ncc <= 1)) fail("min_ncc", "must be in (-1, 1]");
-    if (!(uniqueness_ratio > 0 && uniqueness_ratio <= 1))
-        fail("uniqueness_ratio", "must be in (0, 1]");
+    using core::requireKey;
+    requireKey(min_disparity >= 1, section, "min_disparity", "must be >= 1");
+    requireKey(max_disparity >= min_disparity + 2, section, "max_disparity",
+               "must be >= min_disparity + 2 (a peak needs two neighbours)");
+    requireKey(ncc_window >= 3 && ncc_window <= 51 && ncc_window % 2 == 1, section, "ncc_window",
+               "must be odd, from 3 to 51");
+    requireKey(min_ncc > -1 && min_ncc <= 1, section, "min_ncc", "must be in (-1, 1]");
+    requireKey(uniqueness_ratio > 0 && uniqueness_ratio <= 1, section, "uniqueness_ratio",
+               "must be in (0, 1]");
 }
 
 namespace {

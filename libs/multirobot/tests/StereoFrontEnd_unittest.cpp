@@ -503,20 +503,22 @@ TEST(StereoFrontEnd, OptionsLoadValidateAndRoundTrip)
         return "";
     };
     EXPECT_EQ(loadError("max_depth = 0.2"),
-              "[StereoFrontEnd] max_depth must be finite and > min_depth");
-    EXPECT_EQ(loadError("max_corners = 0"), "[StereoFrontEnd] max_corners must be >= 1");
-    EXPECT_EQ(loadError("harris_quality = 1"), "[StereoFrontEnd] harris_quality must be in (0, 1)");
-    EXPECT_EQ(loadError("harris_k = -0.1"), "[StereoFrontEnd] harris_k must be in (0, 0.25)");
+              "[StereoFrontEnd] max_depth: must be finite and > min_depth");
+    EXPECT_EQ(loadError("max_corners = 0"), "[StereoFrontEnd] max_corners: must be >= 1");
+    EXPECT_EQ(loadError("harris_quality = 1"),
+              "[StereoFrontEnd] harris_quality: must be in (0, 1)");
+    EXPECT_EQ(loadError("harris_k = -0.1"), "[StereoFrontEnd] harris_k: must be in (0, 0.25)");
     EXPECT_EQ(loadError("harris_block_size = 1"),
-              "[StereoFrontEnd] harris_block_size must be >= 2");
-    EXPECT_EQ(loadError("sigma_disparity = 0"), "[StereoFrontEnd] sigma_disparity must be > 0");
-    EXPECT_EQ(loadError("sigma_row = nan"), "[StereoFrontEnd] sigma_row must be > 0");
-    EXPECT_EQ(loadError("usurf_scale = -2"), "[StereoFrontEnd] usurf_scale must be > 0");
-    EXPECT_EQ(loadError("track_ratio = 1.5"), "[StereoFrontEnd] track_ratio must be in (0, 1]");
-    EXPECT_EQ(loadError("min_track_length = 0"), "[StereoFrontEnd] min_track_length must be >= 1");
+              "[StereoFrontEnd] harris_block_size: must be >= 2");
+    EXPECT_EQ(loadError("sigma_disparity = 0"), "[StereoFrontEnd] sigma_disparity: must be > 0");
+    EXPECT_EQ(loadError("sigma_row = nan"), "[StereoFrontEnd] sigma_row: must be > 0");
+    EXPECT_EQ(loadError("usurf_scale = -2"), "[StereoFrontEnd] usurf_scale: must be > 0");
+    EXPECT_EQ(loadError("track_ratio = 1.5"), "[StereoFrontEnd] track_ratio: must be in (0, 1]");
+    EXPECT_EQ(loadError("min_track_length = 0"), "[StereoFrontEnd] min_track_length: must be >= 1");
     EXPECT_EQ(loadError("max_landmarks_per_frame = -1"),
-              "[StereoFrontEnd] max_landmarks_per_frame must be >= 0 (0 = no limit)");
-    EXPECT_EQ(loadError("ncc_window = 4"), "[StereoFrontEnd] ncc_window must be odd, from 3 to 51");
+              "[StereoFrontEnd] max_landmarks_per_frame: must be >= 0 (0 = no limit)");
+    EXPECT_EQ(loadError("ncc_window = 4"),
+              "[StereoFrontEnd] ncc_window: must be odd, from 3 to 51");
     EXPECT_EQ(loadError("max_landmarks_per_frame = 8\nmin_track_length = 3"), "");
 
     // The paper's values are the defaults.

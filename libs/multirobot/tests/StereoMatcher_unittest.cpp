@@ -192,13 +192,14 @@ TEST(StereoMatcher, RejectsBadImagesAndOptions)
         }
         return "";
     };
-    EXPECT_EQ(loadError("min_disparity = 0"), "[StereoFrontEnd] min_disparity must be >= 1");
+    EXPECT_EQ(loadError("min_disparity = 0"), "[StereoFrontEnd] min_disparity: must be >= 1");
     EXPECT_EQ(loadError("min_disparity = 10\nmax_disparity = 11"),
-              "[StereoFrontEnd] max_disparity must be >= min_disparity + 2 (a peak needs two "
+              "[StereoFrontEnd] max_disparity: must be >= min_disparity + 2 (a peak needs two "
               "neighbours)");
-    EXPECT_EQ(loadError("ncc_window = 8"), "[StereoFrontEnd] ncc_window must be odd, from 3 to 51");
-    EXPECT_EQ(loadError("min_ncc = 1.5"), "[StereoFrontEnd] min_ncc must be in (-1, 1]");
+    EXPECT_EQ(loadError("ncc_window = 8"),
+              "[StereoFrontEnd] ncc_window: must be odd, from 3 to 51");
+    EXPECT_EQ(loadError("min_ncc = 1.5"), "[StereoFrontEnd] min_ncc: must be in (-1, 1]");
     EXPECT_EQ(loadError("uniqueness_ratio = 0"),
-              "[StereoFrontEnd] uniqueness_ratio must be in (0, 1]");
+              "[StereoFrontEnd] uniqueness_ratio: must be in (0, 1]");
     EXPECT_EQ(loadError("min_disparity = 4\nmax_disparity = 90\nncc_window = 7"), "");
 }
