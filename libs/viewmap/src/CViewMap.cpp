@@ -15,6 +15,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "ArgumentChecks.h"
+
 using mrpt_vslam::viewmap::CViewMap;
 
 MAP_DEFINITION_REGISTER("mrpt_vslam::viewmap::CViewMap,viewMap", mrpt_vslam::viewmap::CViewMap)
@@ -24,24 +26,10 @@ IMPLEMENTS_SERIALIZABLE(CViewMap, mrpt::maps::CMetricMap, mrpt_vslam::viewmap)
 namespace mrpt_vslam::viewmap {
 
 using core::requireKey;
+using detail::requireCovariance;
+using detail::requireFinite;
 
 namespace {
-
-/// Relative asymmetry allowed in a covariance (the EKF keeps its P symmetric up to rounding).
-constexpr double kSymmetryTolerance = 1e-12;
-
-void requireFinitePose(const mrpt::math::TPose2D& p, const std::string& what)
-{
-    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.phi)))
-        throw std::invalid_argument(what + ": pose is not finite");
-}
-
-void requireSymmetric(const Eigen::Matrix3d& C, const std::string& what)
-{
-    if (!C.allFinite() ||
-        (C - C.transpose()).cwiseAbs().maxCoeff() > kSymmetryTolerance * C.cwiseAbs().maxCoeff())
-        throw std::invalid_argument(what + ": covariance is not finite and symmetric");
-}
 
 /// C with its lower triangle copied from the upper one (exactly symmetric).
 Eigen::Matrix3d symmetrized(Eigen::Matrix3d C)
@@ -98,8 +86,8 @@ void CViewMap::TRenderOptions::dumpToTextStream(std::ostream& out) const
 
 void CViewMap::checkView(const TView& v, const std::string& what)
 {
-    requireFinitePose(v.pose, what);
-    requireSymmetric(v.covariance, what);
+    requireFinite(v.pose, what + ": pose");
+    requireCovariance(v.covariance, false, what + ": covariance");
     const auto n = static_cast<Eigen::Index>(v.features.size());
     const TViewFeatures& f = v.features;
     if (f.pixels.cols() != n || static_cast<Eigen::Index>(f.scales.size()) != n ||
@@ -131,8 +119,8 @@ void CViewMap::setViewEstimate(size_t i, const mrpt::math::TPose2D& pose,
     if (i >= m_views.size())
         throw std::invalid_argument(what + ": index out of range (size " +
                                     std::to_string(m_views.size()) + ")");
-    requireFinitePose(pose, what);
-    requireSymmetric(covariance, what);
+    requireFinite(pose, what + ": pose");
+    requireCovariance(covariance, false, what + ": covariance");
     m_views[i].pose = pose;
     m_views[i].covariance = symmetrized(covariance);
 }

@@ -2,48 +2,19 @@
 #include <mrpt_vslam/viewmap/ViewMapEKF.h>
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-namespace mrpt_vslam::viewmap {
-namespace {
+#include "ArgumentChecks.h"
 
+namespace mrpt_vslam::viewmap {
+
+using detail::requireCovariance;
+using detail::requireFinite;
 using mrpt::math::TPose2D;
 using mrpt::math::wrapToPi;
-
-/// Relative rounding allowed in the symmetry and the eigenvalues of a covariance argument.
-constexpr double kCovarianceTolerance = 1e-12;
-
-void requireFinite(const TPose2D& p, const std::string& what)
-{
-    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.phi))) {
-        throw std::invalid_argument(what + " is not finite");
-    }
-}
-
-/// Throws unless M is finite, symmetric and positive semidefinite (definite with `definite`).
-template <int N>
-void requireCovariance(const Eigen::Matrix<double, N, N>& M, bool definite, const std::string& what)
-{
-    const double scale = M.cwiseAbs().maxCoeff();
-    if (!M.allFinite() ||
-        (M - M.transpose()).cwiseAbs().maxCoeff() > kCovarianceTolerance * scale) {
-        throw std::invalid_argument(what + " is not finite and symmetric");
-    }
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eig(M, Eigen::EigenvaluesOnly);
-    const double lambda_min = eig.eigenvalues()(0);
-    if (definite && !(lambda_min > kCovarianceTolerance * scale)) {
-        throw std::invalid_argument(what + " is not positive definite");
-    }
-    if (!definite && lambda_min < -kCovarianceTolerance * scale) {
-        throw std::invalid_argument(what + " is not positive semidefinite");
-    }
-}
-
-}  // namespace
 
 ViewMapEKF::ViewMapEKF(const TPose2D& start, const Eigen::Matrix3d& P0)
     : m_x(Eigen::Vector3d(start.x, start.y, wrapToPi(start.phi))), m_P(0.5 * (P0 + P0.transpose()))

@@ -193,6 +193,10 @@ TEST(CViewMap, SetViewEstimateStoresTheEstimateAndRejectsBadInput)
     Eigen::Matrix3d nan_cov = C;
     nan_cov(1, 1) = std::nan("");
     EXPECT_THROW(map.setViewEstimate(0, TPose2D(0, 0, 0), nan_cov), std::invalid_argument);
+    Eigen::Matrix3d indefinite = C;
+    indefinite(0, 0) = -indefinite(0, 0);
+    EXPECT_EQ(errorOf([&] { map.setViewEstimate(0, TPose2D(0, 0, 0), indefinite); }),
+              "CViewMap::setViewEstimate(view 0): covariance is not positive semidefinite");
     EXPECT_EQ(map.view(0).pose.x, 1.0) << "a rejected estimate changes nothing";
 }
 
