@@ -22,7 +22,7 @@
 # (omni-fastslam's planar mode on robot 1: scripts/reproduce-omni-fastslam.sh.)
 # Writes the tables to doc/results/real-data.md (or $RESULTS) and the plots of section 2 to
 # doc/results/real-data/; run folders under out/reproduce-mrclam/ (or $OUT). Builds first
-# (scripts/setup.sh). Takes about 28 min on two cores (M = 2000 as shipped).
+# (scripts/setup.sh). Takes about 24 min on two cores (M = 2000 as shipped).
 # Environment: MRPT_VSLAM_MRCLAM_DIR (required: the folder of dataset 7's .dat files, see
 # doc/real-data.md), SEEDS (default 1 2 3 4 5), SINGLE_SEEDS (the seeds of the filters alone in
 # section 2, default 1 to 15), OUT, RESULTS.

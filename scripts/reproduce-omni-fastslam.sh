@@ -18,7 +18,7 @@
 #      the planar bearing-only mode on robot 1 (mrclam-bearing-only.ini, MRCLAM_SEEDS), in
 #      doc/results/omni-fastslam-mrclam-r1.md (or $RESULTS_MRCLAM); skipped without it.
 # Run folders (metrics.json, run.json, plots) under out/reproduce-omni-fastslam/ (or $OUT).
-# Builds first (scripts/setup.sh). Takes about 3 min (2 more with the MRCLAM part).
+# Builds first (scripts/setup.sh). Takes about 1 min (2 more with the MRCLAM part).
 # Environment: OUT, SEEDS (default 1..10), MRCLAM_SEEDS (default 1..8), RESULTS, RESULTS_MRCLAM.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

@@ -21,7 +21,7 @@
 #      process), and the turn of each path's best alignment to the truth; the figures of both
 #      tools' RMSE per rawlog beside it (doc/results/range-bearing/).
 # Writes rawlogs, run folders (metrics.json, paths.png, ...) and logs under
-# out/reproduce-range-bearing/ (or $OUT). Builds first (scripts/setup.sh). Takes about 6 min
+# out/reproduce-range-bearing/ (or $OUT). Builds first (scripts/setup.sh). Takes about 9 min
 # (120 rawlogs; each tool about a second or less per rawlog at the default SEEDS).
 # Environment: OUT, SIM_SEEDS (simulation seeds, default 1 to 20: one rawlog per noise level,
 # IDs kept or hidden and seed; twenty worlds, because which tool is the more accurate on a

@@ -23,7 +23,7 @@
 #   6. two figures of 2-4: the error stated against the error found, angles and distances.
 # Writes run folders under out/reproduce-sensor-pose-check/ (or $OUT), the tables to
 # doc/results/sensor-pose-check.md (or $RESULTS) and the figures beside it, in
-# doc/results/sensor-pose-check/. Builds first (scripts/setup.sh). Takes about 12 minutes.
+# doc/results/sensor-pose-check/. Builds first (scripts/setup.sh). Takes about 8 minutes.
 # Environment: SEEDS (default 1 2), OUT, RESULTS.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

@@ -12,7 +12,7 @@
 #      span.
 # The runs at rate 1 (mostly waiting) run side by side on their own ports; the faster ones alone.
 # Tables to doc/results/team-online.md (or $RESULTS); run folders and logs under
-# out/reproduce-team-online/ (or $OUT). Builds first (scripts/setup.sh). About 11 min, most of
+# out/reproduce-team-online/ (or $OUT). Builds first (scripts/setup.sh). About 10 min, most of
 # it the runs at real time.
 # Environment: OUT, RESULTS, PORT (first loopback port, default 5600), KILL_AT (default 60),
 # GAP (default 10).
