@@ -954,6 +954,27 @@ TEST_F(MultiRobotVSLAMApp, BadInputGivesOneLineErrors)
               std::string::npos)
         << noImages.out;
 
+    // a right image cut short, which OpenCV would decode with its missing part grey
+    fs::copy(kData + "team2-stereo-short_Images",
+             s_scratch->path() / "alone" / "team2-stereo-short_Images",
+             fs::copy_options::recursive);
+    const fs::path cut =
+        s_scratch->path() / "alone" / "team2-stereo-short_Images" / "R1_STEREO_000001_R.png";
+    fs::resize_file(cut, 5000);
+    const TCommandResult cutImage =
+        run(cfg + (s_scratch->path() / "alone" / "team2-stereo-short.rawlog").string() +
+            " -q --out " + out("e-cut"));
+    EXPECT_EQ(cutImage.exit_code, 1);
+    EXPECT_EQ(mrpt_vslam::test::lineCount(cutImage.out), 1) << cutImage.out;
+    EXPECT_NE(
+        cutImage.out.find("team2-stereo-short.rawlog: step 1: cannot use R1_STEREO (images '"),
+        std::string::npos)
+        << cutImage.out;
+    EXPECT_NE(cutImage.out.find("'): the right image's file is truncated (a PNG whose last chunk "
+                                "is cut short)"),
+              std::string::npos)
+        << cutImage.out;
+
     // readings without noise in the observations (sensor_std_range = 0): the key that sets it
     mrpt_vslam::test::SingleRobotRangeBearingLog exact;
     exact.std_range = 0;

@@ -431,6 +431,16 @@ TEST_F(ViewSLAMApp, BadInputGivesOneLineErrors)
     for (const auto& [setting, message] : impossible)
         expectError(kConfig + " " + kRawlog + " -q --out " + out("e6") + " --set " + setting, 2,
                     message);
+    // an image file cut short, which OpenCV would decode with its missing part grey
+    fs::create_directories(out("cut"));
+    fs::copy_file(kRawlog, out("cut") + "/rooms.rawlog");
+    fs::copy(MRPT_VSLAM_SOURCE_DIR "/datasets/omni-views/rooms_Images",
+             out("cut") + "/rooms_Images");
+    const std::string cut = out("cut") + "/rooms_Images/OMNICAM_000002.png";
+    fs::resize_file(cut, fs::file_size(cut) - 100);
+    expectError(kConfig + " " + out("cut") + "/rooms.rawlog -q --out " + out("e9"), 1,
+                "rooms.rawlog: frame 2: image '" + cut +
+                    "': the image's file is truncated (a PNG whose last chunk is cut short)");
     const std::string garbage = out("garbage.ini");
     std::ofstream(garbage) << "this is not an ini file\n";
     expectError(garbage + " " + kRawlog + " -q --out " + out("e7"), 2,

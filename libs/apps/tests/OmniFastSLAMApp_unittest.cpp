@@ -212,6 +212,22 @@ TEST(OmniFastSLAMApp, SaysWhenTheFramesHoldNoLight)
                   "CObservationBearingRange labelled 'OMNICAM_BEARINGS' hold no bearing");
 }
 
+// An image file cut short (OpenCV would decode its missing part grey, without an error) stops the
+// run at its frame, naming the file
+TEST(OmniFastSLAMApp, RefusesATruncatedImageFile)
+{
+    const test::ScratchFolder scratch("OmniFastSLAMApp_truncated");
+    const auto images = scratch.path() / "hall_Images";
+    std::filesystem::copy_file(kRawlog, scratch.file("hall.rawlog"));
+    std::filesystem::copy(kSource + "/datasets/sports-hall/hall_Images", images);
+    const auto cut = images / "OMNICAM_000004.png";
+    std::filesystem::resize_file(cut, std::filesystem::file_size(cut) / 2);
+    EXPECT_EQ(runError(scratch.file("hall.rawlog"), scratch.file("out"),
+                       {"--set", "OmniFastSLAM.input=images"}),
+              scratch.file("hall.rawlog") + ": frame 4: cannot use OMNICAM '" + cut.string() +
+                  "': the image's file is truncated (a PNG whose last chunk is cut short)");
+}
+
 // A frame with more bearings than max_bearings_per_frame stops the run with one line naming it
 // (the shipped hall's frames hold 4 to 12 lights).
 TEST(OmniFastSLAMApp, RefusesAFrameWithTooManyBearings)

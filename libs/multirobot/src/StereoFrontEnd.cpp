@@ -3,6 +3,7 @@
 #include <mrpt/img/CImage.h>
 #include <mrpt_vslam/core/ConfigSectionWriter.h>
 #include <mrpt_vslam/core/EndsWith.h>
+#include <mrpt_vslam/core/ImageFile.h>
 #include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/multirobot/StereoFrontEnd.h>
 
@@ -219,6 +220,8 @@ mrpt::obs::CObservationVisualLandmarks::Ptr StereoFrontEnd::process(
         throw std::invalid_argument(
             "the stereo observation has no right image (hasImageRight "
             "is false)");
+    core::requireCompleteImageFile(obs.imageLeft, "the left image");
+    core::requireCompleteImageFile(obs.imageRight, "the right image");
     if (obs.imageLeft.isEmpty()) throw std::invalid_argument("left image is empty");
     if (obs.imageRight.isEmpty()) throw std::invalid_argument("right image is empty");
     for (const auto* image : {&obs.imageLeft, &obs.imageRight})

@@ -1,5 +1,6 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt_vslam/core/ConfigSectionWriter.h>
+#include <mrpt_vslam/core/ImageFile.h>
 #include <mrpt_vslam/core/ImageSize.h>
 #include <mrpt_vslam/omni_fastslam/CeilingLightDetector.h>
 
@@ -84,6 +85,7 @@ mrpt::obs::CObservationBearingRange::Ptr CeilingLightDetector::detect(
     const mrpt::obs::CObservationImage& obs, const std::string& sensor_label) const
 {
     const auto& cam = m_lut.camera();
+    core::requireCompleteImageFile(obs.image);
     core::requireImageSize(obs.image, cam.width, cam.height);
     auto out = mrpt::obs::CObservationBearingRange::Create();
     out->timestamp = obs.timestamp;

@@ -1,6 +1,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/format.h>
 #include <mrpt/img/CImage.h>
+#include <mrpt_vslam/core/ImageFile.h>
 #include <mrpt_vslam/core/ImageSize.h>
 #include <mrpt_vslam/core/ParallelFor.h>
 #include <mrpt_vslam/viewmap/OmniFeatureExtractor.h>
@@ -195,6 +196,7 @@ std::optional<OmniFeatureExtractor::TDescribed> OmniFeatureExtractor::describe(
 
 TViewFeatures OmniFeatureExtractor::extract(const mrpt::img::CImage& image) const
 {
+    core::requireCompleteImageFile(image);
     core::requireImageSize(image, m_camera.width, m_camera.height);
     const core::IntegralImage integral(image);  // grayscale, 8-bit check
     std::vector<core::FastHessianDetector::TKeypoint> keypoints =

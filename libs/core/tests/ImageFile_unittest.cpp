@@ -1,0 +1,83 @@
+#include <gtest/gtest.h>
+#include <mrpt/img/CImage.h>
+#include <mrpt_vslam/core/ImageFile.h>
+#include <mrpt_vslam/test/ScratchFolder.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+using mrpt_vslam::core::requireCompleteImageFile;
+using mrpt_vslam::core::truncationOfImageFile;
+
+namespace {
+
+/// 64 x 48 of uniform noise (its compressed data holds 0xFF bytes), encoded as `ext` says.
+std::string encodedNoise(const std::string& ext, const std::vector<int>& params = {})
+{
+    cv::Mat image(48, 64, CV_8UC1);
+    std::mt19937 rng(7);
+    for (int r = 0; r < image.rows; r++)
+        for (int c = 0; c < image.cols; c++) image.at<uint8_t>(r, c) = rng() & 0xFF;
+    std::vector<uint8_t> bytes;
+    EXPECT_TRUE(cv::imencode(ext, image, bytes, params));
+    return std::string(bytes.begin(), bytes.end());
+}
+
+}  // namespace
+
+TEST(ImageFile, EveryProperPrefixOfAPngOrJpegIsTruncatedAndTheWholeFileIsNot)
+{
+    const std::vector<std::pair<std::string, std::string>> files = {
+        {"png", encodedNoise(".png")},
+        {"baseline jpeg", encodedNoise(".jpg")},
+        {"progressive jpeg", encodedNoise(".jpg", {cv::IMWRITE_JPEG_PROGRESSIVE, 1})},
+        {"jpeg with restart markers", encodedNoise(".jpg", {cv::IMWRITE_JPEG_RST_INTERVAL, 2})}};
+    for (const auto& [name, bytes] : files) {
+        EXPECT_EQ(truncationOfImageFile(bytes), "") << name;
+        // bytes after the end (some cameras append data) do not make a file incomplete
+        EXPECT_EQ(truncationOfImageFile(bytes + std::string(100, '\xFF')), "") << name;
+        const size_t signature = name == "png" ? 8 : 3;  // the format is known from there on
+        size_t flagged = 0;
+        for (size_t n = signature; n < bytes.size(); n++)
+            flagged += truncationOfImageFile(std::string_view(bytes).substr(0, n)).empty() ? 0 : 1;
+        EXPECT_EQ(flagged, bytes.size() - signature) << name;
+    }
+    const std::string png = files[0].second, jpeg = files[1].second;
+    EXPECT_EQ(truncationOfImageFile(png.substr(0, png.size() - 12)),
+              "a PNG without its IEND chunk");
+    EXPECT_EQ(truncationOfImageFile(png.substr(0, png.size() / 2)),
+              "a PNG whose last chunk is cut short");
+    EXPECT_EQ(truncationOfImageFile(jpeg.substr(0, jpeg.size() / 2)),
+              "a JPEG without its end-of-image marker");
+    // other formats, and bytes of no format, are not judged
+    EXPECT_EQ(truncationOfImageFile(encodedNoise(".bmp").substr(0, 100)), "");
+    EXPECT_EQ(truncationOfImageFile("P5\n64 48\n255\n"), "");
+    EXPECT_EQ(truncationOfImageFile(""), "");
+}
+
+TEST(ImageFile, AnExternalImageWhoseFileIsCutShortIsRefusedNamingIt)
+{
+    const mrpt_vslam::test::ScratchFolder scratch("ImageFile_unittest");
+    const std::string png = encodedNoise(".png");
+    const std::string whole = scratch.write("whole.png", png);
+    const std::string cut = scratch.write("cut.png", png.substr(0, png.size() - 20));
+
+    mrpt::img::CImage image;
+    image.setExternalStorage(whole);
+    EXPECT_NO_THROW(requireCompleteImageFile(image));
+    image.setExternalStorage(cut);
+    try {
+        requireCompleteImageFile(image, "the left image");
+        ADD_FAILURE() << "a truncated file passed";
+    } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "the left image's file is truncated (a PNG whose last chunk is cut short)");
+    }
+    // a missing file is left to the loader's error; an image in memory has no file
+    image.setExternalStorage(scratch.file("missing.png"));
+    EXPECT_NO_THROW(requireCompleteImageFile(image));
+    EXPECT_NO_THROW(requireCompleteImageFile(mrpt::img::CImage(8, 8, mrpt::img::CH_GRAY)));
+}
