@@ -3,6 +3,8 @@
 #include <mrpt_vslam/core/ImageFile.h>
 #include <mrpt_vslam/test/ScratchFolder.h>
 
+#include <algorithm>
+#include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
 #include <stdexcept>
@@ -56,6 +58,48 @@ TEST(ImageFile, EveryProperPrefixOfAPngOrJpegIsTruncatedAndTheWholeFileIsNot)
     EXPECT_EQ(truncationOfImageFile(encodedNoise(".bmp").substr(0, 100)), "");
     EXPECT_EQ(truncationOfImageFile("P5\n64 48\n255\n"), "");
     EXPECT_EQ(truncationOfImageFile(""), "");
+}
+
+// Files with bytes overwritten, inserted or removed, and cut short: every one is judged without
+// reading outside its bytes (the sanitizer build checks) and with a known verdict.
+TEST(ImageFile, CorruptFilesGetAVerdictWithoutReadingPastTheirEnd)
+{
+    const std::vector<std::string> whole = {
+        encodedNoise(".png"), encodedNoise(".jpg"),
+        encodedNoise(".jpg", {cv::IMWRITE_JPEG_PROGRESSIVE, 1})};
+    const std::vector<std::string> verdicts = {
+        "", "a PNG whose last chunk is cut short", "a PNG without its IEND chunk",
+        "a JPEG whose last segment is cut short", "a JPEG without its end-of-image marker"};
+    std::mt19937 rng(11);
+    size_t judged = 0;
+    for (int i = 0; i < 3000; i++) {
+        std::string bytes = whole[i % whole.size()];
+        for (int edits = 1 + static_cast<int>(rng() % 4); edits > 0; edits--) {
+            const size_t at = rng() % bytes.size();
+            const char byte = static_cast<char>(rng() & 0xFF);
+            switch (rng() % 4) {
+                case 0:
+                    bytes[at] = byte;
+                    break;
+                case 1:
+                    bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(at), byte);
+                    break;
+                case 2:
+                    if (bytes.size() > 16) bytes.erase(at, 1);
+                    break;
+                default:
+                    bytes.resize(std::max<size_t>(at, 16));  // cut short
+            }
+        }
+        // an exact-size copy, so that a read past the end is outside the allocation
+        const std::unique_ptr<char[]> copy(new char[bytes.size()]);
+        std::copy(bytes.begin(), bytes.end(), copy.get());
+        const std::string verdict =
+            truncationOfImageFile(std::string_view(copy.get(), bytes.size()));
+        EXPECT_NE(std::find(verdicts.begin(), verdicts.end(), verdict), verdicts.end()) << verdict;
+        judged += verdict.empty() ? 0 : 1;
+    }
+    EXPECT_GT(judged, 0u);
 }
 
 TEST(ImageFile, AnExternalImageWhoseFileIsCutShortIsRefusedNamingIt)
