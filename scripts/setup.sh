@@ -16,7 +16,7 @@ BUILD_TARGETS="${BUILD_TARGETS:-}"
 DEBIAN_PACKAGES=(
   build-essential cmake ccache git clang-format python3
   libmrpt-dev mrpt-apps
-  libopencv-dev libeigen3-dev nlohmann-json3-dev
+  libopencv-dev libeigen3-dev nlohmann-json3-dev zlib1g-dev
   libgtest-dev libbenchmark-dev
   libplplot-dev plplot-driver-cairo
   libzmq3-dev cppzmq-dev

@@ -1,4 +1,5 @@
 #include <mrpt_vslam/core/ImageFile.h>
+#include <zlib.h>
 
 #include <cstdint>
 #include <fstream>
@@ -19,21 +20,26 @@ uint64_t bigEndian(std::string_view b, size_t i, size_t n)
     return v;
 }
 
-/// PNG: signature, then chunks (length, type, data, CRC) up to IEND.
-std::string pngTruncation(std::string_view b)
+/// PNG: signature, then chunks (length, type, data, CRC of type and data) up to IEND.
+std::string pngDamage(std::string_view b)
 {
     for (size_t pos = 8; pos + 8 <= b.size();) {
-        const uint64_t end = pos + 12 + bigEndian(b, pos, 4);
-        if (end > b.size()) return "a PNG whose last chunk is cut short";
+        const uint64_t length = bigEndian(b, pos, 4), end = pos + 12 + length;
+        if (end > b.size()) return "truncated (a PNG whose last chunk is cut short)";
+        const auto* typeAndData = reinterpret_cast<const Bytef*>(b.data() + pos + 4);
+        if (crc32(crc32(0, nullptr, 0), typeAndData, static_cast<uInt>(4 + length)) !=
+            bigEndian(b, end - 4, 4))
+            return "corrupt (a PNG whose " + std::string(b.substr(pos + 4, 4)) +
+                   " chunk fails its CRC)";
         if (b.substr(pos + 4, 4) == "IEND") return "";
         pos = end;
     }
-    return "a PNG without its IEND chunk";
+    return "truncated (a PNG without its IEND chunk)";
 }
 
 /// JPEG: markers from SOI on; each scan's entropy-coded data runs to the next marker that is
 /// not a stuffed 0xFF00 or a restart marker; complete once EOI is reached.
-std::string jpegTruncation(std::string_view b)
+std::string jpegDamage(std::string_view b)
 {
     constexpr uint8_t kEOI = 0xD9, kSOS = 0xDA, kTEM = 0x01;
     const auto isRestart = [](uint8_t m) { return m >= 0xD0 && m <= 0xD7; };
@@ -50,35 +56,34 @@ std::string jpegTruncation(std::string_view b)
         if (marker == 0x00 || marker == kTEM || isRestart(marker)) continue;  // no segment
         if (pos + 2 > b.size()) break;
         pos += bigEndian(b, pos, 2);
-        if (pos > b.size()) return "a JPEG whose last segment is cut short";
+        if (pos > b.size()) return "truncated (a JPEG whose last segment is cut short)";
         if (marker != kSOS) continue;
         while (pos + 1 < b.size() && !(byteAt(b, pos) == 0xFF && byteAt(b, pos + 1) != 0x00 &&
                                        !isRestart(byteAt(b, pos + 1))))
             pos++;
     }
-    return "a JPEG without its end-of-image marker";
+    return "truncated (a JPEG without its end-of-image marker)";
 }
 
 }  // namespace
 
-std::string truncationOfImageFile(std::string_view bytes)
+std::string imageFileDamage(std::string_view bytes)
 {
-    if (bytes.substr(0, 8) == std::string_view("\x89PNG\r\n\x1a\n", 8)) return pngTruncation(bytes);
+    if (bytes.substr(0, 8) == std::string_view("\x89PNG\r\n\x1a\n", 8)) return pngDamage(bytes);
     if (bytes.size() >= 3 && byteAt(bytes, 0) == 0xFF && byteAt(bytes, 1) == 0xD8 &&
         byteAt(bytes, 2) == 0xFF)
-        return jpegTruncation(bytes);
+        return jpegDamage(bytes);
     return "";
 }
 
-void requireCompleteImageFile(const mrpt::img::CImage& image, std::string_view what)
+void requireIntactImageFile(const mrpt::img::CImage& image, std::string_view what)
 {
     if (!image.isExternallyStored()) return;
     std::ifstream in(image.getExternalStorageFileAbsolutePath(), std::ios::binary);
     if (!in) return;  // a missing file is the loader's to report
     const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    const std::string truncation = truncationOfImageFile(bytes);
-    if (!truncation.empty())
-        throw std::runtime_error(std::string(what) + "'s file is truncated (" + truncation + ")");
+    const std::string damage = imageFileDamage(bytes);
+    if (!damage.empty()) throw std::runtime_error(std::string(what) + "'s file is " + damage);
 }
 
 }  // namespace mrpt_vslam::core

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-using mrpt_vslam::core::requireCompleteImageFile;
-using mrpt_vslam::core::truncationOfImageFile;
+using mrpt_vslam::core::imageFileDamage;
+using mrpt_vslam::core::requireIntactImageFile;
 
 namespace {
 
@@ -38,26 +38,36 @@ TEST(ImageFile, EveryProperPrefixOfAPngOrJpegIsTruncatedAndTheWholeFileIsNot)
         {"progressive jpeg", encodedNoise(".jpg", {cv::IMWRITE_JPEG_PROGRESSIVE, 1})},
         {"jpeg with restart markers", encodedNoise(".jpg", {cv::IMWRITE_JPEG_RST_INTERVAL, 2})}};
     for (const auto& [name, bytes] : files) {
-        EXPECT_EQ(truncationOfImageFile(bytes), "") << name;
+        EXPECT_EQ(imageFileDamage(bytes), "") << name;
         // bytes after the end (some cameras append data) do not make a file incomplete
-        EXPECT_EQ(truncationOfImageFile(bytes + std::string(100, '\xFF')), "") << name;
+        EXPECT_EQ(imageFileDamage(bytes + std::string(100, '\xFF')), "") << name;
         const size_t signature = name == "png" ? 8 : 3;  // the format is known from there on
         size_t flagged = 0;
         for (size_t n = signature; n < bytes.size(); n++)
-            flagged += truncationOfImageFile(std::string_view(bytes).substr(0, n)).empty() ? 0 : 1;
+            flagged += imageFileDamage(std::string_view(bytes).substr(0, n)).empty() ? 0 : 1;
         EXPECT_EQ(flagged, bytes.size() - signature) << name;
     }
     const std::string png = files[0].second, jpeg = files[1].second;
-    EXPECT_EQ(truncationOfImageFile(png.substr(0, png.size() - 12)),
-              "a PNG without its IEND chunk");
-    EXPECT_EQ(truncationOfImageFile(png.substr(0, png.size() / 2)),
-              "a PNG whose last chunk is cut short");
-    EXPECT_EQ(truncationOfImageFile(jpeg.substr(0, jpeg.size() / 2)),
-              "a JPEG without its end-of-image marker");
+    EXPECT_EQ(imageFileDamage(png.substr(0, png.size() - 12)),
+              "truncated (a PNG without its IEND chunk)");
+    EXPECT_EQ(imageFileDamage(png.substr(0, png.size() / 2)),
+              "truncated (a PNG whose last chunk is cut short)");
+    EXPECT_EQ(imageFileDamage(jpeg.substr(0, jpeg.size() / 2)),
+              "truncated (a JPEG without its end-of-image marker)");
+    // a PNG whose bytes changed: the chunk that holds them fails its CRC, whichever byte it is
+    const size_t idat = png.find("IDAT");
+    for (const size_t at : {idat - 1, idat, idat + 4, idat + 100, png.size() - 5}) {
+        std::string flipped = png;
+        flipped[at] = static_cast<char>(flipped[at] ^ 0x10);
+        EXPECT_NE(imageFileDamage(flipped), "") << at;
+    }
+    std::string flipped = png;
+    flipped[idat + 100] = static_cast<char>(flipped[idat + 100] ^ 0x10);
+    EXPECT_EQ(imageFileDamage(flipped), "corrupt (a PNG whose IDAT chunk fails its CRC)");
     // other formats, and bytes of no format, are not judged
-    EXPECT_EQ(truncationOfImageFile(encodedNoise(".bmp").substr(0, 100)), "");
-    EXPECT_EQ(truncationOfImageFile("P5\n64 48\n255\n"), "");
-    EXPECT_EQ(truncationOfImageFile(""), "");
+    EXPECT_EQ(imageFileDamage(encodedNoise(".bmp").substr(0, 100)), "");
+    EXPECT_EQ(imageFileDamage("P5\n64 48\n255\n"), "");
+    EXPECT_EQ(imageFileDamage(""), "");
 }
 
 // Files with bytes overwritten, inserted or removed, and cut short: every one is judged without
@@ -68,8 +78,15 @@ TEST(ImageFile, CorruptFilesGetAVerdictWithoutReadingPastTheirEnd)
         encodedNoise(".png"), encodedNoise(".jpg"),
         encodedNoise(".jpg", {cv::IMWRITE_JPEG_PROGRESSIVE, 1})};
     const std::vector<std::string> verdicts = {
-        "", "a PNG whose last chunk is cut short", "a PNG without its IEND chunk",
-        "a JPEG whose last segment is cut short", "a JPEG without its end-of-image marker"};
+        "", "truncated (a PNG whose last chunk is cut short)",
+        "truncated (a PNG without its IEND chunk)",
+        "truncated (a JPEG whose last segment is cut short)",
+        "truncated (a JPEG without its end-of-image marker)"};
+    const auto known = [&](const std::string& v) {
+        return std::find(verdicts.begin(), verdicts.end(), v) != verdicts.end() ||
+               (v.rfind("corrupt (a PNG whose ", 0) == 0 &&
+                v.size() == std::string("corrupt (a PNG whose ABCD chunk fails its CRC)").size());
+    };
     std::mt19937 rng(11);
     size_t judged = 0;
     for (int i = 0; i < 3000; i++) {
@@ -94,9 +111,8 @@ TEST(ImageFile, CorruptFilesGetAVerdictWithoutReadingPastTheirEnd)
         // an exact-size copy, so that a read past the end is outside the allocation
         const std::unique_ptr<char[]> copy(new char[bytes.size()]);
         std::copy(bytes.begin(), bytes.end(), copy.get());
-        const std::string verdict =
-            truncationOfImageFile(std::string_view(copy.get(), bytes.size()));
-        EXPECT_NE(std::find(verdicts.begin(), verdicts.end(), verdict), verdicts.end()) << verdict;
+        const std::string verdict = imageFileDamage(std::string_view(copy.get(), bytes.size()));
+        EXPECT_TRUE(known(verdict)) << verdict;
         judged += verdict.empty() ? 0 : 1;
     }
     EXPECT_GT(judged, 0u);
@@ -111,10 +127,10 @@ TEST(ImageFile, AnExternalImageWhoseFileIsCutShortIsRefusedNamingIt)
 
     mrpt::img::CImage image;
     image.setExternalStorage(whole);
-    EXPECT_NO_THROW(requireCompleteImageFile(image));
+    EXPECT_NO_THROW(requireIntactImageFile(image));
     image.setExternalStorage(cut);
     try {
-        requireCompleteImageFile(image, "the left image");
+        requireIntactImageFile(image, "the left image");
         ADD_FAILURE() << "a truncated file passed";
     } catch (const std::runtime_error& e) {
         EXPECT_EQ(std::string(e.what()),
@@ -122,6 +138,6 @@ TEST(ImageFile, AnExternalImageWhoseFileIsCutShortIsRefusedNamingIt)
     }
     // a missing file is left to the loader's error; an image in memory has no file
     image.setExternalStorage(scratch.file("missing.png"));
-    EXPECT_NO_THROW(requireCompleteImageFile(image));
-    EXPECT_NO_THROW(requireCompleteImageFile(mrpt::img::CImage(8, 8, mrpt::img::CH_GRAY)));
+    EXPECT_NO_THROW(requireIntactImageFile(image));
+    EXPECT_NO_THROW(requireIntactImageFile(mrpt::img::CImage(8, 8, mrpt::img::CH_GRAY)));
 }

@@ -220,8 +220,8 @@ mrpt::obs::CObservationVisualLandmarks::Ptr StereoFrontEnd::process(
         throw std::invalid_argument(
             "the stereo observation has no right image (hasImageRight "
             "is false)");
-    core::requireCompleteImageFile(obs.imageLeft, "the left image");
-    core::requireCompleteImageFile(obs.imageRight, "the right image");
+    core::requireIntactImageFile(obs.imageLeft, "the left image");
+    core::requireIntactImageFile(obs.imageRight, "the right image");
     if (obs.imageLeft.isEmpty()) throw std::invalid_argument("left image is empty");
     if (obs.imageRight.isEmpty()) throw std::invalid_argument("right image is empty");
     for (const auto* image : {&obs.imageLeft, &obs.imageRight})

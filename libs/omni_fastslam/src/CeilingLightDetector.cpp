@@ -85,7 +85,7 @@ mrpt::obs::CObservationBearingRange::Ptr CeilingLightDetector::detect(
     const mrpt::obs::CObservationImage& obs, const std::string& sensor_label) const
 {
     const auto& cam = m_lut.camera();
-    core::requireCompleteImageFile(obs.image);
+    core::requireIntactImageFile(obs.image);
     core::requireImageSize(obs.image, cam.width, cam.height);
     auto out = mrpt::obs::CObservationBearingRange::Create();
     out->timestamp = obs.timestamp;

@@ -196,7 +196,7 @@ std::optional<OmniFeatureExtractor::TDescribed> OmniFeatureExtractor::describe(
 
 TViewFeatures OmniFeatureExtractor::extract(const mrpt::img::CImage& image) const
 {
-    core::requireCompleteImageFile(image);
+    core::requireIntactImageFile(image);
     core::requireImageSize(image, m_camera.width, m_camera.height);
     const core::IntegralImage integral(image);  // grayscale, 8-bit check
     std::vector<core::FastHessianDetector::TKeypoint> keypoints =
