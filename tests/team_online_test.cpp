@@ -164,3 +164,30 @@ TEST_F(TeamOnline, ANodeKilledAndRestartedLosesNoReading)
         EXPECT_LT(m.ate_rmse, 0.5) << robot;
     }
 }
+
+// A mapper no node reaches says so when its idle time is up, rather than describing an empty
+// rawlog; a port ZeroMQ would take modulo 65536 is refused by both ends at once.
+TEST_F(TeamOnline, SaysWhenNoNodeConnectsAndRefusesPortsPast65535)
+{
+    const std::string at = address(4);
+    const TCommandResult idle = run(
+        mapper("office-team-2.ini", kTeam2, at, "idle", "--set TeamListener.idle_timeout_s=0.5") +
+        "wait $m");
+    EXPECT_EQ(idle.exit_code, 1);
+    EXPECT_EQ(mrpt_vslam::test::readBytes(scratch->file("idle.log")),
+              "multirobot-vslam: error: " + at +
+                  ": no robot node connected within [TeamListener] idle_timeout_s = 0.5 s (one "
+                  "vslam-robot-node --connect per robot, doc/team-online.md)\n");
+
+    const TCommandResult port =
+        run(mapper("office-team-2.ini", kTeam2, "tcp://127.0.0.1:99999", "port") + "wait $m");
+    EXPECT_EQ(port.exit_code, 1);
+    EXPECT_EQ(mrpt_vslam::test::readBytes(scratch->file("port.log")),
+              "multirobot-vslam: error: tcp://127.0.0.1:99999: cannot listen: port 99999 is not a "
+              "number from 0 to 65535\n");
+    const TCommandResult robot = run(node(kTeam2, "R1", "tcp://127.0.0.1:70000", 1));
+    EXPECT_EQ(robot.exit_code, 1);
+    EXPECT_EQ(robot.out,
+              "vslam-robot-node: error: tcp://127.0.0.1:70000: cannot connect: port 70000 is not "
+              "a number from 0 to 65535\n");
+}

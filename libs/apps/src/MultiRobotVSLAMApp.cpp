@@ -1,5 +1,6 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
+#include <mrpt/core/format.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationStereoImages.h>
 #include <mrpt/opengl/CGridPlaneXY.h>
@@ -503,6 +504,15 @@ void MultiRobotVSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
                   core::ObservationSelector::labelled(o.sensor_label)
             : "observation-only rawlog with " + odoLabels + " and <ROBOT>" + o.landmarks_suffix +
                   ", <ROBOT>" + o.range_bearing_suffix + " or <ROBOT>_STEREO";
+    if (steps == 0 && listener) {
+        size_t connections = 0;
+        for (const auto& s : listener->stats()) connections += s.connections;
+        if (connections == 0)
+            throw std::runtime_error(
+                args.listen + ": no robot node connected within [TeamListener] idle_timeout_s = " +
+                mrpt::format("%g", listenerOptions.idle_timeout_s) +
+                " s (one vslam-robot-node --connect per robot, doc/team-online.md)");
+    }
     if (steps == 0)
         throw std::runtime_error(rawlog + ": no steps (" + inputs +
                                  "); the rawlog has: " + contents.describe());

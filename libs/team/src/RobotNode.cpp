@@ -1,4 +1,5 @@
 #include <mrpt/core/format.h>
+#include <mrpt_vslam/team/Endpoint.h>
 #include <mrpt_vslam/team/RobotNode.h>
 #include <mrpt_vslam/team/TeamMessage.h>
 
@@ -22,8 +23,9 @@ RobotNode::TStats RobotNode::play(const std::vector<mrpt::obs::CObservation::Ptr
     zmq::socket_t socket(context, zmq::socket_type::dealer);
     socket.set(zmq::sockopt::linger, 0);
     try {
+        requireValidTcpPort(m_endpoint);
         socket.connect(m_endpoint);
-    } catch (const zmq::error_t& e) {
+    } catch (const std::exception& e) {
         throw std::runtime_error(m_endpoint + ": cannot connect: " + e.what());
     }
     const auto send = [&](TTeamMessage m) {

@@ -1,3 +1,4 @@
+#include <mrpt_vslam/team/Endpoint.h>
 #include <mrpt_vslam/team/ReadingMerger.h>
 #include <mrpt_vslam/team/TeamListener.h>
 #include <mrpt_vslam/team/TeamMessage.h>
@@ -30,8 +31,9 @@ struct TeamListener::Impl {
     {
         socket.set(zmq::sockopt::linger, 0);
         try {
+            requireValidTcpPort(endpoint);
             socket.bind(endpoint);
-        } catch (const zmq::error_t& e) {
+        } catch (const std::exception& e) {
             throw std::runtime_error(endpoint + ": cannot listen: " + e.what());
         }
         lastMessage = wallClockNow();
