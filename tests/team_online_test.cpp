@@ -26,10 +26,10 @@ const std::string kTeam2 = kData + "office-team/team2";
 class TeamOnline : public ::testing::Test {
   protected:
     void SetUp() override { scratch = std::make_unique<mrpt_vslam::test::ScratchFolder>("team"); }
-    /// A loopback address no other test run uses at the same time.
+    /// A loopback address no other test run uses at the same time (five per process).
     static std::string address(int offset)
     {
-        return "tcp://127.0.0.1:" + std::to_string(20000 + (getpid() * 4 + offset) % 20000);
+        return "tcp://127.0.0.1:" + std::to_string(20000 + (getpid() * 5 + offset) % 20000);
     }
     /// The mapper in the background (its pid in $m), seed 1, `options` added.
     std::string mapper(const std::string& config, const std::string& prefix, const std::string& at,
