@@ -52,9 +52,9 @@ void StereoFrontEnd::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c
     put("min_depth", min_depth, "[m] nearer stereo points are dropped");
     put("max_depth", max_depth, "[m] farther stereo points are dropped");
     put("usurf_scale", usurf_scale, "[px] U-SURF scale s (window 20 s)");
-    put("sigma_disparity", pixel_noise.sigma_disparity, "[px] sigma_d of R_t (paper: 1)");
-    put("sigma_row", pixel_noise.sigma_row, "[px] sigma_r of R_t (paper: 10)");
-    put("sigma_col", pixel_noise.sigma_col, "[px] sigma_c of R_t (paper: 10)");
+    put("sigma_disparity", pixel_noise.sigma_disparity, "[px] sigma_d of R_t (Gil et al. 2010: 1)");
+    put("sigma_row", pixel_noise.sigma_row, "[px] sigma_r of R_t (Gil et al. 2010: 10)");
+    put("sigma_col", pixel_noise.sigma_col, "[px] sigma_c of R_t (Gil et al. 2010: 10)");
     put("track_search_radius", track_search_radius, "[px] image motion between frames");
     put("track_ratio", track_ratio, "descriptor ratio test of the tracking");
     put("track_max_descriptor_distance", track_max_descriptor_distance,

@@ -79,7 +79,7 @@ class StereoFrontEnd {
         /// @{
         double usurf_scale = 2.0;  ///< [px] U-SURF scale s (window 20 s wide)
         /// @}
-        /// @name Step 4: R_t (paper values: σ_d = 1 px, σ_r = σ_c = 10 px)
+        /// @name Step 4: R_t (defaults and the paper's values: TStereoPixelNoise)
         /// @{
         TStereoPixelNoise pixel_noise;  ///< keys sigma_disparity, sigma_row, sigma_col
         /// @}
