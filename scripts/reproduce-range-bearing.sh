@@ -416,10 +416,12 @@ fi
     echo
     echo "Means over the simulation seeds ($SIM_SEEDS) where kf-slam finished, and on how many" \
       "rawlogs multirobot-vslam's figure is at most kf-slam's (the RMSE to the millimetre; where" \
-      "kf-slam diverged, multirobot-vslam's figure counts as at most kf-slam's)."
+      "kf-slam diverged, multirobot-vslam's figure counts as at most kf-slam's). Largest excess:" \
+      "the most by which multirobot-vslam's RMSE exceeds kf-slam's on one rawlog (none: on no" \
+      "rawlog)."
     echo
-    echo "| IDs | noise | kf-slam diverged | kf-slam RMSE [m] | multirobot-vslam RMSE [m] | RMSE ≤ kf-slam's | kf-slam aligned RMSE [m] | multirobot-vslam aligned RMSE [m] | aligned RMSE ≤ kf-slam's | kf-slam landmark error [m] | multirobot-vslam landmark error [m] | landmark error ≤ kf-slam's |"
-    echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+    echo "| IDs | noise | kf-slam diverged | kf-slam RMSE [m] | multirobot-vslam RMSE [m] | RMSE ≤ kf-slam's | largest excess [m] | kf-slam aligned RMSE [m] | multirobot-vslam aligned RMSE [m] | aligned RMSE ≤ kf-slam's | kf-slam landmark error [m] | multirobot-vslam landmark error [m] | landmark error ≤ kf-slam's |"
+    echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
     for noise in $NOISE_LEVELS; do
       for ids in kept hidden; do
         for sim in $SIM_SEEDS; do
@@ -431,11 +433,13 @@ fi
           { n++; have = $7 != "-" && $8 != "-" && $9 != "-" }
           $1 == "-" { dv++; wr += have; wa += have; we += have; next }
           { m++; kr += $1; ka += $2; ke += $6; mr += $7; ma += $8; me += $9
-            if (have) { wr += mm($7) <= mm($1); wa += mm($8) <= mm($2); we += mm($9) <= mm($6) } }
+            if (have) { wr += mm($7) <= mm($1); wa += mm($8) <= mm($2); we += mm($9) <= mm($6)
+                        if (mm($7) - mm($1) > ex) ex = mm($7) - mm($1) } }
           function mean(v) { return m ? sprintf("%.3f", v / m) : "-" }
-          END { printf "| %s | %s | %d of %d | %s | %s | %d of %d | %s | %s | %d of %d | %s | %s | %d of %d |\n",
-                  ids, noise, dv, n, mean(kr), mean(mr), wr, n, mean(ka), mean(ma), wa, n, mean(ke),
-                  mean(me), we, n }'
+          END { printf "| %s | %s | %d of %d | %s | %s | %d of %d | %s | %s | %s | %d of %d | %s | %s | %d of %d |\n",
+                  ids, noise, dv, n, mean(kr), mean(mr), wr, n,
+                  (ex > 0 ? sprintf("%.3f", ex / 1000) : "none"), mean(ka), mean(ma), wa, n,
+                  mean(ke), mean(me), we, n }'
       done
     done
     echo
