@@ -377,6 +377,29 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
         std::printf("omni-fastslam: camera pose on the robot from the %s: %s\n",
                     configured ? "config (sensor_in_robot)" : "observations",
                     poseText(pose).c_str());
+    // the field of view and reading range in use: each the config's, or the observations' own
+    const auto limits = best.map.sensorLimitsInUse();
+    const std::pair<std::string, std::pair<double, bool>> limitRows[] = {
+        {"max_abs_azimuth_deg",
+         {mrpt::RAD2DEG(limits.max_abs_azimuth),
+          best.map.sensorOptions.max_abs_azimuth.has_value()}},
+        {"min_cross_point_range",
+         {limits.min_range, best.map.insertionOptions.min_cross_point_range.has_value()}},
+        {"max_cross_point_range",
+         {limits.max_range, best.map.insertionOptions.max_cross_point_range.has_value()}}};
+    std::string limitsJson, limitsLine;
+    for (const auto& [key, row] : limitRows) {
+        const char* source = row.second ? "config" : "observations";
+        limitsJson += (limitsJson.empty() ? "{\"" : ", \"") + key +
+                      mrpt::format("\": {\"value\": %g, \"source\": \"%s\"}", row.first, source);
+        limitsLine +=
+            (limitsLine.empty() ? "" : ", ") + key + mrpt::format(" %g (%s)", row.first, source);
+    }
+    report.setResultJson("sensor_limits", limitsJson + "}");
+    if (!args.quiet)
+        std::printf(
+            "omni-fastslam: camera's field of view and reading range [deg, m; 0: no limit]: %s\n",
+            limitsLine.c_str());
     if (const auto associations = COmniFastSLAM::associationsOf(best);
         associations.labelled() > 0) {
         // evaluation only: the rawlog gave landmark numbers (landmarkID), the filter ignored them

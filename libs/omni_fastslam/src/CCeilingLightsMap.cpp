@@ -64,6 +64,16 @@ int64_t CCeilingLightsMap::addLandmark(const Eigen::Vector3d& mean, const Eigen:
     return lm.id;
 }
 
+CCeilingLightsMap::TSensorLimits CCeilingLightsMap::sensorLimitsInUse() const
+{
+    TSensorLimits limits;
+    limits.max_abs_azimuth =
+        sensorOptions.max_abs_azimuth.value_or(m_observed_limits.max_abs_azimuth);
+    limits.min_range = insertionOptions.min_cross_point_range.value_or(m_observed_limits.min_range);
+    limits.max_range = insertionOptions.max_cross_point_range.value_or(m_observed_limits.max_range);
+    return limits;
+}
+
 BearingMeasurementModel CCeilingLightsMap::measurementModel() const
 {
     return BearingMeasurementModel(m_sensor_in_robot, sensorOptions.measurement_model);

@@ -32,14 +32,38 @@ std::vector<TBearingMeasurement> CCeilingLightsMap::measurementsFromObservation(
     for (const auto& [name, v] :
          {std::pair<const char*, double>{"sensor_std_yaw", obs.sensor_std_yaw},
           {"sensor_std_pitch", obs.sensor_std_pitch},
-          {"sensor_std_range", obs.sensor_std_range}})
+          {"sensor_std_range", obs.sensor_std_range},
+          {"minSensorDistance", obs.minSensorDistance},
+          {"maxSensorDistance", obs.maxSensorDistance}})
         if (!(v >= 0 && std::isfinite(v)))
             fail(std::string(name) + " = " + mrpt::format("%g", v) + ": must be finite and >= 0");
+    if (!(obs.fieldOfView_yaw > 0 && std::isfinite(obs.fieldOfView_yaw)))
+        fail(mrpt::format("fieldOfView_yaw = %g deg: must be finite and > 0",
+                          mrpt::RAD2DEG(obs.fieldOfView_yaw)));
+    // the sensor's own limits, as it states them; the options override each one they set
+    TSensorLimits stated;
+    stated.max_abs_azimuth = std::min(0.5 * static_cast<double>(obs.fieldOfView_yaw), M_PI);
+    stated.min_range = obs.minSensorDistance;
+    stated.max_range = obs.maxSensorDistance;
+    const double min_range = insertionOptions.min_cross_point_range.value_or(stated.min_range);
+    const double max_range = insertionOptions.max_cross_point_range.value_or(stated.max_range);
+    if (max_range > 0 && min_range >= max_range)
+        fail("the reading range in use is empty (minSensorDistance = " +
+             mrpt::format("%g", stated.min_range) +
+             " m, maxSensorDistance = " + mrpt::format("%g", stated.max_range) +
+             " m, or min_/max_cross_point_range where set): set min_cross_point_range and "
+             "max_cross_point_range in the map's _insertOpts section");
     for (const auto& s : obs.sensedData) {
         const std::string which = "measurement of landmark " + std::to_string(s.landmarkID);
         // the filter does not use ranges: any value (NaN, −1, ...) says "not measured"
         if (!std::isfinite(s.yaw) || !std::isfinite(s.pitch))
             fail(which + " has a non-finite bearing or pitch");
+        if (!sensorOptions.max_abs_azimuth && std::abs(s.yaw) > stated.max_abs_azimuth + 1e-6)
+            fail(which + " has azimuth " + mrpt::format("%g", mrpt::RAD2DEG(s.yaw)) +
+                 " deg, outside the observation's field of view (fieldOfView_yaw = " +
+                 mrpt::format("%g", mrpt::RAD2DEG(obs.fieldOfView_yaw)) +
+                 " deg); set max_abs_azimuth_deg in the map's _creationOpts section to half the "
+                 "camera's field of view (180: all around)");
         if (sensorOptions.measurement_model == TMeasurementModelKind::Spherical && !(s.pitch < 0))
             fail(which + " has pitch " + mrpt::format("%g", mrpt::RAD2DEG(s.pitch)) +
                  " deg, at or below the camera's horizon: an upward camera sees ceiling lights "
@@ -51,6 +75,7 @@ std::vector<TBearingMeasurement> CCeilingLightsMap::measurementsFromObservation(
             fail(which + " has a non-finite or negative covariance");
     }
     m_sensor_in_robot = sensorOptions.sensor_in_robot.value_or(obs.sensorLocationOnRobot);
+    m_observed_limits = stated;
     Eigen::Matrix2d Q_sensor =
         Eigen::Vector2d(sensorOptions.sigma_phi * sensorOptions.sigma_phi,
                         sensorOptions.sigma_theta * sensorOptions.sigma_theta)
@@ -139,7 +164,7 @@ bool CCeilingLightsMap::isInPerceptualRange(const Eigen::Vector3d& point_in_map,
 
 bool CCeilingLightsMap::couldBeObserved(const Eigen::Vector2d& z_predicted, double margin) const
 {
-    if (std::abs(z_predicted[0]) > sensorOptions.max_abs_azimuth + margin) return false;
+    if (std::abs(z_predicted[0]) > sensorLimitsInUse().max_abs_azimuth + margin) return false;
     return sensorOptions.measurement_model == TMeasurementModelKind::Planar ||
            z_predicted[1] <= sensorOptions.max_theta + margin;
 }
@@ -147,8 +172,8 @@ bool CCeilingLightsMap::couldBeObserved(const Eigen::Vector2d& z_predicted, doub
 bool CCeilingLightsMap::isWithinReadingRange(const Eigen::Vector3d& point_in_camera) const
 {
     const double r = point_in_camera.norm();
-    const double r_max = insertionOptions.max_cross_point_range;
-    return r >= insertionOptions.min_cross_point_range && (r_max <= 0 || r <= r_max);
+    const TSensorLimits limits = sensorLimitsInUse();
+    return r >= limits.min_range && (limits.max_range <= 0 || r <= limits.max_range);
 }
 
 Eigen::MatrixXd CCeilingLightsMap::landmarkLogLikelihoods(

@@ -1,5 +1,6 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
+#include <mrpt/core/format.h>
 #include <mrpt_vslam/core/ConfigChoice.h>
 #include <mrpt_vslam/core/OptionChecks.h>
 #include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
@@ -10,6 +11,24 @@
 namespace mrpt_vslam::omni_fastslam {
 
 using core::requireKey;
+
+namespace {
+/// A key whose empty value (or absence) means "the observation's own": unset, else its number
+/// times `unit`.
+std::optional<double> readOptionalDouble(const mrpt::config::CConfigFileBase& cfg,
+                                         const std::string& section, const std::string& key,
+                                         double unit)
+{
+    if (cfg.read_string(section, key, "").empty()) return std::nullopt;
+    return unit * cfg.read_double(section, key, 0);
+}
+
+/// An optional value for dumpToTextStream(): the number, or whose it is when unset.
+std::string optionalText(const std::optional<double>& v, double unit)
+{
+    return v ? mrpt::format("%g", *v / unit) : "(each observation's own)";
+}
+}  // namespace
 
 void CCeilingLightsMap::TSensorOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                                            const std::string& section)
@@ -34,15 +53,15 @@ void CCeilingLightsMap::TSensorOptions::loadFromConfigFile(const mrpt::config::C
         mrpt::DEG2RAD(cfg.read_double(section, "sigma_theta_deg", mrpt::RAD2DEG(sigma_theta)));
     max_theta = mrpt::DEG2RAD(cfg.read_double(section, "max_theta_deg", mrpt::RAD2DEG(max_theta)));
     MRPT_LOAD_CONFIG_VAR(max_horizontal_distance, double, cfg, section);
-    max_abs_azimuth = mrpt::DEG2RAD(
-        cfg.read_double(section, "max_abs_azimuth_deg", mrpt::RAD2DEG(max_abs_azimuth)));
+    if (const auto v = readOptionalDouble(cfg, section, "max_abs_azimuth_deg", mrpt::DEG2RAD(1.0)))
+        max_abs_azimuth = v;
 
     requireKey(sigma_phi > 0, section, "sigma_phi_deg", "must be > 0");
     requireKey(sigma_theta > 0, section, "sigma_theta_deg", "must be > 0");
     requireKey(max_theta > 0 && max_theta <= M_PI, section, "max_theta_deg", "must be in (0, 180]");
     requireKey(max_horizontal_distance >= 0, section, "max_horizontal_distance", "must be >= 0");
-    requireKey(max_abs_azimuth > 0 && max_abs_azimuth <= M_PI, section, "max_abs_azimuth_deg",
-               "must be in (0, 180]");
+    requireKey(!max_abs_azimuth || (*max_abs_azimuth > 0 && *max_abs_azimuth <= M_PI), section,
+               "max_abs_azimuth_deg", "must be in (0, 180], or empty for the observations' own");
 }
 
 void CCeilingLightsMap::TSensorOptions::dumpToTextStream(std::ostream& out) const
@@ -56,7 +75,7 @@ void CCeilingLightsMap::TSensorOptions::dumpToTextStream(std::ostream& out) cons
     dumpVar_double(out, "sigma_theta_deg", mrpt::RAD2DEG(sigma_theta));
     dumpVar_double(out, "max_theta_deg", mrpt::RAD2DEG(max_theta));
     LOADABLEOPTS_DUMP_VAR(max_horizontal_distance, double);
-    dumpVar_double(out, "max_abs_azimuth_deg", mrpt::RAD2DEG(max_abs_azimuth));
+    dumpVar_string(out, "max_abs_azimuth_deg", optionalText(max_abs_azimuth, mrpt::DEG2RAD(1.0)));
 }
 
 void CCeilingLightsMap::TInsertionOptions::loadFromConfigFile(
@@ -74,8 +93,10 @@ void CCeilingLightsMap::TInsertionOptions::loadFromConfigFile(
     MRPT_LOAD_CONFIG_VAR(candidate_miss_decrement, uint64_t, cfg, section);
     MRPT_LOAD_CONFIG_VAR(max_candidate_measurements, uint64_t, cfg, section);
     MRPT_LOAD_CONFIG_VAR(refine_initialization, bool, cfg, section);
-    MRPT_LOAD_CONFIG_VAR(max_cross_point_range, double, cfg, section);
-    MRPT_LOAD_CONFIG_VAR(min_cross_point_range, double, cfg, section);
+    if (const auto v = readOptionalDouble(cfg, section, "max_cross_point_range", 1))
+        max_cross_point_range = v;
+    if (const auto v = readOptionalDouble(cfg, section, "min_cross_point_range", 1))
+        min_cross_point_range = v;
     MRPT_LOAD_CONFIG_VAR(hit_increment, uint64_t, cfg, section);
 
     requireKey(nz_min >= 2, section, "nz_min", "must be >= 2 (two rays make a cross-point)");
@@ -87,10 +108,13 @@ void CCeilingLightsMap::TInsertionOptions::loadFromConfigFile(
     requireKey(p_new_mahalanobis2 > 0, section, "p_new_mahalanobis2", "must be > 0");
     requireKey(max_candidate_measurements >= nz_min, section, "max_candidate_measurements",
                "must be >= nz_min");
-    requireKey(max_cross_point_range >= 0, section, "max_cross_point_range", "must be >= 0");
-    requireKey(min_cross_point_range >= 0 &&
-                   (max_cross_point_range == 0 || min_cross_point_range < max_cross_point_range),
-               section, "min_cross_point_range", "must be >= 0 and < max_cross_point_range");
+    requireKey(max_cross_point_range.value_or(0) >= 0, section, "max_cross_point_range",
+               "must be >= 0, or empty for the observations' own");
+    requireKey(min_cross_point_range.value_or(0) >= 0 &&
+                   (!min_cross_point_range || !max_cross_point_range ||
+                    *max_cross_point_range == 0 || *min_cross_point_range < *max_cross_point_range),
+               section, "min_cross_point_range",
+               "must be >= 0 and < max_cross_point_range, or empty for the observations' own");
     requireKey(hit_increment >= 1, section, "hit_increment", "must be >= 1");
 }
 
@@ -110,8 +134,8 @@ void CCeilingLightsMap::TInsertionOptions::dumpToTextStream(std::ostream& out) c
     LOADABLEOPTS_DUMP_VAR(candidate_miss_decrement, int);
     LOADABLEOPTS_DUMP_VAR(max_candidate_measurements, int);
     LOADABLEOPTS_DUMP_VAR(refine_initialization, bool);
-    LOADABLEOPTS_DUMP_VAR(max_cross_point_range, double);
-    LOADABLEOPTS_DUMP_VAR(min_cross_point_range, double);
+    dumpVar_string(out, "max_cross_point_range", optionalText(max_cross_point_range, 1));
+    dumpVar_string(out, "min_cross_point_range", optionalText(min_cross_point_range, 1));
     LOADABLEOPTS_DUMP_VAR(hit_increment, int);
 }
 

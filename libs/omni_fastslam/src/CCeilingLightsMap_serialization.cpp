@@ -104,7 +104,7 @@ void readCandidate(CArchive& in, TCandidateLight& c, uint8_t version)
 }
 }  // namespace
 
-uint8_t CCeilingLightsMap::serializeGetVersion() const { return 2; }
+uint8_t CCeilingLightsMap::serializeGetVersion() const { return 3; }
 
 void CCeilingLightsMap::serializeTo(mrpt::serialization::CArchive& out) const
 {
@@ -121,12 +121,16 @@ void CCeilingLightsMap::serializeTo(mrpt::serialization::CArchive& out) const
         << static_cast<uint32_t>(io.max_candidate_measurements) << io.refine_initialization;
     out << likelihoodOptions.p_in << likelihoodOptions.use_type_ii_landmarks;
     out << renderOptions.draw_candidates << renderOptions.ellipsoid_quantiles;
-    // version 1: the measurement model and its perceptual and cross-point limits
-    out << static_cast<uint8_t>(sensorOptions.measurement_model) << sensorOptions.max_abs_azimuth
-        << io.max_cross_point_range << io.min_cross_point_range
-        << static_cast<uint32_t>(io.hit_increment);
+    // version 1: the measurement model and its perceptual and cross-point limits (in use)
+    const TSensorLimits limits = sensorLimitsInUse();
+    out << static_cast<uint8_t>(sensorOptions.measurement_model) << limits.max_abs_azimuth
+        << limits.max_range << limits.min_range << static_cast<uint32_t>(io.hit_increment);
     // version 2: whether that pose is the config's (else the last observation's)
     out << sensorOptions.sensor_in_robot.has_value();
+    // version 3: which of those limits are the config's, and the last observation's
+    out << sensorOptions.max_abs_azimuth.has_value() << io.max_cross_point_range.has_value()
+        << io.min_cross_point_range.has_value() << m_observed_limits.max_abs_azimuth
+        << m_observed_limits.max_range << m_observed_limits.min_range;
 
     out << m_step << m_next_landmark_id << m_next_candidate_id;
     out << static_cast<uint32_t>(m_landmarks.size());
@@ -140,7 +144,8 @@ void CCeilingLightsMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t
     switch (version) {
         case 0:
         case 1:
-        case 2: {
+        case 2:
+        case 3: {
             in >> genericMapParams;
             readPose3D(in, m_sensor_in_robot);
             in >> sensorOptions.sigma_phi >> sensorOptions.sigma_theta >> sensorOptions.max_theta >>
@@ -161,15 +166,12 @@ void CCeilingLightsMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t
             in >> likelihoodOptions.p_in >> likelihoodOptions.use_type_ii_landmarks;
             in >> renderOptions.draw_candidates >> renderOptions.ellipsoid_quantiles;
             sensorOptions.measurement_model = TMeasurementModelKind::Spherical;
-            sensorOptions.max_abs_azimuth = M_PI;
-            io.max_cross_point_range = 0;
-            io.min_cross_point_range = 0;
+            TSensorLimits limits;  // before version 1: all around, no range limit
             io.hit_increment = 1;
             if (version >= 1) {
                 uint8_t kind;
                 uint32_t hit;
-                in >> kind >> sensorOptions.max_abs_azimuth >> io.max_cross_point_range >>
-                    io.min_cross_point_range >> hit;
+                in >> kind >> limits.max_abs_azimuth >> limits.max_range >> limits.min_range >> hit;
                 io.hit_increment = hit;
                 if (kind > static_cast<uint8_t>(TMeasurementModelKind::Planar))
                     THROW_EXCEPTION_FMT("CCeilingLightsMap: invalid measurement model %u", kind);
@@ -179,6 +181,18 @@ void CCeilingLightsMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t
             if (version >= 2) in >> configured;
             sensorOptions.sensor_in_robot.reset();
             if (configured) sensorOptions.sensor_in_robot = m_sensor_in_robot;
+            // before version 3 the limits were always the config's
+            bool azimuth_set = true, max_set = true, min_set = true;
+            m_observed_limits = TSensorLimits();
+            if (version >= 3)
+                in >> azimuth_set >> max_set >> min_set >> m_observed_limits.max_abs_azimuth >>
+                    m_observed_limits.max_range >> m_observed_limits.min_range;
+            sensorOptions.max_abs_azimuth.reset();
+            io.max_cross_point_range.reset();
+            io.min_cross_point_range.reset();
+            if (azimuth_set) sensorOptions.max_abs_azimuth = limits.max_abs_azimuth;
+            if (max_set) io.max_cross_point_range = limits.max_range;
+            if (min_set) io.min_cross_point_range = limits.min_range;
 
             uint32_t n;
             in >> m_step >> m_next_landmark_id >> m_next_candidate_id >> n;

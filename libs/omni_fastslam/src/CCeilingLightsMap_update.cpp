@@ -165,10 +165,9 @@ void CCeilingLightsMap::updateDepthInterval(TCandidateLight& cand) const
     const auto& last = cand.observations.back();
     const Eigen::Vector3d origin = model.rayOriginInMap(last.robot_in_map);
     const Eigen::Vector3d dir = model.rayDirectionInMap(last.measurement.z, last.robot_in_map);
-    const double s_lo = std::max(insertionOptions.min_cross_point_range, 0.05);
-    const double s_hi = insertionOptions.max_cross_point_range > 0
-                            ? insertionOptions.max_cross_point_range
-                            : kUnlimitedDepth;
+    const TSensorLimits limits = sensorLimitsInUse();
+    const double s_lo = std::max(limits.min_range, 0.05);
+    const double s_hi = limits.max_range > 0 ? limits.max_range : kUnlimitedDepth;
     cand.depth_min = s_hi;
     cand.depth_max = s_lo;
     std::vector<BearingMeasurementModel::AtPose> at_each;  // the model at each earlier pose
@@ -206,8 +205,9 @@ TCrossPointLimits CCeilingLightsMap::crossPointLimits() const
 {
     TCrossPointLimits limits;
     limits.min_angle = insertionOptions.ang_min;
-    limits.max_range = insertionOptions.max_cross_point_range;
-    limits.min_range = insertionOptions.min_cross_point_range;
+    const TSensorLimits in_use = sensorLimitsInUse();
+    limits.max_range = in_use.max_range;
+    limits.min_range = in_use.min_range;
     limits.planar = sensorOptions.measurement_model == TMeasurementModelKind::Planar;
     return limits;
 }

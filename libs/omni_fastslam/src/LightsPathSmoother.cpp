@@ -59,7 +59,7 @@ namespace {
 /// σ of the weak prior that keeps each light at its filter estimate along directions no
 /// bearing constrains (the height of a planar model's lights) [m]
 constexpr double kLightPriorStd = 100;
-/// σ of the wall that keeps a light from coming nearer than the map's min_cross_point_range to
+/// σ of the wall that keeps a light from coming nearer than the map's nearest reading range to
 /// a camera that reads it [m]
 constexpr double kNearRangeStd = 0.01;
 
@@ -381,7 +381,7 @@ LightsPathSmoother::TResult LightsPathSmoother::smooth(const TOmniFastSLAMPartic
 {
     const auto steps = recordedStepsOf(p);
     const BearingMeasurementModel model = p.map.measurementModel();
-    Problem problem(model, options.huber, p.map.insertionOptions.min_cross_point_range);
+    Problem problem(model, options.huber, p.map.sensorLimitsInUse().min_range);
     for (const auto* s : steps) problem.poses.push_back(s->state.robot_in_map);
     for (const auto& s : m_steps) problem.motions.push_back(s.motion);
 

@@ -1,12 +1,13 @@
 // CCeilingLightsMap with the planar measurement model (doc/omni-fastslam.md §12): measurements,
 // likelihoods, perceptual range, the candidates' depth segment and the options' round trip.
 #include <gtest/gtest.h>
-#include <mrpt/io/CMemoryStream.h>
 #include <mrpt/obs/CObservationBearingRange.h>
-#include <mrpt/serialization/CArchive.h>
 #include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
 
 #include <cmath>
+#include <optional>
+
+#include "LightsTestUtils.h"
 
 using Eigen::Vector3d;
 using mrpt::math::TPose2D;
@@ -179,16 +180,11 @@ TEST(CCeilingLightsMapPlanar, SerializationKeepsThePlanarOptions)
     map.insertionOptions.hit_increment = 3;
     addToCandidate(map, azimuthOf(map, {4, 1.5, 0}, TPose2D(0, 0, 0)), TPose2D(0, 0, 0));
     addToCandidate(map, azimuthOf(map, {4, 1.5, 0}, TPose2D(0.3, 0, 0)), TPose2D(0.3, 0, 0));
-    mrpt::io::CMemoryStream buf;
-    auto arch = mrpt::serialization::archiveFrom(buf);
-    arch << map;
-    buf.Seek(0);
-    CCeilingLightsMap back;
-    arch >> back;
+    const CCeilingLightsMap back = mrpt_vslam::omni_fastslam::test::serializedCopy(map);
     EXPECT_EQ(back.sensorOptions.measurement_model, TMeasurementModelKind::Planar);
-    EXPECT_DOUBLE_EQ(back.sensorOptions.max_abs_azimuth, 30 * kDeg);
-    EXPECT_DOUBLE_EQ(back.insertionOptions.min_cross_point_range, 1);
-    EXPECT_DOUBLE_EQ(back.insertionOptions.max_cross_point_range, 6);
+    EXPECT_EQ(back.sensorOptions.max_abs_azimuth, std::optional<double>(30 * kDeg));
+    EXPECT_EQ(back.insertionOptions.min_cross_point_range, std::optional<double>(1));
+    EXPECT_EQ(back.insertionOptions.max_cross_point_range, std::optional<double>(6));
     EXPECT_EQ(back.insertionOptions.hit_increment, 3u);
     ASSERT_EQ(back.candidates().size(), 1u);
     EXPECT_DOUBLE_EQ(back.candidates()[0].depth_min, map.candidates()[0].depth_min);

@@ -188,16 +188,81 @@ TEST(CCeilingLightsMap, CameraPoseIsTheObservationsUnlessConfigured)
     configured.measurementsFromObservation(obs);
     EXPECT_NEAR(configured.sensorPoseInUse().z(), 1.8, 1e-12);
 
-    mrpt::io::CMemoryStream buf;
-    auto arch = mrpt::serialization::archiveFrom(buf);
-    arch << map << configured;
-    buf.Seek(0);
-    CCeilingLightsMap back, backConfigured;
-    arch >> back >> backConfigured;
+    const CCeilingLightsMap back = mrpt_vslam::omni_fastslam::test::serializedCopy(map);
+    const CCeilingLightsMap backConfigured =
+        mrpt_vslam::omni_fastslam::test::serializedCopy(configured);
     EXPECT_FALSE(back.sensorOptions.sensor_in_robot.has_value());
     EXPECT_NEAR(back.sensorPoseInUse().z(), 1.0, 1e-12);
     ASSERT_TRUE(backConfigured.sensorOptions.sensor_in_robot.has_value());
     EXPECT_NEAR(backConfigured.sensorOptions.sensor_in_robot->z(), 1.8, 1e-12);
+}
+
+// The field of view and the reading range come from each observation (fieldOfView_yaw,
+// minSensorDistance, maxSensorDistance) unless configured, each limit on its own; both survive
+// serialization. A measurement outside the observation's own field of view, or an empty
+// reading range, stops the run naming the key to set.
+TEST(CCeilingLightsMap, SensorLimitsAreTheObservationsUnlessConfigured)
+{
+    mrpt::obs::CObservationBearingRange obs;
+    obs.fieldOfView_yaw = static_cast<float>(M_PI);
+    obs.minSensorDistance = 0.5f;
+    obs.maxSensorDistance = 6.0f;
+    CCeilingLightsMap map;
+    const auto before = map.sensorLimitsInUse();  // before any observation: no limit
+    EXPECT_EQ(before.max_abs_azimuth, M_PI);
+    EXPECT_EQ(before.min_range, 0);
+    EXPECT_EQ(before.max_range, 0);
+    map.measurementsFromObservation(obs);
+    EXPECT_NEAR(map.sensorLimitsInUse().max_abs_azimuth, M_PI / 2, 1e-6);
+    EXPECT_NEAR(map.sensorLimitsInUse().min_range, 0.5, 1e-6);
+    EXPECT_NEAR(map.sensorLimitsInUse().max_range, 6.0, 1e-6);
+    EXPECT_FALSE(map.isWithinReadingRange({6.5, 0, 0}));
+    EXPECT_TRUE(map.isWithinReadingRange({5.5, 0, 0}));
+    EXPECT_FALSE(map.couldBeObserved({100 * M_PI / 180, 0.5}));
+
+    CCeilingLightsMap configured;
+    configured.sensorOptions.max_abs_azimuth = M_PI;
+    configured.insertionOptions.max_cross_point_range = 8;
+    configured.measurementsFromObservation(obs);
+    EXPECT_EQ(configured.sensorLimitsInUse().max_abs_azimuth, M_PI);
+    EXPECT_NEAR(configured.sensorLimitsInUse().min_range, 0.5, 1e-6);  // not set: observed
+    EXPECT_EQ(configured.sensorLimitsInUse().max_range, 8);
+
+    const CCeilingLightsMap back = mrpt_vslam::omni_fastslam::test::serializedCopy(map);
+    const CCeilingLightsMap backConfigured =
+        mrpt_vslam::omni_fastslam::test::serializedCopy(configured);
+    EXPECT_FALSE(back.sensorOptions.max_abs_azimuth.has_value());
+    EXPECT_FALSE(back.insertionOptions.max_cross_point_range.has_value());
+    EXPECT_NEAR(back.sensorLimitsInUse().max_range, 6.0, 1e-6);
+    EXPECT_NEAR(back.sensorLimitsInUse().max_abs_azimuth, M_PI / 2, 1e-6);
+    EXPECT_EQ(backConfigured.sensorOptions.max_abs_azimuth, std::optional<double>(M_PI));
+    EXPECT_EQ(backConfigured.insertionOptions.max_cross_point_range, std::optional<double>(8));
+    EXPECT_FALSE(backConfigured.insertionOptions.min_cross_point_range.has_value());
+    EXPECT_NEAR(backConfigured.sensorLimitsInUse().min_range, 0.5, 1e-6);
+
+    const auto expectError = [](const CCeilingLightsMap& m,
+                                const mrpt::obs::CObservationBearingRange& o,
+                                const std::string& text) {
+        try {
+            m.measurementsFromObservation(o);
+            ADD_FAILURE() << "accepted, expected: " << text;
+        } catch (const std::runtime_error& e) {
+            EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+        }
+    };
+    mrpt::obs::CObservationBearingRange behind = obs;
+    mrpt::obs::CObservationBearingRange::TMeasurement m;
+    m.yaw = static_cast<float>(135 * M_PI / 180);
+    m.pitch = -0.5f;
+    m.range = 1;
+    behind.sensedData.push_back(m);
+    expectError(map, behind, "outside the observation's field of view");
+    expectError(map, behind, "set max_abs_azimuth_deg");
+    EXPECT_NO_THROW(configured.measurementsFromObservation(behind));  // configured: all around
+
+    CCeilingLightsMap nearBeyondFar;
+    nearBeyondFar.insertionOptions.min_cross_point_range = 7;
+    expectError(nearBeyondFar, obs, "set min_cross_point_range and max_cross_point_range");
 }
 
 TEST(CCeilingLightsMap, RejectsInvalidOptionsNamingTheKey)

@@ -1,7 +1,9 @@
 #pragma once
 
+#include <mrpt/io/CMemoryStream.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/random/RandomGenerators.h>
+#include <mrpt/serialization/CArchive.h>
 #include <mrpt_vslam/omni_fastslam/BearingMeasurementModel.h>
 #include <mrpt_vslam/omni_fastslam/CCeilingLightsMap.h>
 
@@ -23,9 +25,21 @@ inline CCeilingLightsMap hallMapTemplate()
     return map;
 }
 
+/// The map after a round trip through MRPT's serialization (the way particles are copied).
+inline CCeilingLightsMap serializedCopy(const CCeilingLightsMap& map)
+{
+    mrpt::io::CMemoryStream buf;
+    auto arch = mrpt::serialization::archiveFrom(buf);
+    arch << map;
+    buf.Seek(0);
+    CCeilingLightsMap back;
+    arch >> back;
+    return back;
+}
+
 /** An OMNICAM_BEARINGS observation of `lights` from `robot`: yaw = φ, pitch = θ − π/2, range NaN,
  *  Gaussian angle noise of σ `sigma` [rad] when `rng` is given, lights with θ > max_theta left
- *  out. */
+ *  out; the camera sees all around (fieldOfView_yaw = 2π). */
 inline mrpt::obs::CObservationBearingRange makeBearingObservation(
     const BearingMeasurementModel& model, const mrpt::math::TPose2D& robot,
     const std::vector<Eigen::Vector3d>& lights, double sigma,
@@ -38,6 +52,7 @@ inline mrpt::obs::CObservationBearingRange makeBearingObservation(
     obs.sensor_std_range = 0;
     obs.sensor_std_yaw = static_cast<float>(sigma);
     obs.sensor_std_pitch = static_cast<float>(sigma);
+    obs.fieldOfView_yaw = static_cast<float>(2 * M_PI);
     for (const auto& light : lights) {
         const Eigen::Vector2d z = model.predict(light, robot);
         if (z[1] > max_theta) continue;

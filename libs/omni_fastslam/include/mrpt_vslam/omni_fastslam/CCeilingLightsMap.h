@@ -61,8 +61,9 @@ class CCeilingLightsMap : public mrpt::maps::CMetricMap {
         /// Perceptual range: maximum horizontal camera-landmark distance [m] (0 = unlimited).
         double max_horizontal_distance = 0;
         /// Perceptual range: maximum |φ| [rad] (ini: `max_abs_azimuth_deg`), half the horizontal
-        /// field of view of a forward camera; π = all around.
-        double max_abs_azimuth = M_PI;
+        /// field of view of a forward camera; π = all around. Unset (the default): half the
+        /// observation's own `fieldOfView_yaw` (sensorLimitsInUse()).
+        std::optional<double> max_abs_azimuth;
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                 const std::string& section) override;
@@ -96,12 +97,14 @@ class CCeilingLightsMap : public mrpt::maps::CMetricMap {
         bool refine_initialization = true;
         /// The farthest the camera reads a light [m] (0 = no limit; planar: in its plane):
         /// cross-points farther along either ray are not valid, and a landmark farther is not
-        /// associated with a measurement (isWithinReadingRange()).
-        double max_cross_point_range = 0;
+        /// associated with a measurement (isWithinReadingRange()). Unset (the default): the
+        /// observation's own `maxSensorDistance` (sensorLimitsInUse()).
+        std::optional<double> max_cross_point_range;
         /// The nearest the camera reads a light [m] (0 = no limit): as max_cross_point_range;
         /// planar: also the near end of the segment a candidate's last ray predicts; the
-        /// smoothing (LightsPathSmoother) keeps lights beyond it.
-        double min_cross_point_range = 0;
+        /// smoothing (LightsPathSmoother) keeps lights beyond it. Unset (the default): the
+        /// observation's own `minSensorDistance`.
+        std::optional<double> min_cross_point_range;
         /// Counter increment i_j of a landmark or candidate per associated measurement (a new
         /// candidate starts at it); misses still cost 1 (landmarks) or the candidate decrement.
         /// Paper: 1. With a detection probability p < 1/2 inside the perceptual range the
@@ -152,6 +155,16 @@ class CCeilingLightsMap : public mrpt::maps::CMetricMap {
     /** The camera pose of the measurements being processed: sensorOptions.sensor_in_robot
      *  when set, else that of the last observation given to measurementsFromObservation(). */
     const mrpt::poses::CPose3D& sensorPoseInUse() const { return m_sensor_in_robot; }
+    /// The camera's field of view and reading range.
+    struct TSensorLimits {
+        double max_abs_azimuth = M_PI;  ///< [rad] half the horizontal field of view
+        double min_range = 0;           ///< [m] nearest reading (0: no limit)
+        double max_range = 0;           ///< [m] farthest reading (0: no limit)
+    };
+    /** The limits in use: each option's value when set, else that of the last observation
+     *  given to measurementsFromObservation() (fieldOfView_yaw / 2, minSensorDistance,
+     *  maxSensorDistance; before any, all around and no range limit). */
+    TSensorLimits sensorLimitsInUse() const;
     /// @}
 
     /// @name Measurements
@@ -171,10 +184,10 @@ class CCeilingLightsMap : public mrpt::maps::CMetricMap {
     double measurementLogLikelihood(const Eigen::Vector2d& innovation,
                                     const Eigen::Matrix2d& S) const;
     /** Whether a predicted measurement can have been observed: θ ≤ max_theta + margin
-     *  (spherical) and |φ| ≤ max_abs_azimuth + margin. \param margin [rad] */
+     *  (spherical) and |φ| ≤ the max_abs_azimuth in use + margin. \param margin [rad] */
     bool couldBeObserved(const Eigen::Vector2d& z_predicted, double margin = 0) const;
     /** Whether the camera reads a light at `point_in_camera` [m] (planar: in its plane):
-     *  within [min_cross_point_range, max_cross_point_range] of it (a limit of 0: none). */
+     *  within the reading range in use (sensorLimitsInUse(); a limit of 0: none). */
     bool isWithinReadingRange(const Eigen::Vector3d& point_in_camera) const;
     /// log N(ν; 0, S) of a 2D innovation.
     static double logGaussian(const Eigen::Vector2d& innovation, const Eigen::Matrix2d& S);
@@ -271,6 +284,8 @@ class CCeilingLightsMap : public mrpt::maps::CMetricMap {
   private:
     /// See sensorPoseInUse(); set by each observation turned into measurements.
     mutable mrpt::poses::CPose3D m_sensor_in_robot;
+    /// The limits the last observation states (see sensorLimitsInUse()).
+    mutable TSensorLimits m_observed_limits;
     std::vector<TLightLandmark> m_landmarks;
     std::vector<TCandidateLight> m_candidates;
     uint64_t m_step = 0;

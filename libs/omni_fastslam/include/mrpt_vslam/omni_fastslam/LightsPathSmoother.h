@@ -15,10 +15,10 @@ namespace mrpt_vslam::omni_fastslam {
  *  odometry increment and every bearing the best particle associated with a light of its map,
  *  least squares over the whole path and the lights (Levenberg-Marquardt on the odometry
  *  Gaussians and the bearings' Q, Huber on the bearings), the start pose fixed. A light nearer
- *  than the map's min_cross_point_range to a camera that reads it costs ((range − that) / 1 cm)²
- *  per bearing: no reading comes from nearer. FastSLAM with few particles keeps one path
- *  hypothesis where the loop closes, so the error of the odometry before the loop stays in its
- *  map; the least squares spread it along the path.
+ *  than the map's nearest reading range (sensorLimitsInUse()) to a camera that reads it costs
+ *  ((range − that) / 1 cm)² per bearing: no reading comes from nearer. FastSLAM with few particles
+ * keeps one path hypothesis where the loop closes, so the error of the odometry before the loop
+ * stays in its map; the least squares spread it along the path.
  *
  *  Then, with options.merge_distance > 0, two lights closer than that which no frame measured
  *  together become one (a light mapped twice) and the least squares run again.
