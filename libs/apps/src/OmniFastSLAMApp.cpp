@@ -379,22 +379,19 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
                     poseText(pose).c_str());
     // the field of view and reading range in use: each the config's, or the observations' own
     const auto limits = best.map.sensorLimitsInUse();
-    const std::pair<std::string, std::pair<double, bool>> limitRows[] = {
-        {"max_abs_azimuth_deg",
-         {mrpt::RAD2DEG(limits.max_abs_azimuth),
-          best.map.sensorOptions.max_abs_azimuth.has_value()}},
-        {"min_cross_point_range",
-         {limits.min_range, best.map.insertionOptions.min_cross_point_range.has_value()}},
-        {"max_cross_point_range",
-         {limits.max_range, best.map.insertionOptions.max_cross_point_range.has_value()}}};
     std::string limitsJson, limitsLine;
-    for (const auto& [key, row] : limitRows) {
-        const char* source = row.second ? "config" : "observations";
-        limitsJson += (limitsJson.empty() ? "{\"" : ", \"") + key +
-                      mrpt::format("\": {\"value\": %g, \"source\": \"%s\"}", row.first, source);
+    const auto addLimit = [&](const char* key, double value, bool set) {
+        const char* source = set ? "config" : "observations";
+        limitsJson += mrpt::format("%s\"%s\": {\"value\": %g, \"source\": \"%s\"}",
+                                   limitsJson.empty() ? "{" : ", ", key, value, source);
         limitsLine +=
-            (limitsLine.empty() ? "" : ", ") + key + mrpt::format(" %g (%s)", row.first, source);
-    }
+            mrpt::format("%s%s %g (%s)", limitsLine.empty() ? "" : ", ", key, value, source);
+    };
+    const auto& io = best.map.insertionOptions;
+    addLimit("max_abs_azimuth_deg", mrpt::RAD2DEG(limits.max_abs_azimuth),
+             best.map.sensorOptions.max_abs_azimuth.has_value());
+    addLimit("min_cross_point_range", limits.min_range, io.min_cross_point_range.has_value());
+    addLimit("max_cross_point_range", limits.max_range, io.max_cross_point_range.has_value());
     report.setResultJson("sensor_limits", limitsJson + "}");
     if (!args.quiet)
         std::printf(

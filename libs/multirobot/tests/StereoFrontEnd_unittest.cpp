@@ -108,7 +108,7 @@ TEST(StereoFrontEnd, CovarianceIsConsistentWithTheErrors)
     //    conservative for this sub-pixel matcher: NEES along its main axis ε²/λ_max has a mean
     //    far below 1 (measured 0.002) and no point beyond the χ²₁ 99.9 % bound.
     StereoFrontEnd::TOptions paper_options;
-    paper_options.pixel_noise = {1.0, 10.0, 10.0};
+    paper_options.pixel_noise = mrpt_vslam::multirobot::TStereoPixelNoise::paper();
     const auto paper = samples(paper_options);
     ASSERT_GE(paper.size(), 250u);
     double sum = 0, worst = 0;

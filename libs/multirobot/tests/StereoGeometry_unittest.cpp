@@ -106,7 +106,7 @@ TEST(StereoGeometry, CovarianceMatchesMonteCarloAtShortRange)
 {
     // d = 60 px → Z = 0.84 m: σ_d / d = 1.7 %, where first-order propagation holds.
     const TStereoPixel px{150.0, 420.0, 60.0};
-    const TStereoPixelNoise noise{1.0, 10.0, 10.0};  // the paper's σ_d, σ_r, σ_c [px]
+    const TStereoPixelNoise noise = TStereoPixelNoise::paper();
     const auto R = kGeometry.covariance(px, noise);
 
     auto& rng = mrpt::random::getRandomGenerator();

@@ -150,7 +150,7 @@ class SyntheticTeamWorld {
         obs->refCameraPose = camera_on_robot;
         const mrpt::poses::CPose3D cam =
             mrpt::poses::CPose3D(mrpt::poses::CPose2D(truth[k])) + camera_on_robot;
-        const multirobot::TStereoPixelNoise paper_noise{1.0, 10.0, 10.0};  // Gil et al. 2010
+        const auto paper_noise = multirobot::TStereoPixelNoise::paper();
         for (size_t i = 0; i < points.size(); i++) {
             const auto pc = cam.inverseComposePoint(
                 mrpt::math::TPoint3D(points[i].x(), points[i].y(), points[i].z()));

@@ -27,6 +27,9 @@ struct TStereoPixelNoise {
     double sigma_disparity = 0.5;  ///< σ_d [px]
     double sigma_row = 3.0;        ///< σ_r [px]
     double sigma_col = 3.0;        ///< σ_c [px]
+
+    /// The paper's values: σ_d = 1 px, σ_r = σ_c = 10 px.
+    static TStereoPixelNoise paper() { return {1.0, 10.0, 10.0}; }
 };
 
 /** The standard rectified stereo pair of Gil et al. (2010), Sec. 3.2, Eq. 12: two pin-hole
