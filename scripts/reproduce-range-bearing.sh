@@ -56,22 +56,6 @@ ini_value() {
     print v; exit }' "$1"
 }
 
-# ini_copy SRC DST KEY=VALUE...: SRC with each KEY's line replaced (every KEY must occur once)
-ini_copy() {
-  local src="$1" dst="$2"; shift 2
-  cp "$src" "$dst.tmp"
-  local kv key n
-  for kv in "$@"; do
-    key="${kv%%=*}"
-    n=$(grep -c -E "^[[:space:]]*${key}[[:space:]]*=" "$dst.tmp" || true)
-    [ "$n" = 1 ] || { echo "$src: key $key found $n times, expected once" >&2; exit 1; }
-    awk -v k="$key" -v line="$key = ${kv#*=}" \
-      '$0 ~ "^[ \t]*" k "[ \t]*=" { print line; next } { print }' "$dst.tmp" > "$dst.tmp2"
-    mv "$dst.tmp2" "$dst.tmp"
-  done
-  mv "$dst.tmp" "$dst"
-}
-
 # --- 1. simulate: NAME.rawlog, NAME.groundtruth.tum, NAME.landmarks.txt, NAME.stamps.txt and ----
 # NAME.readings.txt (rawlog-edit's list of the readings, for section 4)
 # The rawlog is CSensoryFrame, CActionCollection, CSensoryFrame, ... (simul-landmarks writes each
@@ -90,18 +74,8 @@ ini_copy() {
 EVAL_TIME_TOLERANCE=0.000005
 simulate() {  # simulate NAME NOISE IDS(true|false) SIM_SEED
   local name="$1" noise="$2" ids="$3" sim_seed="$4"
-  local ini="$DATA/$name.simul-landmarks.ini"
-  ini_copy "$PEER/simul-landmarks-noise-$noise.ini" "$ini" outFile="$name.rawlog" outDir=. \
-    sensorDetectsIDs="$ids" random_seed="$sim_seed"
-  rm -f "$DATA/$name.rawlog"*
-  (cd "$DATA" && simul-landmarks "$name.simul-landmarks.ini" < /dev/null > "$name.simul-landmarks.log")
-  # simul-landmarks prints an error and exits 0: check its files
-  local f
-  for f in "$name.rawlog" "$name.rawlog_ground_truth.txt" "$name.rawlog_ground_truth_robot_path.txt"; do
-    [ -s "$DATA/$f" ] || { echo "simul-landmarks wrote no $DATA/$f:" >&2
-      tail -5 "$DATA/$name.simul-landmarks.log" >&2; exit 1; }
-  done
-  "$REPO_DIR/scripts/simul-landmarks-ground-truth.sh" "$DATA/$name.rawlog"
+  "$REPO_DIR/scripts/simul-landmarks-rawlog.sh" "$PEER/simul-landmarks-noise-$noise.ini" \
+    "$DATA/$name.rawlog" sensorDetectsIDs="$ids" random_seed="$sim_seed"
   rawlog-edit -i "$DATA/$name.rawlog" --list-range-bearing \
     --text-file-output "$DATA/$name.readings.txt" -q > "$DATA/$name.rawlog-edit.log" 2>&1 ||
     { echo "rawlog-edit could not list the readings of $DATA/$name.rawlog:" >&2
@@ -109,7 +83,7 @@ simulate() {  # simulate NAME NOISE IDS(true|false) SIM_SEED
   awk '!/^#/ { print $1 }' "$DATA/$name.groundtruth.tum" > "$DATA/$name.stamps.txt"
   local steps expected
   steps=$(wc -l < "$DATA/$name.stamps.txt")
-  expected=$(( $(ini_value "$ini" nSteps) - 1 ))
+  expected=$(( $(ini_value "$DATA/$name.simul-landmarks.ini" nSteps) - 1 ))
   [ "$steps" = "$expected" ] || { echo "$name: $steps readings stamped, expected $expected" >&2; exit 1; }
 }
 
@@ -177,7 +151,7 @@ run_kf_slam() {  # run_kf_slam NAME NOISE
   local steps=$(( $(ini_value "$sim" nSteps) - 1 ))
   mkdir -p "$dir"
   rm -f "$dir"/*.tum "$dir/map.txt" "$dir/metrics.json" "$dir/summary.txt" "$dir/diverged.txt"
-  ini_copy "$PEER/kf-slam-2d.ini" "$dir/kf-slam.ini" logOutput_dir="$dir/kf-slam-out" \
+  "$REPO_DIR/scripts/ini-set.sh" "$PEER/kf-slam-2d.ini" "$dir/kf-slam.ini" logOutput_dir="$dir/kf-slam-out" \
     SAVE_LOG_FREQUENCY=$(( steps - 1 )) std_sensor_range="$(ini_value "$sim" stdRange)" \
     std_sensor_yaw_deg="$(ini_value "$sim" stdYaw_deg)"
   local t0=$EPOCHREALTIME

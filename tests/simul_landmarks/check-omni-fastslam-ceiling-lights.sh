@@ -12,17 +12,13 @@
 # Exits 77 (skipped) without mrpt-apps' simul-landmarks and rawlog-edit.
 source "$(dirname "${BASH_SOURCE[0]}")/test-setup.sh"
 
-# 300 readings on the 7.2 m square; 2 deg bearing noise, odometry noise 0.01 m and 0.5 deg a step
-sed -e 's/^outFile = .*/outFile = lights.rawlog/' -e 's/^sensorDetectsIDs = .*/sensorDetectsIDs = false/' \
-    -e 's/^sensorPose_x = .*/sensorPose_x = 0.3/' -e 's/^sensorPose_z = .*/sensorPose_z = 0.5/' \
-    -e 's/^sensorPose_yaw_deg = .*/sensorPose_yaw_deg = 30/' -e 's/^stdPitch_deg = .*/stdPitch_deg = 2/' \
-    -e 's/^min_z = .*/min_z = 2.5/' -e 's/^max_z = .*/max_z = 3.0/' \
-    "$src/share/mrpt-vslam/config/peer-comparison/simul-landmarks-noise-medium.ini" > "$scratch/sim.ini"
-grep -q '^fieldOfView_deg = 180$' "$scratch/sim.ini" && grep -q '^maxSensorDistance = 6$' "$scratch/sim.ini" &&
-  grep -q '^stdYaw_deg = 2$' "$scratch/sim.ini" || fail "simul-landmarks-noise-medium.ini is not the sensor this check describes"
-(cd "$scratch" && simul-landmarks sim.ini < /dev/null > sim.log 2>&1)
-[ -s "$scratch/lights.rawlog_ground_truth.txt" ] || { tail -5 "$scratch/sim.log" >&2; fail "simul-landmarks wrote nothing"; }
-"$src/scripts/simul-landmarks-ground-truth.sh" "$scratch/lights.rawlog"
+# share/mrpt-vslam/config/omni-fastslam/simul-landmarks-ceiling-lights.ini as shipped: 300
+# readings on the 7.2 m square; 2 deg bearing noise, odometry noise 0.01 m and 0.5 deg a step
+config="$src/share/mrpt-vslam/config/omni-fastslam/simul-landmarks-ceiling-lights.ini"
+grep -q '^fieldOfView_deg = 180$' "$config" && grep -q '^maxSensorDistance = 6$' "$config" &&
+  grep -q '^stdYaw_deg = 2$' "$config" && grep -q '^sensorDetectsIDs = false$' "$config" &&
+  grep -q '^random_seed = 1$' "$config" || fail "$config is not the data this check describes"
+"$src/scripts/simul-landmarks-rawlog.sh" "$config" "$scratch/lights.rawlog"
 
 "$build/bin/omni-fastslam" "$src/share/mrpt-vslam/config/omni-fastslam/template.ini" \
   "$scratch/lights.rawlog" --out "$scratch/run" --seed 1 --quiet

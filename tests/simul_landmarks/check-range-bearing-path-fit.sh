@@ -18,16 +18,11 @@ fit="$src/scripts/range-bearing-path-fit.py"
 # simulate NAME IDS(true|false) STD_RANGE STD_YAW_DEG ODOMETRY_STD_XY ODOMETRY_STD_PHI_DEG:
 # NAME.rawlog, its ground truth and NAME.readings.txt in $scratch (300 readings, 40 landmarks)
 simulate() {
-  sed -e 's/^random_seed = .*/random_seed = 3/' -e "s/^outFile = .*/outFile = $1.rawlog/" \
-      -e "s/^sensorDetectsIDs = .*/sensorDetectsIDs = $2/" -e 's/^sensorPose_x = .*/sensorPose_x = 0.2/' \
-      -e 's/^sensorPose_yaw_deg = .*/sensorPose_yaw_deg = 15/' -e "s/^stdRange = .*/stdRange = $3/" \
-      -e "s/^stdYaw_deg = .*/stdYaw_deg = $4/" -e "s/^odometryNoiseXY_std = .*/odometryNoiseXY_std = $5/" \
-      -e "s/^odometryNoisePhi_std_deg = .*/odometryNoisePhi_std_deg = $6/" \
-      "$src/share/mrpt-vslam/config/peer-comparison/simul-landmarks-noise-medium.ini" > "$scratch/$1.ini"
-  (cd "$scratch" && simul-landmarks "$1.ini" < /dev/null > "$1.log" 2>&1)
-  [ -s "$scratch/$1.rawlog_ground_truth_robot_path.txt" ] || { tail -5 "$scratch/$1.log" >&2
-    fail "simul-landmarks wrote no $1.rawlog"; }
-  "$src/scripts/simul-landmarks-ground-truth.sh" "$scratch/$1.rawlog"
+  "$src/scripts/simul-landmarks-rawlog.sh" \
+    "$src/share/mrpt-vslam/config/peer-comparison/simul-landmarks-noise-medium.ini" \
+    "$scratch/$1.rawlog" random_seed=3 sensorDetectsIDs="$2" sensorPose_x=0.2 \
+    sensorPose_yaw_deg=15 stdRange="$3" stdYaw_deg="$4" odometryNoiseXY_std="$5" \
+    odometryNoisePhi_std_deg="$6"
   rawlog-edit -i "$scratch/$1.rawlog" --list-range-bearing --text-file-output "$scratch/$1.readings.txt" \
     -q > /dev/null 2>&1 || fail "rawlog-edit could not list the readings of $1.rawlog"
 }

@@ -12,14 +12,10 @@ sim_seed="${3:-1}"
 convert="$src/scripts/simul-landmarks-ground-truth.sh"
 
 # 300 readings on the 7.2 m square, 40 landmarks, medium noise (0.1 m, 2 deg)
-sed -e "s/^random_seed = .*/random_seed = $sim_seed/" -e 's/^outFile = .*/outFile = user.rawlog/' \
-    -e 's/^sensorDetectsIDs = .*/sensorDetectsIDs = false/' -e 's/^sensorPose_x = .*/sensorPose_x = 0.2/' \
-    -e 's/^sensorPose_yaw_deg = .*/sensorPose_yaw_deg = 15/' \
-    "$src/share/mrpt-vslam/config/peer-comparison/simul-landmarks-noise-medium.ini" > "$scratch/sim.ini"
-(cd "$scratch" && simul-landmarks sim.ini < /dev/null > sim.log 2>&1)
-[ -s "$scratch/user.rawlog_ground_truth_robot_path.txt" ] || { tail -5 "$scratch/sim.log" >&2; fail "simul-landmarks wrote nothing"; }
-
-"$convert" "$scratch/user.rawlog"
+"$src/scripts/simul-landmarks-rawlog.sh" \
+  "$src/share/mrpt-vslam/config/peer-comparison/simul-landmarks-noise-medium.ini" \
+  "$scratch/user.rawlog" random_seed="$sim_seed" sensorDetectsIDs=false sensorPose_x=0.2 \
+  sensorPose_yaw_deg=15
 poses=$(grep -vc '^#' "$scratch/user.groundtruth.tum")
 [ "$poses" = 299 ] || fail "user.groundtruth.tum has $poses poses, expected 299 (300 readings, the first passed over)"
 landmarks=$(grep -vc '^#' "$scratch/user.landmarks.txt")
