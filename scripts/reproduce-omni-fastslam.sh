@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Gamallo et al. 2013, Sec. IV on the shipped sports-hall datasets, written to
+# Gamallo et al. 2013, Sec. IV on the shipped sports-hall datasets, and template.ini on stock
+# simul-landmarks data (section 8), written to
 # doc/results/omni-fastslam.md (or $RESULTS) with its plots in doc/results/omni-fastslam/:
 #   1. the default run (sports-hall.ini, seed 1, smoothed after the run): accuracy, the
 #      per-light table (the paper's Table I) and the path / error plots (Fig. 6);
@@ -14,24 +15,31 @@
 #      shipped fixed M on both halls, SEEDS (the filter's estimate);
 #   7. the smoothing after the run (LightsPathSmoother) on both halls, SEEDS: the filter's
 #      estimate, one round (the particle's associations) and the shipped two rounds;
-#   8. with MRPT_VSLAM_MRCLAM_DIR (the folder of UTIAS MRCLAM dataset 7, doc/real-data.md):
+#   8. a user's own data: bearings of ceiling lights written by MRPT's stock simul-landmarks
+#      (omni-fastslam/simul-landmarks-ceiling-lights.ini, worlds STOCK_WORLDS) and run from
+#      template.ini, STOCK_SEEDS: the smoothed estimate and the filter's own;
+#   9. with MRPT_VSLAM_MRCLAM_DIR (the folder of UTIAS MRCLAM dataset 7, doc/real-data.md):
 #      the planar bearing-only mode on robot 1 (mrclam-bearing-only.ini, MRCLAM_SEEDS), in
 #      doc/results/omni-fastslam-mrclam-r1.md (or $RESULTS_MRCLAM); skipped without it.
 # Run folders (metrics.json, run.json, plots) under out/reproduce-omni-fastslam/ (or $OUT).
-# Builds first (scripts/setup.sh). Takes about 1 min (2 more with the MRCLAM part).
-# Environment: OUT, SEEDS (default 1..10), MRCLAM_SEEDS (default 1..8), RESULTS, RESULTS_MRCLAM.
+# Builds first (scripts/setup.sh). Takes about 2 min (2 more with the MRCLAM part).
+# Environment: OUT, SEEDS (default 1..10), STOCK_WORLDS (default 1..5), STOCK_SEEDS (default
+# 1..3), MRCLAM_SEEDS (default 1..8), RESULTS, RESULTS_MRCLAM.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 source "$REPO_DIR/scripts/setup.sh"
 # after the build: the results header times the runs only
 source "$REPO_DIR/scripts/results-header.sh"
-COMMAND="$(results_command scripts/reproduce-omni-fastslam.sh OUT SEEDS MRCLAM_SEEDS RESULTS RESULTS_MRCLAM)"
+COMMAND="$(results_command scripts/reproduce-omni-fastslam.sh OUT SEEDS STOCK_WORLDS STOCK_SEEDS \
+  MRCLAM_SEEDS RESULTS RESULTS_MRCLAM)"
 
 OUT="${OUT:-$REPO_DIR/out/reproduce-omni-fastslam}"
 BIN="$BUILD_DIR/bin"
 CONFIGS="$REPO_DIR/share/mrpt-vslam/config/omni-fastslam"
 DATA="$REPO_DIR/datasets/sports-hall/hall"
 SEEDS="$(words "${SEEDS:-1 2 3 4 5 6 7 8 9 10}")"
+STOCK_WORLDS="$(words "${STOCK_WORLDS:-1 2 3 4 5}")"
+STOCK_SEEDS="$(words "${STOCK_SEEDS:-1 2 3}")"
 MRCLAM_SEEDS="$(words "${MRCLAM_SEEDS:-1 2 3 4 5 6 7 8}")"
 RESULTS="${RESULTS:-$REPO_DIR/doc/results/omni-fastslam.md}"
 RESULTS_MRCLAM="${RESULTS_MRCLAM:-$REPO_DIR/doc/results/omni-fastslam-mrclam-r1.md}"
@@ -117,6 +125,16 @@ for seed in $SEEDS; do
   hall "one-round-seed$seed" --seed "$seed" --set LightsPathSmoother.rounds=1
   hard "hard-one-round-seed$seed" --seed "$seed" --set LightsPathSmoother.rounds=1
 done
+echo "8. stock simul-landmarks ceiling lights, worlds $STOCK_WORLDS, seeds $STOCK_SEEDS"
+for world in $STOCK_WORLDS; do
+  # the lights' IDs kept: omni-fastslam reads them only to count wrong associations
+  "$REPO_DIR/scripts/simul-landmarks-rawlog.sh" "$CONFIGS/simul-landmarks-ceiling-lights.ini" \
+    "$OUT/stock/world$world.rawlog" random_seed="$world" sensorDetectsIDs=true
+  for seed in $STOCK_SEEDS; do
+    run "stock/world$world-seed$seed" "$CONFIGS/template.ini" "$OUT/stock/world$world.rawlog" \
+      "$OUT/stock/world$world" --seed "$seed"
+  done
+done
 for f in paths errors landmark_errors; do
   cp "$OUT/hungarian-seed1/$f.png" "$PLOTS/$f.png"
 done
@@ -126,10 +144,11 @@ done
 
 # The tables, from the run folders' metrics.json and run.json.
 {
-  header "Omnidirectional FastSLAM on the shipped sports halls"
-  python3 - "$OUT" "$SEEDS" "$(basename "$PLOTS")" <<'PY'
+  header "Omnidirectional FastSLAM on the shipped sports halls and on stock simul-landmarks data"
+  python3 - "$OUT" "$SEEDS" "$(basename "$PLOTS")" "$STOCK_WORLDS" "$STOCK_SEEDS" <<'PY'
 import json, statistics, sys
 out, seeds, plots = sys.argv[1], sys.argv[2].split(), sys.argv[3]
+stock_worlds, stock_seeds = sys.argv[4].split(), sys.argv[5].split()
 
 def load(name, estimate=""):
     """estimate "": the run's result; "filter": the filter's own estimate before smoothing"""
@@ -275,17 +294,62 @@ seed_table("## 7. Smoothing the path and the lights after the run\n\n"
             ("hard hall, filter", "hard-hungarian", "filter"),
             ("hard hall, one round", "hard-one-round", ""),
             ("hard hall, two rounds", "hard-hungarian", "")])
+
+print("## 8. A user's own data: stock simul-landmarks ceiling lights")
+print()
+print("Bearings written by MRPT's stock `simul-landmarks` with"
+      " `share/mrpt-vslam/config/omni-fastslam/simul-landmarks-ceiling-lights.ini` (40 lights at"
+      " random 2.5-3 m up, a camera 0.5 m up, 0.3 m ahead and turned 30°, read over 180° within"
+      " 6 m with 2° of noise, odometry noise 0.01 m and 0.5° a step, 300 readings on a 7.2 m"
+      " square), `random_seed` = the world, and run from `template.ini` as shipped. The lights"
+      " are placed at random, so some stand closer to each other than the bearings' noise"
+      " separates. The IDs are in the rawlogs: the app reads them only to count wrong"
+      " associations (those whose light number is not the most frequent one of their map"
+      " light, over the best particle's associations). *smoothed*: the run's result; *filter*:"
+      " the best"
+      " particle's path and map. Mean light height: of the lights matched within 1.5 m, against"
+      " the true mean of the same lights.")
+print()
+print("| world | seed | smoothed ATE RMSE [m] | filter ATE RMSE [m] | dead reckoning [m] |"
+      " lights matched / false / missed | light error mean [m] | filter's mean light height"
+      " / true [m] | wrong associations | run [s] |")
+print("|---|---|---|---|---|---|---|---|---|---|")
+stock = []
+for w in stock_worlds:
+    for s in stock_seeds:
+        name = f"stock/world{w}-seed{s}"
+        r, f = row(name), row(name, "filter")
+        fm, run = load(name, "filter")
+        true_height = statistics.mean(t["z"] for t in fm["landmarks"]["table"]
+                                      if t.get("ez") is not None)
+        res = run["results"]
+        stock.append((r["ate"], f["ate"], r["odometry"]))
+        print(f"| {w} | {s} | {r['ate']:.3f} | {f['ate']:.3f} | {r['odometry']:.3f} |"
+              f" {r['matched']} / {r['false']} / {r['missed']} | {r['lm_mean']:.3f} |"
+              f" {f['height']:.2f} / {true_height:.2f} |"
+              f" {res['wrong_associations']} of {res['labelled_associations']} |"
+              f" {r['time']:.2f} |")
+print()
+n = len(stock)
+print("| estimate | runs | ATE RMSE median [m] | ATE RMSE min-max [m] | runs below dead reckoning |")
+print("|---|---|---|---|---|")
+for label, i in (("smoothed", 0), ("filter", 1), ("dead reckoning", 2)):
+    ates = [x[i] for x in stock]
+    below = f"{sum(x[i] < x[2] for x in stock)} of {n}" if i < 2 else ""
+    print(f"| {label} | {n} | {statistics.median(ates):.3f} | {min(ates):.3f}-{max(ates):.3f} |"
+          f" {below} |")
+print()
 PY
 } > "$RESULTS.tmp"
 mv "$RESULTS.tmp" "$RESULTS"
 echo "wrote $RESULTS"
 
-# --- 8. planar bearing-only mode on MRCLAM robot 1 ------------------------------------------------
+# --- 9. planar bearing-only mode on MRCLAM robot 1 ------------------------------------------------
 if [ -z "${MRPT_VSLAM_MRCLAM_DIR:-}" ]; then
-  echo "8. skipped: MRPT_VSLAM_MRCLAM_DIR is not set (the MRCLAM part needs dataset 7)"
+  echo "9. skipped: MRPT_VSLAM_MRCLAM_DIR is not set (the MRCLAM part needs dataset 7)"
   exit 0
 fi
-echo "8. MRCLAM robot 1, planar bearing-only, seeds $MRCLAM_SEEDS"
+echo "9. MRCLAM robot 1, planar bearing-only, seeds $MRCLAM_SEEDS"
 MRCLAM="$OUT/mrclam"
 mkdir -p "$MRCLAM"
 "$BIN/mrclam2rawlog" "$MRPT_VSLAM_MRCLAM_DIR" --out "$MRCLAM/dataset7_r1.rawlog" --robots 1 \
