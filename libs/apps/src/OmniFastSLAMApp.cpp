@@ -317,13 +317,14 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
                          smoothed->initial_cost, smoothed->final_cost));
         report.setPartTiming("smoothing", smoothingSeconds);
         // the shipped halls leave 1 in 200 beyond 3 σ, MRCLAM's bearings 1 in 48-107; a camera
-        // yaw 90° off or images of no ceiling lights, three quarters and more
+        // yaw 90° off or images of no ceiling lights, three quarters and more; stock
+        // simul-landmarks lights at random, a quarter where close lights were mixed up
         if (10 * smoothed->outliers > smoothed->bearings)
             report.addWarning(mrpt::format(
                 "after smoothing, %zu of the %zu bearings lie beyond %g sigma of their lights "
                 "(about 1 in %.0f would with the camera right): check %s and the camera pose "
-                "on the robot; filter_path%s.tum holds the filter's own path "
-                "(doc/omni-fastslam.md)",
+                "on the robot, or lights closer to each other than the bearings' noise tells "
+                "apart; filter_path%s.tum holds the filter's own path (doc/omni-fastslam.md)",
                 smoothed->outliers, smoothed->bearings, smootherOptions.huber,
                 1 / smoothed->outlier_probability, cameraModel->name().c_str(), suffix.c_str()));
         if (smoothed->lights_with_filter_covariance > 0)
