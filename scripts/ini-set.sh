@@ -4,11 +4,7 @@
 # names the key and the count, DST is not written and the exit status is 1.
 # Usage: scripts/ini-set.sh SRC DST [KEY=VALUE ...]
 set -euo pipefail
-usage() { sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'; }
-case "${1:-}" in
-  -h | --help) usage; exit 0 ;;
-  "" | -*) usage >&2; exit 2 ;;
-esac
+source "$(dirname "${BASH_SOURCE[0]}")/command-usage.sh" "$@"
 [ $# -ge 2 ] || { usage >&2; exit 2; }
 src="$1" dst="$2"; shift 2
 [ -r "$src" ] || { echo "$src: cannot read" >&2; exit 1; }

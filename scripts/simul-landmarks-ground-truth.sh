@@ -11,11 +11,7 @@
 # Then: multirobot-vslam share/mrpt-vslam/config/multirobot-vslam/range-bearing.ini NAME.rawlog
 # starts from the true start pose and writes metrics.json (doc/your-own-data.md).
 set -euo pipefail
-usage() { sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'; }
-case "${1:-}" in
-  -h | --help) usage; exit 0 ;;
-  "" | -*) usage >&2; exit 2 ;;
-esac
+source "$(dirname "${BASH_SOURCE[0]}")/command-usage.sh" "$@"
 command -v rawlog-edit > /dev/null ||
   { echo "rawlog-edit not found: install mrpt-apps (scripts/setup.sh does)" >&2; exit 2; }
 tmp="$(mktemp -d)"

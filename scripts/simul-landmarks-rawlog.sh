@@ -11,11 +11,7 @@
 # CONFIG: share/mrpt-vslam/config/peer-comparison/simul-landmarks-noise-*.ini (point landmarks,
 # range and bearing) or share/mrpt-vslam/config/omni-fastslam/simul-landmarks-ceiling-lights.ini.
 set -euo pipefail
-usage() { sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'; }
-case "${1:-}" in
-  -h | --help) usage; exit 0 ;;
-  "" | -*) usage >&2; exit 2 ;;
-esac
+source "$(dirname "${BASH_SOURCE[0]}")/command-usage.sh" "$@"
 [ $# -ge 2 ] || { usage >&2; exit 2; }
 config="$1" rawlog="$2"; shift 2
 [[ "$rawlog" == *.rawlog ]] || { echo "$rawlog: not a .rawlog file name" >&2; exit 1; }
