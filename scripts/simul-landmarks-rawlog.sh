@@ -21,11 +21,12 @@ scripts="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 dir="$(dirname "$rawlog")" name="$(basename "$rawlog" .rawlog)"
 mkdir -p "$dir"
 "$scripts/ini-set.sh" "$config" "$dir/$name.simul-landmarks.ini" outFile="$name.rawlog" outDir=. "$@"
-rm -f "$dir/$name.rawlog" "$dir/$name.rawlog_ground_truth.txt" "$dir/$name.rawlog_ground_truth_robot_path.txt"
+written=("$dir/$name.rawlog" "$dir/$name.rawlog_ground_truth.txt"
+  "$dir/$name.rawlog_ground_truth_robot_path.txt")
+rm -f "${written[@]}"
 (cd "$dir" && simul-landmarks "$name.simul-landmarks.ini" < /dev/null > "$name.simul-landmarks.log" 2>&1)
-for f in "$name.rawlog" "$name.rawlog_ground_truth.txt" "$name.rawlog_ground_truth_robot_path.txt"; do
-  [ -s "$dir/$f" ] || { tail -5 "$dir/$name.simul-landmarks.log" >&2
-    rm -f "$dir/$name.rawlog" "$dir/$name.rawlog_ground_truth.txt" "$dir/$name.rawlog_ground_truth_robot_path.txt"
-    echo "simul-landmarks wrote no $dir/$f (its log: $dir/$name.simul-landmarks.log)" >&2; exit 1; }
+for f in "${written[@]}"; do
+  [ -s "$f" ] || { tail -5 "$dir/$name.simul-landmarks.log" >&2; rm -f "${written[@]}"
+    echo "simul-landmarks wrote no $f (its log: $dir/$name.simul-landmarks.log)" >&2; exit 1; }
 done
 "$scripts/simul-landmarks-ground-truth.sh" "$rawlog"
