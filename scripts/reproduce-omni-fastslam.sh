@@ -165,6 +165,8 @@ def row(name, estimate=""):
             "matched": lm["matched"], "false": lm["false"], "dup": lm["duplicated"],
             "missed": lm["missed"], "lm_mean": lm["error_mean_m"], "lm_max": lm["error_max_m"],
             "height": statistics.mean(t["ez"] for t in lm["table"] if t.get("ez") is not None),
+            "true_height": statistics.mean(t["z"] for t in lm["table"] if t.get("ez") is not None),
+            "results": r["results"],
             "odometry": m["odometry"]["ate_rmse_m"], "time": r["timing"]["total_s"]}
 
 def once(r):  # every light mapped exactly once
@@ -319,14 +321,11 @@ for w in stock_worlds:
     for s in stock_seeds:
         name = f"stock/world{w}-seed{s}"
         r, f = row(name), row(name, "filter")
-        fm, run = load(name, "filter")
-        true_height = statistics.mean(t["z"] for t in fm["landmarks"]["table"]
-                                      if t.get("ez") is not None)
-        res = run["results"]
+        res = r["results"]
         stock.append((r["ate"], f["ate"], r["odometry"]))
         print(f"| {w} | {s} | {r['ate']:.3f} | {f['ate']:.3f} | {r['odometry']:.3f} |"
               f" {r['matched']} / {r['false']} / {r['missed']} | {r['lm_mean']:.3f} |"
-              f" {f['height']:.2f} / {true_height:.2f} |"
+              f" {f['height']:.2f} / {f['true_height']:.2f} |"
               f" {res['wrong_associations']} of {res['labelled_associations']} |"
               f" {r['time']:.2f} |")
 print()
