@@ -66,11 +66,15 @@ int64_t CCeilingLightsMap::addLandmark(const Eigen::Vector3d& mean, const Eigen:
 
 CCeilingLightsMap::TSensorLimits CCeilingLightsMap::sensorLimitsInUse() const
 {
+    return limitsInUse(m_observed_limits);
+}
+
+CCeilingLightsMap::TSensorLimits CCeilingLightsMap::limitsInUse(const TSensorLimits& observed) const
+{
     TSensorLimits limits;
-    limits.max_abs_azimuth =
-        sensorOptions.max_abs_azimuth.value_or(m_observed_limits.max_abs_azimuth);
-    limits.min_range = insertionOptions.min_cross_point_range.value_or(m_observed_limits.min_range);
-    limits.max_range = insertionOptions.max_cross_point_range.value_or(m_observed_limits.max_range);
+    limits.max_abs_azimuth = sensorOptions.max_abs_azimuth.value_or(observed.max_abs_azimuth);
+    limits.min_range = insertionOptions.min_cross_point_range.value_or(observed.min_range);
+    limits.max_range = insertionOptions.max_cross_point_range.value_or(observed.max_range);
     return limits;
 }
 

@@ -45,9 +45,8 @@ std::vector<TBearingMeasurement> CCeilingLightsMap::measurementsFromObservation(
     stated.max_abs_azimuth = std::min(0.5 * static_cast<double>(obs.fieldOfView_yaw), M_PI);
     stated.min_range = obs.minSensorDistance;
     stated.max_range = obs.maxSensorDistance;
-    const double min_range = insertionOptions.min_cross_point_range.value_or(stated.min_range);
-    const double max_range = insertionOptions.max_cross_point_range.value_or(stated.max_range);
-    if (max_range > 0 && min_range >= max_range)
+    const TSensorLimits in_use = limitsInUse(stated);
+    if (in_use.max_range > 0 && in_use.min_range >= in_use.max_range)
         fail("the reading range in use is empty (minSensorDistance = " +
              mrpt::format("%g", stated.min_range) +
              " m, maxSensorDistance = " + mrpt::format("%g", stated.max_range) +

@@ -286,6 +286,8 @@ class CCeilingLightsMap : public mrpt::maps::CMetricMap {
     mutable mrpt::poses::CPose3D m_sensor_in_robot;
     /// The limits the last observation states (see sensorLimitsInUse()).
     mutable TSensorLimits m_observed_limits;
+    /// The limits in use with `observed` as the observation's: each option's value when set.
+    TSensorLimits limitsInUse(const TSensorLimits& observed) const;
     std::vector<TLightLandmark> m_landmarks;
     std::vector<TCandidateLight> m_candidates;
     uint64_t m_step = 0;
