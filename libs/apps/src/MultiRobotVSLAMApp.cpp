@@ -108,10 +108,6 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
     CMultiRobotVisualSLAM& filter() const { return *runs.front().filter; }
     TeamPathSmoother& smoother() const { return *runs.front().smoother; }
     /// With smooth_paths, per run (by seed): what its smoothing gave.
-    struct TRunOutcome {
-        double cost = 0;                     ///< TeamPathSmoother::TSmoothedTeam::cost
-        size_t landmarks = 0, readings = 0;  ///< of the smoothed map, and readings mapped
-    };
     std::vector<TRunOutcome> runOutcomes;
     size_t keptRun = 0;  ///< of runOutcomes
     std::vector<std::optional<core::TumTrajectory>> groundTruth;
@@ -196,10 +192,6 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
     gtMatchRadius = cfg.read_double(kAppSection, "gt_match_radius", gtMatchRadius);
     odometryLabel = cfg.read_string(kAppSection, "odometry_label", "");
     if (!(gtMatchRadius > 0)) throw usageError("[MultiRobotVSLAM] gt_match_radius must be > 0");
-    const int runs = cfg.read_int(kAppSection, "filter_runs", static_cast<int>(filterRuns));
-    if (runs < 1 || runs > 64)
-        throw usageError("[MultiRobotVSLAM] filter_runs must be an integer from 1 to 64");
-    filterRuns = static_cast<size_t>(runs);
     auto& l = listenerOptions;
     l.reorder_window_s = cfg.read_double(kListenerSection, "reorder_window_s", l.reorder_window_s);
     l.join_window_s = cfg.read_double(kListenerSection, "join_window_s", l.join_window_s);
@@ -244,10 +236,8 @@ void MultiRobotVSLAMApp::Impl::loadConfig()
         startPoses.push_back(v.empty() ? mrpt::math::TPose2D()
                                        : mrpt::math::TPose2D(v[0], v[1], mrpt::DEG2RAD(v[2])));
     }
-    if (filterRuns > 1 && !smootherOptions.smooth_paths)
-        throw usageError("[MultiRobotVSLAM] filter_runs > 1 needs [" +
-                         std::string(kSmootherSection) +
-                         "] smooth_paths = true (runs are compared by their smoothed cost)");
+    filterRuns = loadFilterRuns(filterRuns, smootherOptions.smooth_paths,
+                                "[" + std::string(kSmootherSection) + "] smooth_paths");
     loadParticleFilterOptions();
     if (!odometryLabel.empty() && filterOptions.robots.size() != 1)
         throw usageError(
@@ -527,17 +517,13 @@ void MultiRobotVSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
                                  "); the rawlog has: " + contents.describe());
     if (smootherOptions.smooth_paths) {
         const core::RunTimer smoothing;
-        for (size_t i = 0; i < runs.size(); i++) {
-            auto s = runs[i].smoother->smoothPaths(runs[i].filter->bestParticle());
+        auto results = keepCheapestRun(
+            runs,
+            [](const TFilterRun& r) { return r.smoother->smoothPaths(r.filter->bestParticle()); },
+            [](const TeamPathSmoother::TSmoothedTeam& s) { return s.cost; }, keptRun);
+        for (const auto& s : results)
             runOutcomes.push_back({s.cost, s.map.size(), s.correspondences.size()});
-            if (smoothed && s.cost >= smoothed->cost) continue;
-            smoothed = std::move(s);
-            keptRun = i;
-        }
-        TFilterRun kept = std::move(runs[keptRun]);
-        runs.clear();
-        runs.push_back(std::move(kept));
-        stopStepping();
+        smoothed = std::move(results[keptRun]);
         smoothingSeconds = smoothing.elapsedSeconds();
     }
     for (size_t k = 0; k < robots.size(); k++) app.estimatedPaths[k] = bestParticlePath(k);
@@ -701,17 +687,7 @@ void MultiRobotVSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
         report.setResult("smoothing_s", smoothingSeconds);
         report.setCount("smoothing_iterations", static_cast<double>(smoothed->iterations));
         report.setResult("smoothing_cost", smoothed->cost);
-        if (runOutcomes.size() > 1) {
-            std::ostringstream j;
-            j.precision(17);  // the costs as compared
-            for (size_t i = 0; i < runOutcomes.size(); i++)
-                j << (i ? ", " : "[") << "{\"seed\": " << seed + i
-                  << ", \"smoothing_cost\": " << runOutcomes[i].cost
-                  << ", \"landmarks\": " << runOutcomes[i].landmarks
-                  << ", \"readings\": " << runOutcomes[i].readings << "}";
-            report.setResultJson("filter_runs", j.str() + "]");
-            report.setCount("kept_seed", static_cast<double>(seed + keptRun));
-        }
+        reportFilterRuns(runOutcomes, keptRun, report);
         report.setCount("smoothing_readings", static_cast<double>(smoothed->readings));
         report.setCount("smoothing_outlier_readings",
                         static_cast<double>(smoothed->outlier_readings));

@@ -32,6 +32,40 @@ class ParticleFilterApp : public SlamApp {
     /// \param adaptive whether the filter implements adaptiveSampleSize (KLD-sampling)
     void loadParticleFilterOptions(bool adaptive = false);
 
+    /** `filter_runs` of the app's section: how many filters run side by side, from the seeds
+     *  --seed, --seed + 1, ... (makeFilter()); after the run the one whose smoothed solution
+     *  costs least is kept (keepCheapestRun()). Throws a usage error unless it is 1 to 64, and
+     *  unless `smoothing` when it is more than 1 (`smoothingKey` names that switch). */
+    size_t loadFilterRuns(size_t runs, bool smoothing, const std::string& smoothingKey) const;
+
+    /// What the smoothing of one filter run gave, for run.json `results.filter_runs`.
+    struct TRunOutcome {
+        double cost = 0;                     ///< of its smoothed solution
+        size_t landmarks = 0, readings = 0;  ///< of the smoothed map, and readings in it
+    };
+    /** Smooths every run (`smooth(run)`), keeps in `runs` only the one whose result costs least
+     *  (`costOf(result)`; the first of equal ones) and stops stepping the filters. Returns
+     *  every run's result, in the order of `runs`, and sets `kept` to the kept one's index. */
+    template <class RUN, class SMOOTH, class COST>
+    auto keepCheapestRun(std::vector<RUN>& runs, SMOOTH smooth, COST costOf, size_t& kept)
+    {
+        std::vector<decltype(smooth(runs.front()))> results;
+        kept = 0;
+        for (size_t i = 0; i < runs.size(); i++) {
+            results.push_back(smooth(runs[i]));
+            if (costOf(results[i]) < costOf(results[kept])) kept = i;
+        }
+        RUN run = std::move(runs[kept]);
+        runs.clear();
+        runs.push_back(std::move(run));
+        stopStepping();
+        return results;
+    }
+    /// run.json `results.filter_runs` (seed, cost, landmarks and readings of each run) and
+    /// `counts.kept_seed`, when more than one filter ran.
+    void reportFilterRuns(const std::vector<TRunOutcome>& outcomes, size_t kept,
+                          core::RunReport& report) const;
+
     /// The map every particle starts from: the only map of `[MappingApplication]`, defined by
     /// `countKey` = 1.
     template <class MAP>

@@ -99,6 +99,8 @@ class SlamApp {
 
     /// A config problem: "<config file>: <what>".
     core::UsageError usageError(const std::string& what) const;
+    /// The ini section of the app's own keys.
+    const std::string& ownSection() const { return m_section; }
     /// A key of the app's section as messages name it: "[SECTION] key".
     std::string ownKey(const std::string& key) const { return "[" + m_section + "] " + key; }
     /** A config problem from an option loader's exception, as one line: the value that did not
