@@ -62,10 +62,23 @@ struct OmniFastSLAMApp::Impl : ParticleFilterApp {
     std::optional<ImagesCameraModel<core::PajdlaBaksteinCamera>> cameraModel;
     CeilingLightDetector::TOptions detectorOptions;
     std::unique_ptr<CeilingLightDetector> detector;
-    std::unique_ptr<COmniFastSLAM> filter;
     LightsPathSmoother::TOptions smootherOptions;
-    /// records the run: the smoothing (with smooth_path) and the camera pose check
-    std::unique_ptr<LightsPathSmoother> smoother;
+    /// Independent filters run side by side; the one whose smoothed solution costs least is kept.
+    size_t filterRuns = 1;
+    struct TFilterRun {
+        std::unique_ptr<COmniFastSLAM> filter;
+        /// records the run: the smoothing (with smooth_path) and the camera pose check
+        std::unique_ptr<LightsPathSmoother> smoother;
+    };
+    /// filter_runs of them, from the seeds --seed, --seed + 1, ...; after endSteps() the kept one
+    std::vector<TFilterRun> runs;
+    /// The first run during the steps (its figures stand for all: they read the same data), the
+    /// kept one after endSteps().
+    COmniFastSLAM& filter() const { return *runs.front().filter; }
+    const LightsPathSmoother& smoother() const { return *runs.front().smoother; }
+    /// With smooth_path, per run (by seed): what its smoothing gave.
+    std::vector<TRunOutcome> runOutcomes;
+    size_t keptRun = 0;  ///< of runOutcomes
     /// With smooth_path: the smoothed path and lights, the time they took, the filter's path.
     std::optional<LightsPathSmoother::TResult> smoothed;
     double smoothingSeconds = 0;
@@ -138,6 +151,8 @@ void OmniFastSLAMApp::Impl::loadConfig()
     } catch (const std::exception& e) {
         throw configError(e);
     }
+    filterRuns = loadFilterRuns(filterRuns, smootherOptions.smooth_path,
+                                "[" + std::string(kSmootherSection) + "] smooth_path");
     loadParticleFilterOptions(true);
     mapTemplate = particleMapTemplate<CCeilingLightsMap>("ceilingLightsMap_count");
 }
@@ -145,12 +160,15 @@ void OmniFastSLAMApp::Impl::loadConfig()
 void OmniFastSLAMApp::Impl::prepare()
 {
     start.resolve(args, rawlog, robot);
-    filter = makeFilter<COmniFastSLAM>(mapTemplate);
-    filter->options = filterOptions;
-    filter->kld = kld;
-    smoother = std::make_unique<LightsPathSmoother>();
-    smoother->options = smootherOptions;
-    filter->setStepObserver(smoother.get());
+    for (size_t run = 0; run < filterRuns; run++) {
+        TFilterRun r{makeFilter<COmniFastSLAM>(mapTemplate, static_cast<uint32_t>(run)),
+                     std::make_unique<LightsPathSmoother>()};
+        r.filter->options = filterOptions;
+        r.filter->kld = kld;
+        r.smoother->options = smootherOptions;
+        r.filter->setStepObserver(r.smoother.get());
+        runs.push_back(std::move(r));
+    }
 }
 
 std::vector<core::ObservationSelector> OmniFastSLAMApp::Impl::stepObservations() const
@@ -224,7 +242,7 @@ void OmniFastSLAMApp::Impl::reportCameraModel(core::RunReport& report) const
 
 void OmniFastSLAMApp::Impl::drawBestParticle(mrpt::opengl::COpenGLScene& scene) const
 {
-    const auto& best = filter->bestParticle();
+    const auto& best = filter().bestParticle();
     core::TumTrajectory path;
     for (const auto& [t, p] : COmniFastSLAM::pathOf(best))
         path.push_back(t, mrpt::math::TPose3D(p));
@@ -243,13 +261,13 @@ void OmniFastSLAMApp::Impl::step(mrpt::obs::CActionCollection::Ptr actions,
         const auto move = actions->getBestMovementEstimation();  // none: the filter says so
         odometry = mrpt::poses::CPose2D(start.atFirstStep(
             t, move ? move->poseChange->getMeanVal().asTPose() : mrpt::math::TPose2D()));
-        filter->reset(start.pose, t);
+        for (auto& run : runs) run.filter->reset(start.pose, t);
     }
     filterStep(*actions, frame, timer);
 
     odometry = odometry + actions->getBestMovementEstimation()->poseChange->getMeanVal();
     app.odometryPath.push_back(t, mrpt::math::TPose3D(odometry.asTPose()));
-    measurements += filter->lastStepStats.measurements;
+    measurements += filter().lastStepStats.measurements;
 }
 
 void OmniFastSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
@@ -279,11 +297,18 @@ void OmniFastSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
                    "and [Camera] (doc/omni-fastslam.md)";
         throw std::runtime_error(rawlog + ": no ceiling-light measurement in any frame: " + why);
     }
-    app.estimatedPath = asTrajectory(COmniFastSLAM::pathOf(filter->bestParticle()));
     if (smootherOptions.smooth_path) {
         const core::RunTimer smoothing;
-        smoothed = smoother->smooth(filter->bestParticle());
+        auto results = keepCheapestRun(
+            runs, [](const TFilterRun& r) { return r.smoother->smooth(r.filter->bestParticle()); },
+            [](const LightsPathSmoother::TResult& s) { return s.final_cost; }, keptRun);
+        for (const auto& s : results)
+            runOutcomes.push_back({s.final_cost, s.map.landmarks().size(), s.bearings});
+        smoothed = std::move(results[keptRun]);
         smoothingSeconds = smoothing.elapsedSeconds();
+    }
+    app.estimatedPath = asTrajectory(COmniFastSLAM::pathOf(filter().bestParticle()));
+    if (smoothed) {
         filterPath = app.estimatedPath;
         app.estimatedPath = asTrajectory(smoothed->path);
     }
@@ -292,7 +317,7 @@ void OmniFastSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
 void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
                                          mrpt::opengl::COpenGLScene& scene, core::RunReport& report)
 {
-    const auto& best = filter->bestParticle();
+    const auto& best = filter().bestParticle();
     const std::string suffix = robot.empty() ? "" : "_" + robot;
     app.estimatedPath.save(
         out.file("estimated_path" + suffix + ".tum"),
@@ -311,11 +336,12 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
             "smoothing",
             mrpt::format("{\"iterations\": %zu, \"bearings\": %zu, \"outliers\": %zu, "
                          "\"merged_lights\": %zu, \"lights_with_filter_covariance\": %zu, "
-                         "\"initial_cost\": %.6g, \"final_cost\": %.6g}",
+                         "\"initial_cost\": %.17g, \"final_cost\": %.17g}",
                          smoothed->iterations, smoothed->bearings, smoothed->outliers,
                          smoothed->merged, smoothed->lights_with_filter_covariance,
                          smoothed->initial_cost, smoothed->final_cost));
         report.setPartTiming("smoothing", smoothingSeconds);
+        reportFilterRuns(runOutcomes, keptRun, report);
         // the shipped halls leave 1 in 200 beyond 3 σ, MRCLAM's bearings 1 in 48-107; a camera
         // yaw 90° off or images of no ceiling lights, three quarters and more; stock
         // simul-landmarks lights at random, a quarter where close lights were mixed up
@@ -339,7 +365,7 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
         drawBestParticle(scene);
     }
     const core::RunTimer checking;
-    if (const auto check = smoother->cameraPoseCheck(best))
+    if (const auto check = smoother().cameraPoseCheck(best))
         reportSensorPoseChecks("omni-fastslam", "a landmark", "doc/multirobot.md",
                                {{"camera", *check, std::nullopt, {}}}, checking.elapsedSeconds(),
                                report, args.quiet);
@@ -364,7 +390,7 @@ void OmniFastSLAMApp::Impl::writeResults(const core::OutputDirectory& out,
             "almost the odometry's; check %s, [LightDetector] and the camera pose on the "
             "robot (doc/omni-fastslam.md)",
             associated, measurements, cameraModel->name().c_str()));
-    report.setCount("particles", filter->particlesCount());
+    report.setCount("particles", filter().particlesCount());
     report.setCount("landmarks", (smoothed ? smoothed->map : best.map).landmarks().size());
     report.setCount("candidates", best.map.candidates().size());
     reportCameraModel(report);

@@ -344,7 +344,10 @@ TEST(OmniFastSLAMApp, RejectsImpossibleValuesNamingTheKey)
         {"MotionModel.minStdXY=0", "[MotionModel] minStdXY: must be finite and > 0"},
         {"OmniFastSLAM.min_motion_std_phi_deg=-1", "min_motion_std_phi_deg: must be > 0"},
         {"OmniFastSLAM.min_motion_std_xy=abc", "min_motion_std_xy = abc: not a number"},
-        {"OmniFastSLAM.max_bearings_per_frame=0", "max_bearings_per_frame must be >= 1"}};
+        {"OmniFastSLAM.max_bearings_per_frame=0", "max_bearings_per_frame must be >= 1"},
+        {"OmniFastSLAM.filter_runs=0",
+         "[OmniFastSLAM] filter_runs must be an integer from 1 to 64"},
+        {"OmniFastSLAM.filter_runs=1.5", "[OmniFastSLAM] filter_runs = 1.5: not an integer"}};
     for (const auto& [setting, message] : impossible) {
         apps::OmniFastSLAMApp app(args({kConfig, kRawlog, "--set", setting, "--quiet"}));
         try {
@@ -355,5 +358,23 @@ TEST(OmniFastSLAMApp, RejectsImpossibleValuesNamingTheKey)
             EXPECT_NE(what.find(message), std::string::npos) << setting << ": " << what;
             EXPECT_EQ(what.find('\n'), std::string::npos) << what;
         }
+    }
+}
+
+// Filters run side by side are compared by their smoothed cost: without the smoothing there is
+// nothing to compare them by.
+TEST(OmniFastSLAMApp, FilterRunsNeedTheSmoothing)
+{
+    apps::OmniFastSLAMApp app(args({kConfig, kRawlog, "--set", "OmniFastSLAM.filter_runs=2",
+                                    "--set", "LightsPathSmoother.smooth_path=false", "--quiet"}));
+    try {
+        app.initialize();
+        ADD_FAILURE() << "filter_runs = 2 without smoothing accepted";
+    } catch (const core::UsageError& e) {
+        EXPECT_NE(
+            std::string(e.what()).find(
+                "[OmniFastSLAM] filter_runs > 1 needs [LightsPathSmoother] smooth_path = true"),
+            std::string::npos)
+            << e.what();
     }
 }
