@@ -17,13 +17,14 @@
 #      estimate, one round (the particle's associations) and the shipped two rounds;
 #   8. a user's own data: bearings of ceiling lights written by MRPT's stock simul-landmarks
 #      (omni-fastslam/simul-landmarks-ceiling-lights.ini, worlds STOCK_WORLDS) and run from
-#      template.ini, STOCK_SEEDS: the smoothed estimate and the filter's own;
+#      template.ini, STOCK_SEEDS: the smoothed estimate of its four filters and of one, and
+#      the filter's own;
 #   9. with MRPT_VSLAM_MRCLAM_DIR (the folder of UTIAS MRCLAM dataset 7, doc/real-data.md):
 #      the planar bearing-only mode on robot 1 (mrclam-bearing-only.ini, MRCLAM_SEEDS), in
 #      doc/results/omni-fastslam-mrclam-r1.md (or $RESULTS_MRCLAM); skipped without it.
 # Run folders (metrics.json, run.json, plots) under out/reproduce-omni-fastslam/ (or $OUT).
-# Builds first (scripts/setup.sh). Takes about 2 min (2 more with the MRCLAM part).
-# Environment: OUT, SEEDS (default 1..10), STOCK_WORLDS (default 1..5), STOCK_SEEDS (default
+# Builds first (scripts/setup.sh). Takes about 4 min (2 more with the MRCLAM part).
+# Environment: OUT, SEEDS (default 1..10), STOCK_WORLDS (default 1..10), STOCK_SEEDS (default
 # 1..3), MRCLAM_SEEDS (default 1..8), RESULTS, RESULTS_MRCLAM.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -38,7 +39,7 @@ BIN="$BUILD_DIR/bin"
 CONFIGS="$REPO_DIR/share/mrpt-vslam/config/omni-fastslam"
 DATA="$REPO_DIR/datasets/sports-hall/hall"
 SEEDS="$(words "${SEEDS:-1 2 3 4 5 6 7 8 9 10}")"
-STOCK_WORLDS="$(words "${STOCK_WORLDS:-1 2 3 4 5}")"
+STOCK_WORLDS="$(words "${STOCK_WORLDS:-1 2 3 4 5 6 7 8 9 10}")"
 STOCK_SEEDS="$(words "${STOCK_SEEDS:-1 2 3}")"
 MRCLAM_SEEDS="$(words "${MRCLAM_SEEDS:-1 2 3 4 5 6 7 8}")"
 RESULTS="${RESULTS:-$REPO_DIR/doc/results/omni-fastslam.md}"
@@ -133,6 +134,9 @@ for world in $STOCK_WORLDS; do
   for seed in $STOCK_SEEDS; do
     run "stock/world$world-seed$seed" "$CONFIGS/template.ini" "$OUT/stock/world$world.rawlog" \
       "$OUT/stock/world$world" --seed "$seed"
+    run "stock/world$world-seed$seed-one" "$CONFIGS/template.ini" \
+      "$OUT/stock/world$world.rawlog" "$OUT/stock/world$world" --seed "$seed" \
+      --set OmniFastSLAM.filter_runs=1
   done
 done
 for f in paths errors landmark_errors; do
@@ -303,40 +307,46 @@ print("Bearings written by MRPT's stock `simul-landmarks` with"
       " `share/mrpt-vslam/config/omni-fastslam/simul-landmarks-ceiling-lights.ini` (40 lights at"
       " random 2.5-3 m up, a camera 0.5 m up, 0.3 m ahead and turned 30°, read over 180° within"
       " 6 m with 2° of noise, odometry noise 0.01 m and 0.5° a step, 300 readings on a 7.2 m"
-      " square), `random_seed` = the world, and run from `template.ini` as shipped. The lights"
+      " square), `random_seed` = the world, and run from `template.ini` as shipped: four"
+      " filters from the seed on, the one whose smoothed solution costs least kept"
+      " (`filter_runs = 4`), and with one filter (`filter_runs = 1`, the same seed). The lights"
       " are placed at random, so some stand closer to each other than the bearings' noise"
       " separates. The IDs are in the rawlogs: the app reads them only to count wrong"
       " associations (those whose light number is not the most frequent one of their map"
       " light, over the best particle's associations). *smoothed*: the run's result; *filter*:"
-      " the best"
-      " particle's path and map. Mean light height: of the lights matched within 1.5 m, against"
+      " the best particle's path and map, of the kept filter. Mean light height: of the lights matched within 1.5 m, against"
       " the true mean of the same lights.")
 print()
-print("| world | seed | smoothed ATE RMSE [m] | filter ATE RMSE [m] | dead reckoning [m] |"
-      " lights matched / false / missed | light error mean [m] | filter's mean light height"
-      " / true [m] | wrong associations | run [s] |")
-print("|---|---|---|---|---|---|---|---|---|---|")
+print("| world | seed | smoothed ATE RMSE [m] | kept seed | one filter: smoothed ATE RMSE [m] |"
+      " filter ATE RMSE [m] | dead reckoning [m] | lights matched / false / missed |"
+      " light error mean [m] | filter's mean light height / true [m] | wrong associations |"
+      " run [s] |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|")
 stock = []
 for w in stock_worlds:
     for s in stock_seeds:
         name = f"stock/world{w}-seed{s}"
-        r, f = row(name), row(name, "filter")
+        r, f, one = row(name), row(name, "filter"), row(name + "-one")
         res = r["results"]
-        stock.append((r["ate"], f["ate"], r["odometry"]))
-        print(f"| {w} | {s} | {r['ate']:.3f} | {f['ate']:.3f} | {r['odometry']:.3f} |"
+        kept = json.load(open(f"{out}/{name}/run.json"))["counts"]["kept_seed"]
+        stock.append((r["ate"], one["ate"], f["ate"], r["odometry"]))
+        print(f"| {w} | {s} | {r['ate']:.3f} | {kept} | {one['ate']:.3f} | {f['ate']:.3f} |"
+              f" {r['odometry']:.3f} |"
               f" {r['matched']} / {r['false']} / {r['missed']} | {r['lm_mean']:.3f} |"
               f" {f['height']:.2f} / {f['true_height']:.2f} |"
               f" {res['wrong_associations']} of {res['labelled_associations']} |"
               f" {r['time']:.2f} |")
 print()
 n = len(stock)
-print("| estimate | runs | ATE RMSE median [m] | ATE RMSE min-max [m] | runs below dead reckoning |")
-print("|---|---|---|---|---|")
-for label, i in (("smoothed", 0), ("filter", 1), ("dead reckoning", 2)):
+print("| estimate | runs | ATE RMSE median [m] | ATE RMSE mean [m] | ATE RMSE min-max [m] |"
+      " runs below dead reckoning |")
+print("|---|---|---|---|---|---|")
+for label, i in (("smoothed (four filters)", 0), ("smoothed, one filter", 1),
+                 ("filter (of the kept run)", 2), ("dead reckoning", 3)):
     ates = [x[i] for x in stock]
-    below = f"{sum(x[i] < x[2] for x in stock)} of {n}" if i < 2 else ""
-    print(f"| {label} | {n} | {statistics.median(ates):.3f} | {min(ates):.3f}-{max(ates):.3f} |"
-          f" {below} |")
+    below = f"{sum(x[i] < x[3] for x in stock)} of {n}" if i < 3 else ""
+    print(f"| {label} | {n} | {statistics.median(ates):.3f} | {statistics.mean(ates):.3f} |"
+          f" {min(ates):.3f}-{max(ates):.3f} | {below} |")
 print()
 PY
 } > "$RESULTS.tmp"
