@@ -96,13 +96,11 @@ struct MultiRobotVSLAMApp::Impl : ParticleFilterApp {
     team::TeamListener::TOptions listenerOptions;            ///< with --listen
     team::TeamListener* listener = nullptr;                  ///< with --listen, during run()
     std::vector<std::unique_ptr<StereoFrontEnd>> frontEnds;  ///< one per robot, on demand
-    struct TFilterRun {
-        std::unique_ptr<CMultiRobotVisualSLAM> filter;
-        /// records the run: the map along the path, the smoothing, the sensor pose checks
-        std::unique_ptr<TeamPathSmoother> smoother;
-    };
+    /// Its smoother records the run: the map along the path, the smoothing, the sensor pose
+    /// checks.
+    using Run = TFilterRun<CMultiRobotVisualSLAM, TeamPathSmoother>;
     /// filter_runs of them, from the seeds --seed, --seed + 1, ...; after endSteps() the kept one
-    std::vector<TFilterRun> runs;
+    std::vector<Run> runs;
     /// The first run during the steps (its figures stand for all: they read the same data), the
     /// kept one after endSteps().
     CMultiRobotVisualSLAM& filter() const { return *runs.front().filter; }
@@ -363,8 +361,7 @@ void MultiRobotVSLAMApp::Impl::prepare()
     findGroundTruth();
     app.robots = filterOptions.robots;
     for (size_t run = 0; run < filterRuns; run++) {
-        TFilterRun r{makeFilter<CMultiRobotVisualSLAM>(mapTemplate, static_cast<uint32_t>(run)),
-                     nullptr};
+        Run r{makeFilter<CMultiRobotVisualSLAM>(mapTemplate, static_cast<uint32_t>(run)), nullptr};
         r.filter->options = filterOptions;
         r.smoother = std::make_unique<TeamPathSmoother>(mapTemplate);
         r.smoother->options = smootherOptions;
@@ -518,8 +515,7 @@ void MultiRobotVSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
     if (smootherOptions.smooth_paths) {
         const core::RunTimer smoothing;
         auto results = keepCheapestRun(
-            runs,
-            [](const TFilterRun& r) { return r.smoother->smoothPaths(r.filter->bestParticle()); },
+            runs, [](const Run& r) { return r.smoother->smoothPaths(r.filter->bestParticle()); },
             [](const TeamPathSmoother::TSmoothedTeam& s) { return s.cost; }, keptRun);
         for (const auto& s : results)
             runOutcomes.push_back({s.cost, s.map.size(), s.correspondences.size()});

@@ -65,13 +65,10 @@ struct OmniFastSLAMApp::Impl : ParticleFilterApp {
     LightsPathSmoother::TOptions smootherOptions;
     /// Independent filters run side by side; the one whose smoothed solution costs least is kept.
     size_t filterRuns = 1;
-    struct TFilterRun {
-        std::unique_ptr<COmniFastSLAM> filter;
-        /// records the run: the smoothing (with smooth_path) and the camera pose check
-        std::unique_ptr<LightsPathSmoother> smoother;
-    };
+    /// Its smoother records the run: the smoothing (with smooth_path) and the camera pose check.
+    using Run = TFilterRun<COmniFastSLAM, LightsPathSmoother>;
     /// filter_runs of them, from the seeds --seed, --seed + 1, ...; after endSteps() the kept one
-    std::vector<TFilterRun> runs;
+    std::vector<Run> runs;
     /// The first run during the steps (its figures stand for all: they read the same data), the
     /// kept one after endSteps().
     COmniFastSLAM& filter() const { return *runs.front().filter; }
@@ -161,8 +158,8 @@ void OmniFastSLAMApp::Impl::prepare()
 {
     start.resolve(args, rawlog, robot);
     for (size_t run = 0; run < filterRuns; run++) {
-        TFilterRun r{makeFilter<COmniFastSLAM>(mapTemplate, static_cast<uint32_t>(run)),
-                     std::make_unique<LightsPathSmoother>()};
+        Run r{makeFilter<COmniFastSLAM>(mapTemplate, static_cast<uint32_t>(run)),
+              std::make_unique<LightsPathSmoother>()};
         r.filter->options = filterOptions;
         r.filter->kld = kld;
         r.smoother->options = smootherOptions;
@@ -300,7 +297,7 @@ void OmniFastSLAMApp::Impl::endSteps(const core::TRawlogSummary& contents)
     if (smootherOptions.smooth_path) {
         const core::RunTimer smoothing;
         auto results = keepCheapestRun(
-            runs, [](const TFilterRun& r) { return r.smoother->smooth(r.filter->bestParticle()); },
+            runs, [](const Run& r) { return r.smoother->smooth(r.filter->bestParticle()); },
             [](const LightsPathSmoother::TResult& s) { return s.final_cost; }, keptRun);
         for (const auto& s : results)
             runOutcomes.push_back({s.final_cost, s.map.landmarks().size(), s.bearings});

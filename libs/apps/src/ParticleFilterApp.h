@@ -32,12 +32,19 @@ class ParticleFilterApp : public SlamApp {
     /// \param adaptive whether the filter implements adaptiveSampleSize (KLD-sampling)
     void loadParticleFilterOptions(bool adaptive = false);
 
-    /** `filter_runs` of the app's section: how many filters run side by side, from the seeds
+    /** `filter_runs` of the app's section (`runs` when absent): how many filters run side by
+     *  side, from the seeds
      *  --seed, --seed + 1, ... (makeFilter()); after the run the one whose smoothed solution
      *  costs least is kept (keepCheapestRun()). Throws a usage error unless it is 1 to 64, and
      *  unless `smoothing` when it is more than 1 (`smoothingKey` names that switch). */
     size_t loadFilterRuns(size_t runs, bool smoothing, const std::string& smoothingKey) const;
 
+    /// One of the filters run side by side, and the smoother that records its run.
+    template <class FILTER, class SMOOTHER>
+    struct TFilterRun {
+        std::unique_ptr<FILTER> filter;
+        std::unique_ptr<SMOOTHER> smoother;  ///< the filter's step observer
+    };
     /// What the smoothing of one filter run gave, for run.json `results.filter_runs`.
     struct TRunOutcome {
         double cost = 0;                     ///< of its smoothed solution
