@@ -171,7 +171,7 @@ def row(name, estimate=""):
             "missed": lm["missed"], "lm_mean": lm["error_mean_m"], "lm_max": lm["error_max_m"],
             "height": statistics.mean(t["ez"] for t in lm["table"] if t.get("ez") is not None),
             "true_height": statistics.mean(t["z"] for t in lm["table"] if t.get("ez") is not None),
-            "results": r["results"],
+            "results": r["results"], "kept_seed": r["counts"].get("kept_seed"),
             "odometry": m["odometry"]["ate_rmse_m"], "time": r["timing"]["total_s"]}
 
 def once(r):  # every light mapped exactly once
@@ -315,8 +315,8 @@ print("Bearings written by MRPT's stock `simul-landmarks` with"
       " separates. The IDs are in the rawlogs: the app reads them only to count wrong"
       " associations (those whose light number is not the most frequent one of their map"
       " light, over the best particle's associations). *smoothed*: the run's result; *filter*:"
-      " the best particle's path and map, of the kept filter. Mean light height: of the lights matched within 1.5 m, against"
-      " the true mean of the same lights.")
+      " the best particle's path and map, of the kept filter. Mean light height: of the lights"
+      " matched within 1.5 m, against the true mean of the same lights.")
 print()
 print("| world | seed | smoothed ATE RMSE [m] | kept seed | one filter: smoothed ATE RMSE [m] |"
       " filter ATE RMSE [m] | dead reckoning [m] | lights matched / false / missed |"
@@ -329,9 +329,8 @@ for w in stock_worlds:
         name = f"stock/world{w}-seed{s}"
         r, f, one = row(name), row(name, "filter"), row(name + "-one")
         res = r["results"]
-        kept = json.load(open(f"{out}/{name}/run.json"))["counts"]["kept_seed"]
         stock.append((r["ate"], one["ate"], f["ate"], r["odometry"]))
-        print(f"| {w} | {s} | {r['ate']:.3f} | {kept} | {one['ate']:.3f} | {f['ate']:.3f} |"
+        print(f"| {w} | {s} | {r['ate']:.3f} | {r['kept_seed']} | {one['ate']:.3f} | {f['ate']:.3f} |"
               f" {r['odometry']:.3f} |"
               f" {r['matched']} / {r['false']} / {r['missed']} | {r['lm_mean']:.3f} |"
               f" {f['height']:.2f} / {f['true_height']:.2f} |"
