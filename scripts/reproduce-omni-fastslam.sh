@@ -18,7 +18,7 @@
 #   8. a user's own data: bearings of ceiling lights written by MRPT's stock simul-landmarks
 #      (omni-fastslam/simul-landmarks-ceiling-lights.ini, worlds STOCK_WORLDS) and run from
 #      template.ini, STOCK_SEEDS: the smoothed estimate of its four filters and of one, and
-#      the filter's own;
+#      the filter's own, with the size of its path and of dead reckoning's against the truth;
 #   9. with MRPT_VSLAM_MRCLAM_DIR (the folder of UTIAS MRCLAM dataset 7, doc/real-data.md):
 #      the planar bearing-only mode on robot 1 (mrclam-bearing-only.ini, MRCLAM_SEEDS; one
 #      filter as shipped, and four), in
@@ -174,6 +174,22 @@ def row(name, estimate=""):
             "results": r["results"], "kept_seed": r["counts"].get("kept_seed"),
             "odometry": m["odometry"]["ate_rmse_m"], "time": r["timing"]["total_s"]}
 
+def size_ratio(path, truth):
+    """the size of a path (RMS distance of its poses from their mean) over that of the true
+    poses nearest in time"""
+    def poses(f):
+        return [tuple(map(float, l.split()[:3])) for l in open(f) if l.strip() and l[0] != "#"]
+    est, gt = poses(path), poses(truth)
+    pairs, i = [], 0
+    for t, x, y in est:
+        while i + 1 < len(gt) and abs(gt[i + 1][0] - t) <= abs(gt[i][0] - t):
+            i += 1
+        pairs.append(((x, y), gt[i][1:]))
+    def size(ps):
+        cx, cy = statistics.mean(p[0] for p in ps), statistics.mean(p[1] for p in ps)
+        return statistics.mean((p[0] - cx) ** 2 + (p[1] - cy) ** 2 for p in ps) ** 0.5
+    return size([a for a, _ in pairs]) / size([b for _, b in pairs])
+
 def once(r):  # every light mapped exactly once
     return r["false"] == 0 and r["dup"] == 0 and r["missed"] == 0
 
@@ -316,24 +332,30 @@ print("Bearings written by MRPT's stock `simul-landmarks` with"
       " associations (those whose light number is not the most frequent one of their map"
       " light, over the best particle's associations). *smoothed*: the run's result; *filter*:"
       " the best particle's path and map, of the kept filter. Mean light height: of the lights"
-      " matched within 1.5 m, against the true mean of the same lights.")
+      " matched within 1.5 m, against the true mean of the same lights. Path size: the RMS"
+      " distance of a path's poses from their mean, over that of the true poses at the same"
+      " times (1: the true size), of the filter's path and of dead reckoning.")
 print()
 print("| world | seed | smoothed ATE RMSE [m] | kept seed | one filter: smoothed ATE RMSE [m] |"
       " filter ATE RMSE [m] | dead reckoning [m] | lights matched / false / missed |"
-      " light error mean [m] | filter's mean light height / true [m] | wrong associations |"
-      " run [s] |")
-print("|---|---|---|---|---|---|---|---|---|---|---|---|")
-stock = []
+      " light error mean [m] | filter's mean light height / true [m] | path size: filter /"
+      " dead reckoning | wrong associations | run [s] |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+stock, sizes = [], []
 for w in stock_worlds:
     for s in stock_seeds:
         name = f"stock/world{w}-seed{s}"
         r, f, one = row(name), row(name, "filter"), row(name + "-one")
         res = r["results"]
         stock.append((r["ate"], one["ate"], f["ate"], r["odometry"]))
+        truth = f"{out}/stock/world{w}.groundtruth.tum"
+        sizes.append((size_ratio(f"{out}/{name}/filter_path.tum", truth),
+                      size_ratio(f"{out}/{name}/odometry_path.tum", truth)))
         print(f"| {w} | {s} | {r['ate']:.3f} | {r['kept_seed']} | {one['ate']:.3f} | {f['ate']:.3f} |"
               f" {r['odometry']:.3f} |"
               f" {r['matched']} / {r['false']} / {r['missed']} | {r['lm_mean']:.3f} |"
               f" {f['height']:.2f} / {f['true_height']:.2f} |"
+              f" {sizes[-1][0]:.3f} / {sizes[-1][1]:.3f} |"
               f" {res['wrong_associations']} of {res['labelled_associations']} |"
               f" {r['time']:.2f} |")
 print()
@@ -348,6 +370,11 @@ for label, i in (("smoothed (four filters)", 0), ("smoothed, one filter", 1),
     print(f"| {label} | {n} | {statistics.median(ates):.3f} | {statistics.mean(ates):.3f} |"
           f" {min(ates):.3f}-{max(ates):.3f} | {below} |")
 print()
+for label, i in (("the filter's path (of the kept run)", 0), ("dead reckoning", 1)):
+    r = [x[i] for x in sizes]
+    print(f"Path size of {label}: mean {statistics.mean(r):.3f} of the true size,"
+          f" {min(r):.3f}-{max(r):.3f}, below 1 on {sum(x < 1 for x in r)} of {n} runs.")
+    print()
 PY
 } > "$RESULTS.tmp"
 mv "$RESULTS.tmp" "$RESULTS"
