@@ -8,7 +8,8 @@
 #      the filter's own estimate and the smoothed one;
 #   3. bearings input against light detection in the images (input = images), seeds 1-3;
 #   4. the deviations from the paper, each against the paper's value over SEEDS: the initial
-#      landmark covariance Sigma0 and the refinement of a new landmark (the filter's estimate);
+#      landmark covariance Sigma0 (and the former default 0.1) and the refinement of a new
+#      landmark (the filter's estimate);
 #   5. the harder hall (datasets/sports-hall-hard) over SEEDS: Hungarian, ML, and the paper's
 #      parameters (Sigma0, no refinement), the filter's estimate and the smoothed one;
 #   6. an adaptive number of particles (adaptiveSampleSize = 1, KLD-sampling) against the
@@ -17,15 +18,16 @@
 #      estimate, one round (the particle's associations) and the shipped two rounds;
 #   8. a user's own data: bearings of ceiling lights written by MRPT's stock simul-landmarks
 #      (omni-fastslam/simul-landmarks-ceiling-lights.ini, worlds STOCK_WORLDS) and run from
-#      template.ini, STOCK_SEEDS: the smoothed estimate of its four filters and of one, and
-#      the filter's own, with the size of its path and of dead reckoning's against the truth;
+#      template.ini, STOCK_SEEDS: the smoothed estimate of its four filters, of one, and of four
+#      with the former Sigma0 = 0.1, and the filter's own, with the size of its path and of dead
+#      reckoning's against the truth;
 #   9. with MRPT_VSLAM_MRCLAM_DIR (the folder of UTIAS MRCLAM dataset 7, doc/real-data.md):
 #      the planar bearing-only mode on robot 1 (mrclam-bearing-only.ini, MRCLAM_SEEDS; one
-#      filter as shipped, and four), in
+#      filter as shipped, four, and one with the class default Sigma0 = 0.5), in
 #      doc/results/omni-fastslam-mrclam-r1.md (or $RESULTS_MRCLAM); skipped without it.
 # Run folders (metrics.json, run.json, plots) under out/reproduce-omni-fastslam/ (or $OUT).
-# Builds first (scripts/setup.sh). Takes about 4 min (3 more with the MRCLAM part).
-# Environment: OUT, SEEDS (default 1..10), STOCK_WORLDS (default 1..10), STOCK_SEEDS (default
+# Builds first (scripts/setup.sh). Takes about 10 min (2 more with the MRCLAM part).
+# Environment: OUT, SEEDS (default 1..10), STOCK_WORLDS (default 1..30), STOCK_SEEDS (default
 # 1..3), MRCLAM_SEEDS (default 1..8), RESULTS, RESULTS_MRCLAM.
 set -euo pipefail
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -40,7 +42,7 @@ BIN="$BUILD_DIR/bin"
 CONFIGS="$REPO_DIR/share/mrpt-vslam/config/omni-fastslam"
 DATA="$REPO_DIR/datasets/sports-hall/hall"
 SEEDS="$(words "${SEEDS:-1 2 3 4 5 6 7 8 9 10}")"
-STOCK_WORLDS="$(words "${STOCK_WORLDS:-1 2 3 4 5 6 7 8 9 10}")"
+STOCK_WORLDS="$(words "${STOCK_WORLDS:-$(seq 1 30)}")"
 STOCK_SEEDS="$(words "${STOCK_SEEDS:-1 2 3}")"
 MRCLAM_SEEDS="$(words "${MRCLAM_SEEDS:-1 2 3 4 5 6 7 8}")"
 RESULTS="${RESULTS:-$REPO_DIR/doc/results/omni-fastslam.md}"
@@ -96,7 +98,7 @@ for seed in 1 2 3; do
 done
 echo "4. the paper's Sigma0 and no refinement, seeds $SEEDS"
 for seed in $SEEDS; do
-  for s0 in 0.0025 0.01; do
+  for s0 in 0.0025 0.01 0.1; do
     hall "sigma0-$s0-seed$seed" --seed "$seed" --set "$INSERT.sigma0_xx=$s0" \
       --set "$INSERT.sigma0_yy=$s0" --set "$INSERT.sigma0_zz=$s0"
   done
@@ -138,6 +140,9 @@ for world in $STOCK_WORLDS; do
     run "stock/world$world-seed$seed-one" "$CONFIGS/template.ini" \
       "$OUT/stock/world$world.rawlog" "$OUT/stock/world$world" --seed "$seed" \
       --set OmniFastSLAM.filter_runs=1
+    run "stock/world$world-seed$seed-sigma0-0.1" "$CONFIGS/template.ini" \
+      "$OUT/stock/world$world.rawlog" "$OUT/stock/world$world" --seed "$seed" \
+      --set "$INSERT.sigma0_xx=0.1" --set "$INSERT.sigma0_yy=0.1" --set "$INSERT.sigma0_zz=0.1"
   done
 done
 for f in paths errors landmark_errors; do
@@ -279,10 +284,12 @@ seeds = seeds_all
 seed_table("## 4. Deviations from the paper\n\n"
            "The filter's own estimate, each against the shipped value: the paper's initial"
            " landmark covariance"
-           " Σ0 = 0.0025 m² (and 0.01 m²) against the shipped 0.1 m²; `refine_initialization ="
-           " false` (the paper: a new light at its best cross-point only).",
+           " Σ0 = 0.0025 m² (and 0.01 and 0.1 m²) against the shipped 0.5 m²;"
+           " `refine_initialization = false` (the paper: a new light at its best cross-point"
+           " only).",
            [("shipped", "hungarian", "filter"), ("Σ0 = 0.0025", "sigma0-0.0025", "filter"),
-            ("Σ0 = 0.01", "sigma0-0.01", "filter"), ("no refinement", "no-refinement", "filter")])
+            ("Σ0 = 0.01", "sigma0-0.01", "filter"), ("Σ0 = 0.1", "sigma0-0.1", "filter"),
+            ("no refinement", "no-refinement", "filter")])
 seed_table("## 5. A harder hall: poor odometry, close lights, a lower ceiling\n\n"
            "`datasets/sports-hall-hard` (`vslam-sim sports-hall --variant hard`: dead reckoning"
            f" {row('hard-hungarian-seed1')['odometry']:.2f} m ATE RMSE, lights 15 and 16 about"
@@ -336,23 +343,29 @@ print("Bearings written by MRPT's stock `simul-landmarks` with"
       " distance of a path's poses from their mean, over that of the true poses at the same"
       " times (1: the true size), of the filter's path and of dead reckoning.")
 print()
+print("`filter_runs = 4` was chosen on worlds 1-10 and Σ0 = 0.5 m² (the class default; *Σ0 = 0.1*:"
+      " the template with the former default 0.1 m², four filters) on worlds 1-20; worlds 21-30"
+      " played no part in either.")
+print()
 print("| world | seed | smoothed ATE RMSE [m] | kept seed | one filter: smoothed ATE RMSE [m] |"
-      " filter ATE RMSE [m] | dead reckoning [m] | lights matched / false / missed |"
-      " light error mean [m] | filter's mean light height / true [m] | path size: filter /"
-      " dead reckoning | wrong associations | run [s] |")
-print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+      " Σ0 = 0.1: smoothed ATE RMSE [m] | filter ATE RMSE [m] | dead reckoning [m] |"
+      " lights matched / false / missed | light error mean [m] | filter's mean light height /"
+      " true [m] | path size: filter / dead reckoning | wrong associations | run [s] |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 stock, sizes = [], []
 for w in stock_worlds:
     for s in stock_seeds:
         name = f"stock/world{w}-seed{s}"
         r, f, one = row(name), row(name, "filter"), row(name + "-one")
+        old, old_f = row(name + "-sigma0-0.1"), row(name + "-sigma0-0.1", "filter")
         res = r["results"]
-        stock.append((r["ate"], one["ate"], f["ate"], r["odometry"]))
+        stock.append((int(w), r["ate"], old["ate"], one["ate"], f["ate"], old_f["ate"],
+                      r["odometry"]))
         truth = f"{out}/stock/world{w}.groundtruth.tum"
         sizes.append((size_ratio(f"{out}/{name}/filter_path.tum", truth),
                       size_ratio(f"{out}/{name}/odometry_path.tum", truth)))
-        print(f"| {w} | {s} | {r['ate']:.3f} | {r['kept_seed']} | {one['ate']:.3f} | {f['ate']:.3f} |"
-              f" {r['odometry']:.3f} |"
+        print(f"| {w} | {s} | {r['ate']:.3f} | {r['kept_seed']} | {one['ate']:.3f} |"
+              f" {old['ate']:.3f} | {f['ate']:.3f} | {r['odometry']:.3f} |"
               f" {r['matched']} / {r['false']} / {r['missed']} | {r['lm_mean']:.3f} |"
               f" {f['height']:.2f} / {f['true_height']:.2f} |"
               f" {sizes[-1][0]:.3f} / {sizes[-1][1]:.3f} |"
@@ -360,15 +373,22 @@ for w in stock_worlds:
               f" {r['time']:.2f} |")
 print()
 n = len(stock)
-print("| estimate | runs | ATE RMSE median [m] | ATE RMSE mean [m] | ATE RMSE min-max [m] |"
-      " runs below dead reckoning |")
-print("|---|---|---|---|---|---|")
-for label, i in (("smoothed (four filters)", 0), ("smoothed, one filter", 1),
-                 ("filter (of the kept run)", 2), ("dead reckoning", 3)):
-    ates = [x[i] for x in stock]
-    below = f"{sum(x[i] < x[3] for x in stock)} of {n}" if i < 3 else ""
-    print(f"| {label} | {n} | {statistics.median(ates):.3f} | {statistics.mean(ates):.3f} |"
-          f" {min(ates):.3f}-{max(ates):.3f} | {below} |")
+groups = sorted({(x[0] - 1) // 10 for x in stock})
+print("| worlds | estimate | runs | ATE RMSE median [m] | ATE RMSE mean [m] |"
+      " ATE RMSE min-max [m] | runs below dead reckoning |")
+print("|---|---|---|---|---|---|---|")
+for g in groups + [None]:
+    runs = [x for x in stock if g is None or (x[0] - 1) // 10 == g]
+    worlds = "all" if g is None else f"{10 * g + 1}-{10 * g + 10}"
+    if g is None and len(groups) == 1:
+        continue
+    for label, i in (("smoothed (four filters)", 1), ("Σ0 = 0.1, smoothed (four filters)", 2),
+                     ("smoothed, one filter", 3), ("filter (of the kept run)", 4),
+                     ("Σ0 = 0.1, filter (of the kept run)", 5), ("dead reckoning", 6)):
+        ates = [x[i] for x in runs]
+        below = f"{sum(x[i] < x[6] for x in runs)} of {len(runs)}" if i < 6 else ""
+        print(f"| {worlds} | {label} | {len(runs)} | {statistics.median(ates):.3f} |"
+              f" {statistics.mean(ates):.3f} | {min(ates):.3f}-{max(ates):.3f} | {below} |")
 print()
 for label, i in (("the filter's path (of the kept run)", 0), ("dead reckoning", 1)):
     r = [x[i] for x in sizes]
@@ -395,6 +415,9 @@ for seed in $MRCLAM_SEEDS; do
     "$MRCLAM/dataset7_r1" --seed "$seed"
   run "mrclam/seed$seed-four" "$CONFIGS/mrclam-bearing-only.ini" "$MRCLAM/dataset7_r1.rawlog" \
     "$MRCLAM/dataset7_r1" --seed "$seed" --set OmniFastSLAM.filter_runs=4
+  run "mrclam/seed$seed-sigma0-0.5" "$CONFIGS/mrclam-bearing-only.ini" \
+    "$MRCLAM/dataset7_r1.rawlog" "$MRCLAM/dataset7_r1" --seed "$seed" \
+    --set "$INSERT.sigma0_xx=0.5" --set "$INSERT.sigma0_yy=0.5" --set "$INSERT.sigma0_zz=0.5"
 done
 {
   header "Planar bearing-only mode on robot 1 of UTIAS MRCLAM dataset 7"
@@ -409,13 +432,15 @@ print()
 print("*filter*: the best particle's path and map; *smoothed*: the run's result, after the least"
       " squares of `[LightsPathSmoother]` (shipped); *four filters*: `filter_runs = 4`, four"
       " filters from the seed on, the one whose smoothed solution costs least kept (the shipped"
-      " config runs one).")
+      " config runs one); *Σ0 = 0.5*: the class default initial landmark covariance instead of"
+      " the config's 0.1 m².")
 print()
 print("| estimate | seed | ATE RMSE [m] | after SE(2) alignment [m] | heading RMSE [deg] | matched |"
       " false | estimated | wrong associations | run [s] |")
 print("|---|---|---|---|---|---|---|---|---|---|")
 for label, run, estimate in (("filter", "", "filter/"), ("smoothed", "", ""),
-                             ("four filters, smoothed", "-four", "")):
+                             ("four filters, smoothed", "-four", ""),
+                             ("Σ0 = 0.5, smoothed", "-sigma0-0.5", "")):
     rows = []
     for s in seeds:
         m = json.load(open(f"{out}/seed{s}{run}/{estimate}metrics.json"))

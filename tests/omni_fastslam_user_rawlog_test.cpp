@@ -161,10 +161,10 @@ TEST(OmniFastSLAMUserRawlog, OdometryOfItsOwnClockIsTakenAtTheFramesTimes)
 }
 
 // A camera pose the bearings do not fit (the shipped hall's camera, configured turned by 90° or
-// 45° about the vertical): the runs complete and say so, with --quiet too. Turned by 90°, no
-// light is ever confirmed (0 of 2445 bearings associated: the path is the odometry's); by 45°,
-// 47 of them, and after smoothing 76 of 183 bearings lie beyond 3 sigma (1 in 90 would with the
-// camera right; the true pose leaves 12 of 2351).
+// 45° about the vertical): the runs complete and say so, with --quiet too. Turned by 90°, hardly
+// a light is confirmed (8 of 2445 bearings associated: the path is almost the odometry's); by
+// 45°, 33, and after smoothing 326 of their 503 bearings lie beyond 3 sigma (1 in 90 would with
+// the camera right). Both also get the camera pose check's warning.
 TEST(OmniFastSLAMUserRawlog, SaysWhenTheBearingsDoNotFitTheCamera)
 {
     const ScratchFolder scratch("omni-camera-turned");
@@ -185,22 +185,22 @@ TEST(OmniFastSLAMUserRawlog, SaysWhenTheBearingsDoNotFitTheCamera)
                 << r.out;
         return std::make_pair(report["warnings"], report["counts"]);
     };
-    const auto startsWith = [](const nlohmann::json& w, const std::string& prefix) {
-        return w.get<std::string>().rfind(prefix, 0) == 0;
+    // the warning of `warnings` that starts with `prefix`, or "" if none does
+    const auto warningOf = [](const nlohmann::json& warnings, const std::string& prefix) {
+        for (const auto& w : warnings)
+            if (w.get<std::string>().rfind(prefix, 0) == 0) return w.get<std::string>();
+        return std::string();
     };
     const auto [turned90, counts90] = warningsOf(90);
-    ASSERT_EQ(turned90.size(), 1u) << turned90;
-    EXPECT_TRUE(startsWith(turned90[0], "the best particle associated 0 of the 2445 bearings"))
-        << turned90;
-    EXPECT_EQ(counts90["associated_measurements"].get<int>(), 0);
+    EXPECT_NE(warningOf(turned90, "the best particle associated "), "") << turned90;
+    EXPECT_EQ(counts90["measurements"].get<int>(), 2445);
+    EXPECT_LT(100 * counts90["associated_measurements"].get<int>(), 2445);
     const auto [turned45, counts45] = warningsOf(45);
-    ASSERT_EQ(turned45.size(), 2u) << turned45;
-    EXPECT_TRUE(startsWith(turned45[0], "after smoothing, ")) << turned45;
-    EXPECT_NE(turned45[0].get<std::string>().find(
-                  " bearings lie beyond 3 sigma of their lights (about 1 in 90 would"),
+    EXPECT_NE(warningOf(turned45, "after smoothing, ")
+                  .find(" bearings lie beyond 3 sigma of their lights (about 1 in 90 would"),
               std::string::npos)
         << turned45;
-    EXPECT_TRUE(startsWith(turned45[1], "the best particle associated ")) << turned45;
+    EXPECT_NE(warningOf(turned45, "the best particle associated "), "") << turned45;
     const auto [right, countsRight] = warningsOf(0);
     EXPECT_EQ(right, nlohmann::json::array());
     EXPECT_GT(10 * countsRight["associated_measurements"].get<int>(),

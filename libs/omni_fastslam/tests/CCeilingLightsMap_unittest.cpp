@@ -166,7 +166,9 @@ TEST(CCeilingLightsMap, DefaultsAreTheRecommendedValues)
     EXPECT_EQ(io.ncross_valid, 5u);
     EXPECT_NEAR(io.ang_min, 7 * M_PI / 180, 1e-15);
     EXPECT_EQ(io.d_min, 8.0);
-    EXPECT_EQ(io.sigma0_xx, 0.1);
+    EXPECT_EQ(io.sigma0_xx, 0.5);
+    EXPECT_EQ(io.sigma0_yy, 0.5);
+    EXPECT_EQ(io.sigma0_zz, 0.5);
     EXPECT_TRUE(io.refine_initialization);
     EXPECT_EQ(io.p_new_mahalanobis2, 64);
     EXPECT_FALSE(map.sensorOptions.sensor_in_robot.has_value());  // the observations' own

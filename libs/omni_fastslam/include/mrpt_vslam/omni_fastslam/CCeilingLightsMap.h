@@ -80,9 +80,9 @@ class CCeilingLightsMap : public mrpt::maps::CMetricMap {
         double ang_min = 7.0 * M_PI / 180;
         double d_min = 8.0;  ///< D_min: XY distance for type I landmarks [m]
         /// Σ0 diagonal [m²]. The paper's diag(0.0025, 0.0025) (for a 3D landmark) is far below
-        /// the triangulation error of a light from rays a few degrees apart; 0.1 is what the
-        /// project measured best (doc/omni-fastslam.md, "Deviations").
-        double sigma0_xx = 0.1, sigma0_yy = 0.1, sigma0_zz = 0.1;
+        /// the triangulation error of a light from rays a few degrees apart; 0.5 is what the
+        /// project measured best with the spherical model (doc/omni-fastslam.md, "Deviations").
+        double sigma0_xx = 0.5, sigma0_yy = 0.5, sigma0_zz = 0.5;
         /// Squared Mahalanobis distance of P_new = (1/2π)|Q|^{-1/2} exp(−p_new_mahalanobis2/2).
         double p_new_mahalanobis2 = 64;
         /// Counter decrement of an unseen candidate: 0 = the paper's I_not (number of iterations
