@@ -51,6 +51,11 @@ PLOTS="${RESULTS%.md}"
 INSERT="MappingApplication_ceilingLightsMap_00_insertOpts"
 mkdir -p "$OUT" "$PLOTS"
 
+# sigma0 VALUE: SIGMA0 holds the options that set the initial landmark covariance to VALUE m²
+sigma0() {
+  SIGMA0=(--set "$INSERT.sigma0_xx=$1" --set "$INSERT.sigma0_yy=$1" --set "$INSERT.sigma0_zz=$1")
+}
+
 # run NAME CONFIG RAWLOG GROUND_TRUTH [OPTION...]: one run and its evaluation in $OUT/NAME;
 # when it was smoothed, the filter's own estimate (filter_path*.tum, filter_map.txt) is
 # evaluated in $OUT/NAME/filter
@@ -99,8 +104,8 @@ done
 echo "4. the paper's Sigma0 and no refinement, seeds $SEEDS"
 for seed in $SEEDS; do
   for s0 in 0.0025 0.01 0.1; do
-    hall "sigma0-$s0-seed$seed" --seed "$seed" --set "$INSERT.sigma0_xx=$s0" \
-      --set "$INSERT.sigma0_yy=$s0" --set "$INSERT.sigma0_zz=$s0"
+    sigma0 "$s0"
+    hall "sigma0-$s0-seed$seed" --seed "$seed" "${SIGMA0[@]}"
   done
   hall "no-refinement-seed$seed" --seed "$seed" --set "$INSERT.refine_initialization=false"
 done
@@ -115,8 +120,8 @@ for seed in $SEEDS; do
   for method in hungarian ml; do
     hard "hard-$method-seed$seed" --seed "$seed" --set "$INSERT.association_method=$method"
   done
-  hard "hard-paper-seed$seed" --seed "$seed" --set "$INSERT.sigma0_xx=0.0025" \
-    --set "$INSERT.sigma0_yy=0.0025" --set "$INSERT.sigma0_zz=0.0025" \
+  sigma0 0.0025
+  hard "hard-paper-seed$seed" --seed "$seed" "${SIGMA0[@]}" \
     --set "$INSERT.refine_initialization=false"
 done
 echo "6. an adaptive number of particles (KLD-sampling) on both halls, seeds $SEEDS"
@@ -140,9 +145,9 @@ for world in $STOCK_WORLDS; do
     run "stock/world$world-seed$seed-one" "$CONFIGS/template.ini" \
       "$OUT/stock/world$world.rawlog" "$OUT/stock/world$world" --seed "$seed" \
       --set OmniFastSLAM.filter_runs=1
+    sigma0 0.1
     run "stock/world$world-seed$seed-sigma0-0.1" "$CONFIGS/template.ini" \
-      "$OUT/stock/world$world.rawlog" "$OUT/stock/world$world" --seed "$seed" \
-      --set "$INSERT.sigma0_xx=0.1" --set "$INSERT.sigma0_yy=0.1" --set "$INSERT.sigma0_zz=0.1"
+      "$OUT/stock/world$world.rawlog" "$OUT/stock/world$world" --seed "$seed" "${SIGMA0[@]}"
   done
 done
 for f in paths errors landmark_errors; do
@@ -415,9 +420,9 @@ for seed in $MRCLAM_SEEDS; do
     "$MRCLAM/dataset7_r1" --seed "$seed"
   run "mrclam/seed$seed-four" "$CONFIGS/mrclam-bearing-only.ini" "$MRCLAM/dataset7_r1.rawlog" \
     "$MRCLAM/dataset7_r1" --seed "$seed" --set OmniFastSLAM.filter_runs=4
+  sigma0 0.5
   run "mrclam/seed$seed-sigma0-0.5" "$CONFIGS/mrclam-bearing-only.ini" \
-    "$MRCLAM/dataset7_r1.rawlog" "$MRCLAM/dataset7_r1" --seed "$seed" \
-    --set "$INSERT.sigma0_xx=0.5" --set "$INSERT.sigma0_yy=0.5" --set "$INSERT.sigma0_zz=0.5"
+    "$MRCLAM/dataset7_r1.rawlog" "$MRCLAM/dataset7_r1" --seed "$seed" "${SIGMA0[@]}"
 done
 {
   header "Planar bearing-only mode on robot 1 of UTIAS MRCLAM dataset 7"
